@@ -1,0 +1,45 @@
+/* Tile payload codecs behind one small table: encode a tile to bytes, decode bytes to a tile. */
+#ifndef VT_CODEC_H
+#define VT_CODEC_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vt_error.h"
+#include "vt_image.h"
+
+/* Encoder settings; zero-initialise for defaults. */
+struct vt_codec_params {
+    int quality;     /* lossy codecs: 1..100, 0 = codec default */
+    int effort;      /* png: zlib level 0..9; bc: 0 fast, 1 best; -1 or 0 = default where noted */
+    int subsampling; /* jpeg: 420 or 444; 0 = default (420) */
+};
+
+struct vt_codec {
+    const char *name;    /* lowercase CLI name: "raw", "png" */
+    uint32_t fourcc;     /* VTS_CODEC_* stored in the layer table */
+    const char *summary; /* one line for --help */
+    bool lossless;
+    /* 0 when the codec can store tiles of edge tile_px with this many channels and sample type;
+     * else VT_ERR_UNSUPPORTED and a message that says why and what to use instead. */
+    int (*check)(uint32_t tile_px, uint32_t channels, uint32_t sample, struct vt_error *err);
+    /* Largest payload encode() can produce for such a tile (0 = shape not supported). */
+    size_t (*encoded_bound)(uint32_t width, uint32_t height, uint32_t channels, uint32_t sample);
+    /* Encodes src into dst (dst_capacity bytes, at least encoded_bound()); *out_len = bytes
+     * written. Thread-safe. Returns 0 or a negative status with a message. */
+    int (*encode)(const struct vt_image *src, const struct vt_codec_params *params, void *dst,
+                  size_t dst_capacity, size_t *out_len, struct vt_error *err);
+    /* Decodes src into dst, which the caller allocated with the width, height, channels and sample
+     * the store's layer declares. A payload of another shape, or malformed, gives VT_ERR_BAD_INPUT
+     * (never a crash, never a read outside src). Thread-safe. */
+    int (*decode)(const void *src, size_t src_len, struct vt_image *dst, struct vt_error *err);
+};
+
+/* Lookup in the registry of codecs compiled into this build; NULL when unknown. */
+const struct vt_codec *vt_codec_find(const char *name);
+const struct vt_codec *vt_codec_by_fourcc(uint32_t fourcc);
+
+/* All codecs of this build, in a stable order; *count receives their number. */
+const struct vt_codec *const *vt_codec_list(size_t *count);
+
+#endif

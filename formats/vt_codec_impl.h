@@ -1,0 +1,25 @@
+/* Private to formats/: the codec objects the registry in vt_codec.c lists, and small helpers the
+ * codec files share. Not installed, not included from outside formats/. */
+#ifndef VT_CODEC_IMPL_H
+#define VT_CODEC_IMPL_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "vt_codec.h"
+
+/* One definition per codec file; adding a codec = one extern here + one line in vt_codec.c. */
+extern const struct vt_codec vt_codec_raw; /* vt_codec_raw.c: tight little-endian rows, exact */
+extern const struct vt_codec vt_codec_png; /* vt_codec_png.c: libpng, u8/u16, 1..4 channels */
+
+/* True on a little-endian host (payload samples and vt_image samples are little-endian there). */
+static inline bool vt_host_is_little_endian(void)
+{
+    const uint16_t one = 1;
+    unsigned char first;
+    memcpy(&first, &one, 1);
+    return first == 1;
+}
+
+#endif

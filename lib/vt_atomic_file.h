@@ -1,0 +1,34 @@
+/* Output files that appear under their final name only when complete (temp file + rename). */
+#ifndef VT_ATOMIC_FILE_H
+#define VT_ATOMIC_FILE_H
+
+#include <stddef.h>
+
+#include "vt_error.h"
+
+#define VT_PATH_MAX 4096
+
+struct vt_atomic_file {
+    int fd;                          /* open for read and write; -1 when closed */
+    char final_path[VT_PATH_MAX];
+    char temp_path[VT_PATH_MAX];     /* hidden file in the same directory: .<name>.<tag>-XXXXXX */
+};
+
+/* Creates a new empty temporary file next to final_path (permissions 0666 & ~umask). tag names
+ * its role in the temporary name ("tmp", "spool"). Returns 0 or VT_ERR_IO / VT_ERR_ARG. */
+int vt_atomic_file_create(struct vt_atomic_file *f, const char *final_path, const char *tag,
+                          struct vt_error *err);
+
+/* Flushes the temporary file to disk, closes it and renames it over final_path, then flushes the
+ * directory. On failure the temporary file is removed and final_path is untouched. */
+int vt_atomic_file_commit(struct vt_atomic_file *f, struct vt_error *err);
+
+/* Closes and removes the temporary file (no-op when already committed or aborted). */
+void vt_atomic_file_abort(struct vt_atomic_file *f);
+
+/* pwrite of the whole buffer, retrying short writes and EINTR; VT_ERR_IO with a message naming
+ * the final path on failure (ENOSPC included). */
+int vt_atomic_file_pwrite(struct vt_atomic_file *f, const void *buf, size_t len, unsigned long long off,
+                          struct vt_error *err);
+
+#endif

@@ -1,0 +1,37 @@
+/* Pixel buffers: size, channels, sample type, row stride. */
+#ifndef VT_IMAGE_H
+#define VT_IMAGE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vt_error.h"
+#include "vts.h"
+
+/* Interleaved channels; samples in host order (little-endian on every supported machine). */
+struct vt_image {
+    uint32_t width, height; /* texels */
+    uint32_t channels;      /* 1..4 */
+    uint32_t sample;        /* enum vts_sample */
+    size_t stride;          /* bytes from one row to the next (>= width * texel bytes) */
+    void *pixels;           /* owned when allocated by vt_image_alloc() */
+};
+
+/* Allocates a zeroed width x height image with a tight stride. Checks the byte count for overflow
+ * (VT_ERR_LIMIT). Free with vt_image_release(). */
+int vt_image_alloc(struct vt_image *img, uint32_t width, uint32_t height, uint32_t channels,
+                   uint32_t sample, struct vt_error *err);
+
+/* Frees pixels allocated by vt_image_alloc() and zeroes the struct. Accepts NULL. */
+void vt_image_release(struct vt_image *img);
+
+/* Bytes of one texel (channels * sample bytes). */
+size_t vt_image_texel_bytes(const struct vt_image *img);
+
+/* Pointer to texel (x, y). */
+static inline void *vt_image_at(const struct vt_image *img, uint32_t x, uint32_t y)
+{
+    return (unsigned char *)img->pixels + (size_t)y * img->stride + (size_t)x * vt_image_texel_bytes(img);
+}
+
+#endif

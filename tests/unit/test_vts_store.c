@@ -1,0 +1,395 @@
+/* Store writer + reader: round trips of every header field and tile, dedup, empty tiles, data
+ * order, metadata, threads, and the atomic-output promise. */
+#include <dirent.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "vt_test.h"
+#include "vts.h"
+#include "vts_writer.h"
+
+static char tmpdir[256];
+
+static void path_in_tmp(char *out, size_t cap, const char *name)
+{
+    snprintf(out, cap, "%s/%s", tmpdir, name);
+}
+
+static const struct vts_geometry geo3x2 = {1000, 600, 120, 4, 128, 4, 2, VTS_STORE_WRAP_X};
+
+static void make_layers(struct vts_layer layers[2])
+{
+    memset(layers, 0, 2 * sizeof *layers);
+    layers[0] = (struct vts_layer){VTS_CODEC_RAW, 4, VTS_SAMPLE_U8, VTS_COLOUR_SRGB,
+                                   VTS_LAYER_PREMULTIPLIED, 0, "diffuse"};
+    layers[1] = (struct vts_layer){VTS_CODEC_PNG, 3, VTS_SAMPLE_U16, VTS_COLOUR_NORMAL, 0, 6,
+                                   "normal"};
+}
+
+/* Payload of a tile: a deterministic byte pattern whose length depends on the tile. Tiles with
+ * (tx + ty) % 4 == 1 share one payload per layer; (tx * 3 + ty) % 5 == 2 are empty (level 0). */
+static size_t payload_for(uint32_t layer, uint32_t level, uint32_t tx, uint32_t ty,
+                          unsigned char *buf)
+{
+    if (level == 0 && (tx * 3 + ty) % 5 == 2)
+        return 0;
+    bool shared = (tx + ty) % 4 == 1;
+    size_t len = shared ? 77 : 50 + (tx * 7 + ty * 13 + level * 5) % 200;
+    for (size_t i = 0; i < len; i++)
+        buf[i] = shared ? (unsigned char)(layer * 3 + i) : (unsigned char)(i ^ tx ^ (ty << 3) ^ (level << 5) ^ layer);
+    return len;
+}
+
+static int write_all(struct vts_writer *w, const struct vts_geometry *g)
+{
+    unsigned char buf[512];
+    for (uint32_t layer = 0; layer < g->layer_count; layer++)
+        for (uint32_t level = 0; level < g->level_count; level++) {
+            struct vts_level L;
+            vts_geometry_level(g, level, &L);
+            for (uint32_t ty = 0; ty < L.tiles_y; ty++)
+                for (uint32_t tx = 0; tx < L.tiles_x; tx++) {
+                    size_t len = payload_for(layer, level, tx, ty, buf);
+                    if (vts_writer_put(w, layer, level, tx, ty, buf, len, NULL) != 0)
+                        return -1;
+                }
+        }
+    return 0;
+}
+
+static void check_all_tiles(const struct vts_store *s, const struct vts_geometry *g)
+{
+    unsigned char want[512], got[512];
+    for (uint32_t layer = 0; layer < g->layer_count; layer++)
+        for (uint32_t level = 0; level < g->level_count; level++) {
+            struct vts_level L;
+            vts_store_level(s, level, &L);
+            for (uint32_t ty = 0; ty < L.tiles_y; ty++)
+                for (uint32_t tx = 0; tx < L.tiles_x; tx++) {
+                    size_t want_len = payload_for(layer, level, tx, ty, want), got_len = 99;
+                    VT_CHECK_INT_EQ(vts_store_read(s, layer, level, tx, ty, got, sizeof got,
+                                                   &got_len, 0, NULL), 0);
+                    VT_CHECK_INT_EQ(got_len, want_len);
+                    VT_CHECK(memcmp(got, want, want_len) == 0);
+                }
+        }
+}
+
+static void round_trip_keeps_every_header_field_and_tile(void)
+{
+    char path[300];
+    path_in_tmp(path, sizeof path, "rt.vts");
+    struct vts_layer layers[2];
+    make_layers(layers);
+    struct vt_error err = {0};
+    struct vts_writer *w = vts_writer_create(path, &geo3x2, layers, &err);
+    VT_CHECK(w != NULL);
+    VT_CHECK_INT_EQ(write_all(w, &geo3x2), 0);
+    VT_CHECK_INT_EQ(vts_writer_set_meta(w, "source", "aerial 2026.tif", &err), 0);
+    VT_CHECK_INT_EQ(vts_writer_set_meta(w, "filter", "box", &err), 0);
+    VT_CHECK_INT_EQ(vts_writer_set_meta(w, "filter", "lanczos3", &err), 0); /* replaces */
+    VT_CHECK_INT_EQ(vts_writer_set_meta(w, "empty.value", "", &err), 0);
+    VT_CHECK(access(path, F_OK) != 0); /* nothing under the final name before finish */
+    VT_CHECK_INT_EQ(vts_writer_finish(w, &err), 0);
+    struct vts_writer_stats st;
+    vts_writer_stats(w, &st);
+    vts_writer_destroy(w);
+
+    struct vts_store *s = vts_open(path, &err);
+    VT_CHECK(s != NULL);
+    if (!s) {
+        fprintf(stderr, "%s\n", err.message);
+        return;
+    }
+    const struct vts_geometry *g = vts_store_geometry(s);
+    VT_CHECK(memcmp(g, &geo3x2, sizeof *g) == 0);
+    for (uint32_t i = 0; i < 2; i++)
+        VT_CHECK(memcmp(vts_store_layer(s, i), &layers[i], sizeof layers[i]) == 0);
+    VT_CHECK(vts_store_layer(s, 2) == NULL);
+    unsigned major, minor;
+    vts_store_version(s, &major, &minor);
+    VT_CHECK_INT_EQ(major, VTS_FORMAT_MAJOR);
+    VT_CHECK_INT_EQ(minor, VTS_FORMAT_MINOR);
+    check_all_tiles(s, g);
+    VT_CHECK_INT_EQ(vts_store_meta_count(s), 3);
+    VT_CHECK(strcmp(vts_store_meta_find(s, "source"), "aerial 2026.tif") == 0);
+    VT_CHECK(strcmp(vts_store_meta_find(s, "filter"), "lanczos3") == 0);
+    VT_CHECK(strcmp(vts_store_meta_value(s, 2), "") == 0);
+    VT_CHECK(vts_store_meta_find(s, "absent") == NULL);
+
+    /* counts: level 0 has 9x5 tiles; empties and shared payloads as payload_for() says */
+    uint64_t empty = 0, stored = 0;
+    for (uint64_t i = 0; i < vts_store_tile_count(s); i++)
+        vts_store_entry(s, i)->length ? stored++ : empty++;
+    VT_CHECK_INT_EQ(stored + empty, 2 * (45 + 15 + 6 + 2));
+    VT_CHECK_INT_EQ(empty, st.tiles_empty);
+    VT_CHECK_INT_EQ(stored, st.tiles_stored);
+    VT_CHECK(st.tiles_shared > 10);
+
+    struct vt_error rerr;
+    size_t len;
+    unsigned char small[8];
+    VT_CHECK_INT_EQ(vts_store_read(s, 0, 0, 9, 0, small, sizeof small, &len, 0, &rerr),
+                    VT_ERR_RANGE);
+    VT_CHECK_INT_EQ(vts_store_read(s, 0, 4, 0, 0, small, sizeof small, &len, 0, &rerr),
+                    VT_ERR_RANGE);
+    VT_CHECK_INT_EQ(vts_store_read(s, 0, 0, 0, 0, small, sizeof small, &len, 0, &rerr),
+                    VT_ERR_LIMIT);
+    vts_close(s);
+}
+
+static void identical_payloads_share_one_offset(void)
+{
+    char path[300];
+    path_in_tmp(path, sizeof path, "rt.vts");
+    struct vts_store *s = vts_open(path, NULL);
+    VT_CHECK(s != NULL);
+    if (!s)
+        return;
+    struct vts_tile_entry a, b, c;
+    /* (1,0) and (0,1) are both shared tiles of layer 0 level 0; layer 1 differs in content */
+    VT_CHECK_INT_EQ(vts_store_tile(s, 0, 0, 1, 0, &a, NULL), 0);
+    VT_CHECK_INT_EQ(vts_store_tile(s, 0, 0, 0, 1, &b, NULL), 0);
+    VT_CHECK_INT_EQ(vts_store_tile(s, 1, 0, 1, 0, &c, NULL), 0);
+    VT_CHECK(a.length == 77 && a.offset == b.offset && a.crc32c == b.crc32c);
+    VT_CHECK(c.length == 77 && c.offset != a.offset);
+    /* empty tile (0,2): (0*3+2)%5 == 2 */
+    VT_CHECK_INT_EQ(vts_store_tile(s, 0, 0, 0, 2, &a, NULL), 0);
+    VT_CHECK(a.length == 0 && a.offset == 0 && a.crc32c == 0);
+    /* the file holds each distinct payload once: data bytes < sum of all lengths */
+    uint64_t sum = 0;
+    for (uint64_t i = 0; i < vts_store_tile_count(s); i++)
+        sum += vts_store_entry(s, i)->length;
+    /* everything after the index (metadata + data) is smaller than the payloads without sharing
+     * by at least ten 77-byte copies */
+    uint64_t index_end = 128 + 2 * 48 + vts_store_tile_count(s) * 16;
+    VT_CHECK(vts_store_file_size(s) - index_end + 10 * 77 < sum);
+    vts_close(s);
+}
+
+static void coarse_levels_come_first_on_disk(void)
+{
+    char path[300];
+    path_in_tmp(path, sizeof path, "rt.vts");
+    struct vts_store *s = vts_open(path, NULL);
+    VT_CHECK(s != NULL);
+    if (!s)
+        return;
+    /* every unshared payload of level l+1 lies before every unshared payload of level l */
+    uint64_t min_off[4], max_off[4];
+    for (int l = 0; l < 4; l++) {
+        min_off[l] = UINT64_MAX;
+        max_off[l] = 0;
+    }
+    for (uint32_t level = 0; level < 4; level++) {
+        struct vts_level L;
+        vts_store_level(s, level, &L);
+        for (uint32_t ty = 0; ty < L.tiles_y; ty++)
+            for (uint32_t tx = 0; tx < L.tiles_x; tx++) {
+                struct vts_tile_entry e;
+                vts_store_tile(s, 1, level, tx, ty, &e, NULL);
+                if (e.length == 0 || (tx + ty) % 4 == 1)
+                    continue;
+                if (e.offset < min_off[level])
+                    min_off[level] = e.offset;
+                if (e.offset > max_off[level])
+                    max_off[level] = e.offset;
+            }
+    }
+    for (int l = 0; l < 3; l++)
+        VT_CHECK(max_off[l + 1] < min_off[l]);
+    /* layers of one tile are adjacent: layer 1 follows layer 0 of an unshared tile */
+    struct vts_tile_entry e0, e1;
+    vts_store_tile(s, 0, 0, 2, 0, &e0, NULL);
+    vts_store_tile(s, 1, 0, 2, 0, &e1, NULL);
+    VT_CHECK_INT_EQ(e1.offset, e0.offset + e0.length);
+    vts_close(s);
+}
+
+struct thread_job {
+    struct vts_writer *w;
+    const struct vts_geometry *g;
+    uint32_t part, parts;
+    int failures;
+};
+
+/* Each thread puts every parts-th tile, walking the index backwards. */
+static void *put_part(void *arg)
+{
+    struct thread_job *j = arg;
+    unsigned char buf[512];
+    uint64_t n = 0;
+    for (uint32_t layer = j->g->layer_count; layer-- > 0;)
+        for (uint32_t level = j->g->level_count; level-- > 0;) {
+            struct vts_level L;
+            vts_geometry_level(j->g, level, &L);
+            for (uint32_t t = L.tiles_x * L.tiles_y; t-- > 0; n++) {
+                if (n % j->parts != j->part)
+                    continue;
+                uint32_t tx = t % L.tiles_x, ty = t / L.tiles_x;
+                size_t len = payload_for(layer, level, tx, ty, buf);
+                j->failures += vts_writer_put(j->w, layer, level, tx, ty, buf, len, NULL) != 0;
+            }
+        }
+    return NULL;
+}
+
+static void threads_and_order_do_not_change_the_bytes(void)
+{
+    char single[300], multi[300];
+    path_in_tmp(single, sizeof single, "rt.vts");
+    path_in_tmp(multi, sizeof multi, "mt.vts");
+    struct vts_layer layers[2];
+    make_layers(layers);
+    struct vts_writer *w = vts_writer_create(multi, &geo3x2, layers, NULL);
+    VT_CHECK(w != NULL);
+    if (!w)
+        return;
+    pthread_t th[4];
+    struct thread_job jobs[4];
+    for (uint32_t i = 0; i < 4; i++) {
+        jobs[i] = (struct thread_job){w, &geo3x2, i, 4, 0};
+        pthread_create(&th[i], NULL, put_part, &jobs[i]);
+    }
+    for (int i = 0; i < 4; i++) {
+        pthread_join(th[i], NULL);
+        VT_CHECK_INT_EQ(jobs[i].failures, 0);
+    }
+    vts_writer_set_meta(w, "source", "aerial 2026.tif", NULL);
+    vts_writer_set_meta(w, "filter", "lanczos3", NULL);
+    vts_writer_set_meta(w, "empty.value", "", NULL);
+    VT_CHECK_INT_EQ(vts_writer_finish(w, NULL), 0);
+    vts_writer_destroy(w);
+    /* same tiles, other order, 4 threads: byte-identical file */
+    FILE *a = fopen(single, "rb"), *b = fopen(multi, "rb");
+    VT_CHECK(a && b);
+    int ca, cb, same = 1;
+    long n = 0;
+    do {
+        ca = a ? fgetc(a) : EOF;
+        cb = b ? fgetc(b) : EOF;
+        same &= ca == cb;
+        n++;
+    } while (ca != EOF && cb != EOF);
+    VT_CHECK(same);
+    VT_CHECK(n > 1000);
+    if (a)
+        fclose(a);
+    if (b)
+        fclose(b);
+}
+
+static void writer_rejects_bad_puts(void)
+{
+    char path[300];
+    path_in_tmp(path, sizeof path, "bad.vts");
+    struct vts_layer layers[2];
+    make_layers(layers);
+    struct vt_error err;
+    struct vts_writer *w = vts_writer_create(path, &geo3x2, layers, &err);
+    VT_CHECK(w != NULL);
+    if (!w)
+        return;
+    unsigned char b[4] = {1, 2, 3, 4};
+    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 0, 0, b, 4, &err), 0);
+    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 0, 0, b, 4, &err), VT_ERR_ARG);
+    VT_CHECK_STR_CONTAINS(err.message, "put twice");
+    VT_CHECK_INT_EQ(vts_writer_put(w, 2, 0, 0, 0, b, 4, &err), VT_ERR_RANGE);
+    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 4, 0, 0, b, 4, &err), VT_ERR_RANGE);
+    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 9, 0, b, 4, &err), VT_ERR_RANGE);
+    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 0, 5, b, 4, &err), VT_ERR_RANGE);
+    VT_CHECK_INT_EQ(vts_writer_set_meta(w, "bad key", "x", &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(vts_writer_set_meta(w, "", "x", &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(vts_writer_set_meta(w, "a=b", "x", &err), VT_ERR_ARG);
+    vts_writer_destroy(w); /* no finish: nothing left behind */
+    VT_CHECK(access(path, F_OK) != 0);
+
+    struct vts_geometry g = geo3x2;
+    g.tile_payload_px = 127;
+    VT_CHECK(vts_writer_create(path, &g, layers, &err) == NULL);
+    VT_CHECK_STR_CONTAINS(err.message, "bad.vts");
+    layers[1].channels = 5;
+    VT_CHECK(vts_writer_create(path, &geo3x2, layers, &err) == NULL);
+    VT_CHECK(vts_writer_create("/nonexistent-dir/x.vts", &geo3x2, layers, &err) == NULL);
+}
+
+static void finish_replaces_an_old_file_and_leaves_no_temporaries(void)
+{
+    char path[300];
+    path_in_tmp(path, sizeof path, "replace.vts");
+    FILE *f = fopen(path, "w");
+    fputs("old content", f);
+    fclose(f);
+    struct vts_geometry g = {5, 3, 4, 0, 4, 2, 1, 0};
+    struct vts_layer layer = {VTS_CODEC_RAW, 1, VTS_SAMPLE_U8, VTS_COLOUR_DATA, 0, 0, "d"};
+    struct vts_writer *w = vts_writer_create(path, &g, &layer, NULL);
+    VT_CHECK(w != NULL);
+    if (!w)
+        return;
+    unsigned char px[16] = {9};
+    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 1, 0, 0, px, 16, NULL), 0);
+    /* the old file is intact while the writer works */
+    struct stat st;
+    VT_CHECK(stat(path, &st) == 0 && st.st_size == 11);
+    VT_CHECK_INT_EQ(vts_writer_finish(w, NULL), 0);
+    vts_writer_destroy(w);
+    struct vts_store *s = vts_open(path, NULL);
+    VT_CHECK(s != NULL);
+    if (s) {
+        struct vts_tile_entry e;
+        VT_CHECK_INT_EQ(vts_store_tile(s, 0, 0, 1, 0, &e, NULL), 0); /* never put: empty */
+        VT_CHECK_INT_EQ(e.length, 0);
+        vts_close(s);
+    }
+    int count = 0;
+    DIR *d = opendir(tmpdir);
+    for (struct dirent *de; d && (de = readdir(d));)
+        count += strncmp(de->d_name, ".replace.vts.", 13) == 0;
+    if (d)
+        closedir(d);
+    VT_CHECK_INT_EQ(count, 0); /* no .replace.vts.tmp-* or .spool-* left */
+}
+
+static void store_without_payloads_opens(void)
+{
+    char path[300];
+    path_in_tmp(path, sizeof path, "allempty.vts");
+    struct vts_geometry g = {1, 1, 1, 0, 1, 1, 1, 0};
+    struct vts_layer layer = {VTS_CODEC_RAW, 1, VTS_SAMPLE_U8, VTS_COLOUR_DATA, 0, 0, "d"};
+    struct vts_writer *w = vts_writer_create(path, &g, &layer, NULL);
+    VT_CHECK(w && vts_writer_finish(w, NULL) == 0);
+    vts_writer_destroy(w);
+    struct vt_error err = {0};
+    struct vts_store *s = vts_open(path, &err);
+    VT_CHECK(s != NULL);
+    if (s) {
+        VT_CHECK_INT_EQ(vts_store_tile_count(s), 1);
+        VT_CHECK_INT_EQ(vts_store_max_payload(s), 0);
+        vts_close(s);
+    } else {
+        fprintf(stderr, "%s\n", err.message);
+    }
+}
+
+int main(void)
+{
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/test_vts_store.XXXXXX");
+    if (!mkdtemp(tmpdir))
+        return 1;
+    VT_RUN(round_trip_keeps_every_header_field_and_tile);
+    VT_RUN(identical_payloads_share_one_offset);
+    VT_RUN(coarse_levels_come_first_on_disk);
+    VT_RUN(threads_and_order_do_not_change_the_bytes);
+    VT_RUN(writer_rejects_bad_puts);
+    VT_RUN(finish_replaces_an_old_file_and_leaves_no_temporaries);
+    VT_RUN(store_without_payloads_opens);
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
+    if (system(cmd) != 0)
+        fprintf(stderr, "could not remove %s\n", tmpdir);
+    return vt_test_main_result();
+}
