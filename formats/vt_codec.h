@@ -2,6 +2,7 @@
 #ifndef VT_CODEC_H
 #define VT_CODEC_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -11,7 +12,8 @@
 /* Encoder settings; zero-initialise for defaults. */
 struct vt_codec_params {
     int quality;     /* lossy codecs: 1..100, 0 = codec default */
-    int effort;      /* png: zlib level 0..9; bc: 0 fast, 1 best; -1 or 0 = default where noted */
+    int effort;      /* png: 1..9 = zlib level, 0 = default (2; 1..3 use the fast SUB filter);
+                        bc: 0 = fast, 1 = best */
     int subsampling; /* jpeg: 420 or 444; 0 = default (420) */
 };
 
@@ -21,12 +23,14 @@ struct vt_codec {
     const char *summary; /* one line for --help */
     bool lossless;
     /* 0 when the codec can store tiles of edge tile_px with this many channels and sample type;
-     * else VT_ERR_UNSUPPORTED and a message that says why and what to use instead. */
+     * else VT_ERR_UNSUPPORTED and a message that says why and what to use instead (including a
+     * payload that could not fit the index's 32-bit length). */
     int (*check)(uint32_t tile_px, uint32_t channels, uint32_t sample, struct vt_error *err);
     /* Largest payload encode() can produce for such a tile (0 = shape not supported). */
     size_t (*encoded_bound)(uint32_t width, uint32_t height, uint32_t channels, uint32_t sample);
     /* Encodes src into dst (dst_capacity bytes, at least encoded_bound()); *out_len = bytes
-     * written. Thread-safe. Returns 0 or a negative status with a message. */
+     * written. Thread-safe. Returns 0, VT_ERR_LIMIT when dst_capacity is too small, or another
+     * negative status with a message. */
     int (*encode)(const struct vt_image *src, const struct vt_codec_params *params, void *dst,
                   size_t dst_capacity, size_t *out_len, struct vt_error *err);
     /* Decodes src into dst, which the caller allocated with the width, height, channels and sample

@@ -1,10 +1,11 @@
 /* PNG tile payloads through libpng, encoded to and decoded from memory. 1..4 channels (gray,
  * gray+alpha, RGB, RGBA), u8 or u16 samples; 16-bit samples are big-endian inside the PNG and in
- * host order in a vt_image. libpng's setjmp/longjmp stays in this file: each function that calls
- * setjmp (png_*_run) only touches state reached through pointers to its caller's objects, so
- * nothing it changes after setjmp is an indeterminate local after a longjmp.
+ * host order in a vt_image. libpng's setjmp/longjmp stays in this file. The functions that call
+ * setjmp (png_*_run) change no local of their own after it: the work happens in a callee
+ * (png_*_body) whose frame the longjmp discards, on objects the caller owns, so no local is left
+ * indeterminate (C11 7.13.2.1).
  *
- * params->effort: 1..9 is the zlib level, 0 the default (6). Levels 1..3 use the SUB filter on
+ * params->effort: 1..9 is the zlib level, 0 the default (2: fast, tiles are small). Levels 1..3 use the SUB filter on
  * every row (fast: ~30 MP/s at level 1); levels 4..9 let libpng pick a filter per row. */
 #include <png.h>
 #include <setjmp.h>
@@ -16,7 +17,7 @@
 #include "vt_codec.h"
 #include "vt_codec_impl.h"
 
-#define PNG_DEFAULT_LEVEL  6
+#define PNG_DEFAULT_LEVEL 2
 #define PNG_FAST_MAX_LEVEL 3
 #define PNG_MAX_EDGE       0x7fffffffu /* PNG_UINT_31_MAX */
 
@@ -30,14 +31,15 @@ struct png_mem_ctx {
     const unsigned char *src; /* decode: input payload */
     size_t src_len;
     size_t src_pos;
-    int status;       /* status to return once libpng stops (0: the default of the operation) */
+    int status; /* status to return once libpng stops (0: the default of the operation) */
     char message[VT_ERROR_MESSAGE_MAX]; /* first error, already worded for the user */
 };
 
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 4)))
 #endif
-static int png_ctx_fail(struct png_mem_ctx *ctx, int status, const char *fmt, ...)
+static int
+png_ctx_fail(struct png_mem_ctx *ctx, int status, const char *fmt, ...)
 {
     if (ctx->message[0] == '\0') {
         va_list ap;
@@ -93,8 +95,8 @@ static void png_mem_read(png_structp png, png_bytep data, size_t length)
 
 static int png_colour_type(uint32_t channels)
 {
-    static const int types[] = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
-                                PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGB_ALPHA};
+    static const int types[] = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
+                                PNG_COLOR_TYPE_RGB_ALPHA};
     return types[channels - 1];
 }
 
@@ -109,16 +111,15 @@ static int png_image_layout(const struct vt_image *img, const char *role, size_t
     if (!img->pixels || img->channels < 1 || img->channels > 4 || img->width == 0 ||
         img->height == 0 || img->width > PNG_MAX_EDGE || img->height > PNG_MAX_EDGE ||
         !vt_size_mul3(img->width, img->channels, vts_sample_bytes(img->sample), row_bytes))
-        return vt_error_set(err, VT_ERR_ARG, "png codec: invalid %s image %ux%u, %u channels",
-                            role, img->width, img->height, img->channels);
+        return vt_error_set(err, VT_ERR_ARG, "png codec: invalid %s image %ux%u, %u channels", role,
+                            img->width, img->height, img->channels);
     if (img->stride < *row_bytes)
         return vt_error_set(err, VT_ERR_ARG, "png codec: %s stride %zu < row size %zu", role,
                             img->stride, *row_bytes);
     return 0;
 }
 
-static size_t png_encoded_bound(uint32_t width, uint32_t height, uint32_t channels,
-                                uint32_t sample)
+static size_t png_encoded_bound(uint32_t width, uint32_t height, uint32_t channels, uint32_t sample)
 {
     size_t row_bytes, filtered, deflated, chunks, total;
     if (width == 0 || height == 0 || width > PNG_MAX_EDGE || height > PNG_MAX_EDGE ||
@@ -150,16 +151,15 @@ static int png_check(uint32_t tile_px, uint32_t channels, uint32_t sample, struc
     size_t bound = png_encoded_bound(tile_px, tile_px, channels, sample);
     if (bound == 0 || bound > UINT32_MAX)
         return vt_error_set(err, VT_ERR_UNSUPPORTED,
-                            "png codec: a %ux%u tile does not fit the 4 GiB payload limit",
-                            tile_px, tile_px);
+                            "png codec: a %ux%u tile does not fit the 4 GiB payload limit", tile_px,
+                            tile_px);
     return 0;
 }
 
-static int png_encode_run(png_structp png, png_infop info, const struct vt_image *src, int level,
-                          struct png_mem_ctx *ctx)
+/* The encoding itself; a libpng error longjmps out of it to png_encode_run(). */
+static void png_encode_body(png_structp png, png_infop info, const struct vt_image *src, int level,
+                            struct png_mem_ctx *ctx)
 {
-    if (setjmp(png_jmpbuf(png)))
-        return ctx->status ? ctx->status : ctx->default_status;
     png_set_write_fn(png, ctx, png_mem_write, png_mem_flush);
     png_set_user_limits(png, PNG_MAX_EDGE, PNG_MAX_EDGE);
     png_set_compression_level(png, level);
@@ -174,6 +174,14 @@ static int png_encode_run(png_structp png, png_infop info, const struct vt_image
     for (uint32_t y = 0; y < src->height; y++)
         png_write_row(png, (const unsigned char *)src->pixels + (size_t)y * src->stride);
     png_write_end(png, NULL);
+}
+
+static int png_encode_run(png_structp png, png_infop info, const struct vt_image *src, int level,
+                          struct png_mem_ctx *ctx)
+{
+    if (setjmp(png_jmpbuf(png)))
+        return ctx->status ? ctx->status : ctx->default_status;
+    png_encode_body(png, info, src, level, ctx);
     return 0;
 }
 
@@ -223,25 +231,25 @@ static int png_decode_match(png_structp png, png_infop info, const struct vt_ima
                             "png payload: palette image (tiles are gray, gray+alpha, RGB or RGBA)");
     unsigned channels = png_get_channels(png, info);
     if (channels != dst->channels)
-        return png_ctx_fail(ctx, VT_ERR_BAD_INPUT, "png payload: %u channels != tile %u",
-                            channels, dst->channels);
+        return png_ctx_fail(ctx, VT_ERR_BAD_INPUT, "png payload: %u channels != tile %u", channels,
+                            dst->channels);
     unsigned tile_depth = dst->sample == VTS_SAMPLE_U16 ? 16 : 8;
     if ((unsigned)bit_depth != tile_depth)
         return png_ctx_fail(ctx, VT_ERR_BAD_INPUT, "png payload: bit depth %d != tile %u",
                             bit_depth, tile_depth);
     if (png_get_valid(png, info, PNG_INFO_tRNS))
-        return png_ctx_fail(ctx, VT_ERR_BAD_INPUT,
-                            "png payload: tRNS transparency chunk (tiles carry alpha as a channel)");
+        return png_ctx_fail(
+            ctx, VT_ERR_BAD_INPUT,
+            "png payload: tRNS transparency chunk (tiles carry alpha as a channel)");
     return 0;
 }
 
-static int png_decode_run(png_structp png, png_infop info, struct vt_image *dst, size_t row_bytes,
-                          struct png_mem_ctx *ctx)
+/* The decoding itself; a libpng error longjmps out of it to png_decode_run(). */
+static int png_decode_body(png_structp png, png_infop info, struct vt_image *dst, size_t row_bytes,
+                           struct png_mem_ctx *ctx)
 {
-    if (setjmp(png_jmpbuf(png)))
-        return ctx->status ? ctx->status : ctx->default_status;
     png_set_read_fn(png, ctx, png_mem_read);
-    png_set_benign_errors(png, 0);                                 /* strict: errors stay errors */
+    png_set_benign_errors(png, 0); /* strict: errors stay errors */
     png_set_keep_unknown_chunks(png, PNG_HANDLE_CHUNK_NEVER, NULL, -1); /* skip ancillary chunks */
     png_set_user_limits(png, PNG_MAX_EDGE, PNG_MAX_EDGE); /* we compare with the tile ourselves */
     png_read_info(png, info);
@@ -263,6 +271,14 @@ static int png_decode_run(png_structp png, png_infop info, struct vt_image *dst,
         return png_ctx_fail(ctx, VT_ERR_BAD_INPUT, "png payload: %zu bytes after IEND",
                             ctx->src_len - ctx->src_pos);
     return 0;
+}
+
+static int png_decode_run(png_structp png, png_infop info, struct vt_image *dst, size_t row_bytes,
+                          struct png_mem_ctx *ctx)
+{
+    if (setjmp(png_jmpbuf(png)))
+        return ctx->status ? ctx->status : ctx->default_status;
+    return png_decode_body(png, info, dst, row_bytes, ctx);
 }
 
 static int png_decode(const void *src, size_t src_len, struct vt_image *dst, struct vt_error *err)

@@ -51,8 +51,7 @@ static int raw_check(uint32_t tile_px, uint32_t channels, uint32_t sample, struc
     return 0;
 }
 
-static size_t raw_encoded_bound(uint32_t width, uint32_t height, uint32_t channels,
-                                uint32_t sample)
+static size_t raw_encoded_bound(uint32_t width, uint32_t height, uint32_t channels, uint32_t sample)
 {
     size_t row_bytes, total_bytes;
     if (!raw_payload_bytes(width, height, channels, sample, &row_bytes, &total_bytes))
@@ -64,9 +63,8 @@ static size_t raw_encoded_bound(uint32_t width, uint32_t height, uint32_t channe
 static int raw_image_layout(const struct vt_image *img, const char *role, size_t *row_bytes,
                             size_t *total_bytes, struct vt_error *err)
 {
-    if (!img->pixels ||
-        !raw_payload_bytes(img->width, img->height, img->channels, img->sample, row_bytes,
-                           total_bytes))
+    if (!img->pixels || !raw_payload_bytes(img->width, img->height, img->channels, img->sample,
+                                           row_bytes, total_bytes))
         return vt_error_set(err, VT_ERR_ARG, "raw codec: invalid %s image %ux%u, %u x sample %u",
                             role, img->width, img->height, img->channels, img->sample);
     if (img->stride < *row_bytes)

@@ -1,6 +1,7 @@
 /* PNG files on disk through libpng: a streaming writer over vt_atomic_file and a whole-image
- * reader. Each function that calls setjmp (*_run) changes only objects reached through its
- * pointer arguments, so nothing it changes after setjmp is an indeterminate local after longjmp. */
+ * reader. The functions that call setjmp (*_run) change no local of their own after it: the work
+ * happens in callees (*_body) whose frames the longjmp discards, or through pointers to objects
+ * the caller owns, so no local is left indeterminate (C11 7.13.2.1). */
 #include "vt_png_file.h"
 
 #include <errno.h>
@@ -16,12 +17,12 @@
 #include "vt_codec_impl.h"
 
 #define PNG_FILE_MAX_EDGE     0x7fffffffu /* PNG_UINT_31_MAX */
-#define PNG_FILE_BUFFER_BYTES (1u << 20)   /* output is written in pieces of this size */
+#define PNG_FILE_BUFFER_BYTES (1u << 20)  /* output is written in pieces of this size */
 
 struct vt_png_file_writer {
     struct vt_atomic_file file;
-    bool file_open;     /* the temporary file exists (create succeeded, commit not yet) */
-    bool stopped;       /* libpng or a write failed: the png state is unusable */
+    bool file_open; /* the temporary file exists (create succeeded, commit not yet) */
+    bool stopped;   /* libpng or a write failed: the png state is unusable */
     png_structp png;
     png_infop info;
     uint32_t width, height, channels, bit_depth;
@@ -111,15 +112,21 @@ static int png_file_writer_start_run(struct vt_png_file_writer *w)
     return 0;
 }
 
+static void png_file_writer_rows_body(struct vt_png_file_writer *w, const unsigned char *rows,
+                                      uint32_t row_count, size_t stride)
+{
+    for (uint32_t i = 0; i < row_count; i++) {
+        png_write_row(w->png, rows + (size_t)i * stride);
+        w->rows_written++;
+    }
+}
+
 static int png_file_writer_rows_run(struct vt_png_file_writer *w, const unsigned char *rows,
                                     uint32_t row_count, size_t stride)
 {
     if (setjmp(png_jmpbuf(w->png)))
         return png_file_stop_status(&w->error, VT_ERR_IO);
-    for (uint32_t i = 0; i < row_count; i++) {
-        png_write_row(w->png, rows + (size_t)i * stride);
-        w->rows_written++;
-    }
+    png_file_writer_rows_body(w, rows, row_count, stride);
     return 0;
 }
 
@@ -151,6 +158,10 @@ static int png_file_writer_check_args(const char *path, uint32_t width, uint32_t
     if (channels < 1 || channels > 4 || (bit_depth != 8 && bit_depth != 16))
         return vt_error_set(err, VT_ERR_ARG, "cannot write '%s': %u channels of %u bits", path,
                             channels, bit_depth);
+    size_t row_bytes;
+    if (!vt_size_mul3(width, channels, bit_depth / 8, &row_bytes))
+        return vt_error_set(err, VT_ERR_LIMIT, "cannot write '%s': rows of %u texels are too long",
+                            path, width);
     return 0;
 }
 
@@ -169,8 +180,7 @@ struct vt_png_file_writer *vt_png_file_writer_create(const char *path, uint32_t 
     w->height = height;
     w->channels = channels;
     w->bit_depth = bit_depth;
-    /* width <= 2^31 and 8 bytes per texel at most: the row size fits any 64-bit size_t */
-    w->row_bytes = (size_t)width * channels * (bit_depth / 8);
+    w->row_bytes = (size_t)width * channels * (bit_depth / 8); /* checked above */
     w->buffer = malloc(PNG_FILE_BUFFER_BYTES);
     w->png = png_create_write_struct(PNG_LIBPNG_VER_STRING, w, png_file_writer_error,
                                      png_file_ignore_warning);
@@ -297,17 +307,16 @@ static int png_file_reader_setup(png_structp png, png_infop info, struct png_fil
     return 0;
 }
 
-static int png_file_reader_run(png_structp png, png_infop info, struct png_file_reader *rd,
-                               struct vt_image *out)
+/* The reading itself; a libpng error longjmps out of it to png_file_reader_run(). */
+static int png_file_reader_body(png_structp png, png_infop info, struct png_file_reader *rd,
+                                struct vt_image *out)
 {
-    if (setjmp(png_jmpbuf(png)))
-        return png_file_stop_status(&rd->error, VT_ERR_BAD_INPUT);
     png_set_read_fn(png, rd, png_file_reader_read);
     png_set_sig_bytes(png, 8);
     png_set_user_limits(png, PNG_FILE_MAX_EDGE, PNG_FILE_MAX_EDGE); /* we limit the texel count */
     png_read_info(png, info);
-    uint32_t channels, sample;
-    int passes;
+    uint32_t channels = 0, sample = 0;
+    int passes = 0;
     if (png_file_reader_setup(png, info, rd, &channels, &sample, &passes) < 0)
         return rd->error.status;
     struct vt_error alloc_error;
@@ -323,6 +332,14 @@ static int png_file_reader_run(png_structp png, png_infop info, struct png_file_
             png_read_row(png, (unsigned char *)out->pixels + (size_t)y * out->stride, NULL);
     png_read_end(png, NULL);
     return 0;
+}
+
+static int png_file_reader_run(png_structp png, png_infop info, struct png_file_reader *rd,
+                               struct vt_image *out)
+{
+    if (setjmp(png_jmpbuf(png)))
+        return png_file_stop_status(&rd->error, VT_ERR_BAD_INPUT);
+    return png_file_reader_body(png, info, rd, out);
 }
 
 int vt_png_file_read(const char *path, struct vt_image *out, struct vt_error *err)

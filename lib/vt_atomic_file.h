@@ -9,9 +9,9 @@
 #define VT_PATH_MAX 4096
 
 struct vt_atomic_file {
-    int fd;                          /* open for read and write; -1 when closed */
+    int fd; /* open for read and write; -1 when closed */
     char final_path[VT_PATH_MAX];
-    char temp_path[VT_PATH_MAX];     /* hidden file in the same directory: .<name>.<tag>-XXXXXX */
+    char temp_path[VT_PATH_MAX]; /* hidden file in the same directory: .<name>.<tag>-XXXXXX */
 };
 
 /* Creates a new empty temporary file next to final_path (permissions 0666 & ~umask). tag names
@@ -28,7 +28,7 @@ void vt_atomic_file_abort(struct vt_atomic_file *f);
 
 /* pwrite of the whole buffer, retrying short writes and EINTR; VT_ERR_IO with a message naming
  * the final path on failure (ENOSPC included). */
-int vt_atomic_file_pwrite(struct vt_atomic_file *f, const void *buf, size_t len, unsigned long long off,
-                          struct vt_error *err);
+int vt_atomic_file_pwrite(struct vt_atomic_file *f, const void *buf, size_t len,
+                          unsigned long long off, struct vt_error *err);
 
 #endif

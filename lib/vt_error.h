@@ -27,12 +27,12 @@ enum vt_status {
 
 /* Owned by the caller; functions that take one may be given NULL. */
 struct vt_error {
-    int status;                          /* VT_OK or a negative enum vt_status */
-    char message[VT_ERROR_MESSAGE_MAX];  /* one line, no trailing newline */
+    int status;                         /* VT_OK or a negative enum vt_status */
+    char message[VT_ERROR_MESSAGE_MAX]; /* one line, no trailing newline */
 };
 
-/* Fills err (if not NULL) with status and a printf-style message; returns status so that callers can
- * write `return vt_error_set(err, VT_ERR_IO, ...)`. Truncates long messages. Thread-safe. */
+/* Fills err (if not NULL) with status and a printf-style message; returns status so that callers
+ * can write `return vt_error_set(err, VT_ERR_IO, ...)`. Truncates long messages. Thread-safe. */
 int vt_error_set(struct vt_error *err, int status, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))

@@ -31,7 +31,8 @@ size_t vt_image_texel_bytes(const struct vt_image *img);
 /* Pointer to texel (x, y). */
 static inline void *vt_image_at(const struct vt_image *img, uint32_t x, uint32_t y)
 {
-    return (unsigned char *)img->pixels + (size_t)y * img->stride + (size_t)x * vt_image_texel_bytes(img);
+    return (unsigned char *)img->pixels + (size_t)y * img->stride +
+           (size_t)x * vt_image_texel_bytes(img);
 }
 
 #endif

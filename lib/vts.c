@@ -40,9 +40,11 @@ static int read_at(const struct vts_store *s, void *buf, size_t len, uint64_t of
                    struct vt_error *err)
 {
     if (!vt_range_within(off, len, s->file_size))
-        return vt_error_set(err, VT_ERR_CORRUPT, "'%s': %s is truncated (needs bytes %llu..%llu, "
-                            "file has %llu)", s->name, what, (unsigned long long)off,
-                            (unsigned long long)(off + len), (unsigned long long)s->file_size);
+        return vt_error_set(err, VT_ERR_CORRUPT,
+                            "'%s': %s is truncated (needs bytes %llu..%llu, "
+                            "file has %llu)",
+                            s->name, what, (unsigned long long)off, (unsigned long long)(off + len),
+                            (unsigned long long)s->file_size);
     if (s->mem) {
         memcpy(buf, s->mem + off, len);
         return 0;
@@ -90,10 +92,11 @@ static int check_regions(const struct vts_store *s, struct region *r, int n, uin
 {
     for (int i = 0; i < n; i++) {
         if (!vt_range_within(r[i].off, r[i].size, s->file_size))
-            return vt_error_set(err, VT_ERR_CORRUPT, "'%s': %s (bytes %llu + %llu) lies past the "
-                                "end of the file (%llu bytes)", s->name, r[i].what,
-                                (unsigned long long)r[i].off, (unsigned long long)r[i].size,
-                                (unsigned long long)s->file_size);
+            return vt_error_set(err, VT_ERR_CORRUPT,
+                                "'%s': %s (bytes %llu + %llu) lies past the "
+                                "end of the file (%llu bytes)",
+                                s->name, r[i].what, (unsigned long long)r[i].off,
+                                (unsigned long long)r[i].size, (unsigned long long)s->file_size);
         if (r[i].size > 0 && r[i].off < header_size)
             return vt_error_set(err, VT_ERR_CORRUPT, "'%s': %s overlaps the header", s->name,
                                 r[i].what);
@@ -137,9 +140,10 @@ static int parse_layers(struct vts_store *s, uint64_t off, uint32_t entry_size, 
         if (L->channels < 1 || L->channels > 4 || vts_sample_bytes(L->sample) == 0 ||
             L->colour < VTS_COLOUR_SRGB || L->colour > VTS_COLOUR_DATA ||
             memchr(L->name, '\0', VTS_LAYER_NAME_BYTES) == NULL) {
-            rc = vt_error_set(err, VT_ERR_CORRUPT, "'%s': layer %u has an invalid description "
-                              "(%u channels, sample %u, colour %u)", s->name, i, L->channels,
-                              L->sample, L->colour);
+            rc = vt_error_set(err, VT_ERR_CORRUPT,
+                              "'%s': layer %u has an invalid description "
+                              "(%u channels, sample %u, colour %u)",
+                              s->name, i, L->channels, L->sample, L->colour);
             goto out;
         }
     }
@@ -155,25 +159,30 @@ static int check_entry(struct vts_store *s, uint64_t i, uint64_t data_off, uint6
     const char *why = NULL;
     if (e->length == 0 && (e->offset != 0 || e->crc32c != 0))
         why = "is empty but has an offset or checksum";
-    else if (e->length > 0 && (e->offset < data_off ||
-                               !vt_range_within(e->offset - data_off, e->length, data_size)))
+    else if (e->length > 0 &&
+             (e->offset < data_off || !vt_range_within(e->offset - data_off, e->length, data_size)))
         why = "points outside the data region";
     if (!why)
         return 0;
     uint32_t layer, level, tx, ty;
     entry_position(s, i, &layer, &level, &tx, &ty);
-    return vt_error_set(err, VT_ERR_CORRUPT, "'%s': index entry of layer %u level %u tile %u,%u "
-                        "%s (offset %llu, length %u)", s->name, layer, level, tx, ty, why,
-                        (unsigned long long)e->offset, e->length);
+    return vt_error_set(err, VT_ERR_CORRUPT,
+                        "'%s': index entry of layer %u level %u tile %u,%u "
+                        "%s (offset %llu, length %u)",
+                        s->name, layer, level, tx, ty, why, (unsigned long long)e->offset,
+                        e->length);
 }
 
 static int parse_index(struct vts_store *s, uint64_t off, uint32_t entry_size, uint32_t crc,
                        uint64_t data_off, uint64_t data_size, struct vt_error *err)
 {
     /* tile_count * 16 <= 2^36 by the geometry check, and the region was checked to lie inside
-     * the file, so this allocation is bounded by the file size. */
+     * the file, so these allocations are bounded by the file size (the chunk too: never more
+     * entries than the index holds, whatever the entry size). */
     s->entries = malloc((size_t)s->tile_count * sizeof *s->entries);
-    unsigned char *chunk = malloc((size_t)INDEX_CHUNK_ENTRIES * entry_size);
+    uint64_t chunk_entries =
+        s->tile_count < INDEX_CHUNK_ENTRIES ? s->tile_count : INDEX_CHUNK_ENTRIES;
+    unsigned char *chunk = malloc((size_t)chunk_entries * entry_size);
     int rc = 0;
     if (!s->entries || !chunk) {
         rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory for the index of '%s'", s->name);
@@ -241,9 +250,10 @@ static int check_overlaps(struct vts_store *s, struct vt_error *err)
         if (!shared && a->offset + a->length > b->offset) {
             uint32_t layer, level, tx, ty;
             entry_position(s, (uint64_t)(b - s->entries), &layer, &level, &tx, &ty);
-            rc = vt_error_set(err, VT_ERR_CORRUPT, "'%s': payload of layer %u level %u tile %u,%u "
-                              "overlaps another payload at offset %llu", s->name, layer, level, tx,
-                              ty, (unsigned long long)a->offset);
+            rc = vt_error_set(err, VT_ERR_CORRUPT,
+                              "'%s': payload of layer %u level %u tile %u,%u "
+                              "overlaps another payload at offset %llu",
+                              s->name, layer, level, tx, ty, (unsigned long long)a->offset);
         }
     }
     free(sorted);
@@ -337,9 +347,10 @@ static int parse_header(struct vts_store *s, struct vt_error *err)
     s->major = vts_load_u16(h + VTS_H_MAJOR);
     s->minor = vts_load_u16(h + VTS_H_MINOR);
     if (s->major != VTS_FORMAT_MAJOR)
-        return vt_error_set(err, VT_ERR_VERSION, "'%s': format version %u.%u is not supported "
-                            "(this reader knows %u.x)", s->name, s->major, s->minor,
-                            VTS_FORMAT_MAJOR);
+        return vt_error_set(err, VT_ERR_VERSION,
+                            "'%s': format version %u.%u is not supported "
+                            "(this reader knows %u.x)",
+                            s->name, s->major, s->minor, VTS_FORMAT_MAJOR);
     if (vts_crc32c(0, h, VTS_H_HEADER_CRC) != vts_load_u32(h + VTS_H_HEADER_CRC))
         return vt_error_set(err, VT_ERR_CHECKSUM, "'%s': header checksum mismatch", s->name);
 
@@ -369,16 +380,19 @@ static int parse_header(struct vts_store *s, struct vt_error *err)
     if (header_size < VTS_HEADER_SIZE || layer_entry < VTS_LAYER_ENTRY_SIZE ||
         layer_entry > MAX_ENTRY_SIZE || index_entry < VTS_INDEX_ENTRY_SIZE ||
         index_entry > MAX_ENTRY_SIZE)
-        return vt_error_set(err, VT_ERR_CORRUPT, "'%s': invalid header (header %llu, layer entry "
-                            "%u, index entry %u bytes)", s->name, (unsigned long long)header_size,
-                            layer_entry, index_entry);
+        return vt_error_set(err, VT_ERR_CORRUPT,
+                            "'%s': invalid header (header %llu, layer entry "
+                            "%u, index entry %u bytes)",
+                            s->name, (unsigned long long)header_size, layer_entry, index_entry);
     if (index_count != s->tile_count)
-        return vt_error_set(err, VT_ERR_CORRUPT, "'%s': index holds %llu entries, the geometry "
-                            "needs %llu", s->name, (unsigned long long)index_count,
+        return vt_error_set(err, VT_ERR_CORRUPT,
+                            "'%s': index holds %llu entries, the geometry "
+                            "needs %llu",
+                            s->name, (unsigned long long)index_count,
                             (unsigned long long)s->tile_count);
     if (meta_size < 4 || meta_size > VTS_MAX_META_BYTES)
-        return vt_error_set(err, VT_ERR_CORRUPT, "'%s': metadata size %u is outside 4..%u",
-                            s->name, meta_size, VTS_MAX_META_BYTES);
+        return vt_error_set(err, VT_ERR_CORRUPT, "'%s': metadata size %u is outside 4..%u", s->name,
+                            meta_size, VTS_MAX_META_BYTES);
     struct region r[4] = {
         {vts_load_u64(h + VTS_H_LAYER_OFFSET), (uint64_t)layer_entry * g->layer_count,
          "layer table"},
@@ -387,8 +401,10 @@ static int parse_header(struct vts_store *s, struct vt_error *err)
         {vts_load_u64(h + VTS_H_DATA_OFFSET), vts_load_u64(h + VTS_H_DATA_SIZE), "data region"},
     };
     if (header_size > s->file_size)
-        return vt_error_set(err, VT_ERR_CORRUPT, "'%s': header size %llu is past the end of the "
-                            "file", s->name, (unsigned long long)header_size);
+        return vt_error_set(err, VT_ERR_CORRUPT,
+                            "'%s': header size %llu is past the end of the "
+                            "file",
+                            s->name, (unsigned long long)header_size);
     rc = check_regions(s, r, 4, header_size, err);
     if (rc == 0)
         rc = parse_layers(s, r[0].off, layer_entry, vts_load_u32(h + VTS_H_LAYERS_CRC), err);
@@ -428,7 +444,8 @@ struct vts_store *vts_open(const char *path, struct vt_error *err)
     struct vts_store *s = store_new(path, err);
     if (!s)
         return NULL;
-    s->fd = open(path, O_RDONLY | O_CLOEXEC);
+    /* O_NONBLOCK: opening a FIFO must not wait for a writer (it is then refused below). */
+    s->fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
     struct stat st;
     if (s->fd < 0 || fstat(s->fd, &st) != 0) {
         vt_error_set(err, VT_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
@@ -538,8 +555,12 @@ int vts_store_read(const struct vts_store *s, uint32_t layer, uint32_t level, ui
     if (rc)
         return rc;
     if (e.length > dst_capacity)
-        return vt_error_set(err, VT_ERR_LIMIT, "'%s': tile %u,%u of level %u is %u bytes, buffer "
-                            "holds %zu", s->name, tx, ty, level, e.length, dst_capacity);
+        return vt_error_set(err, VT_ERR_LIMIT,
+                            "'%s': tile %u,%u of level %u is %u bytes, buffer "
+                            "holds %zu",
+                            s->name, tx, ty, level, e.length, dst_capacity);
+    if (e.length == 0) /* empty tile: nothing to read (dst may be NULL) */
+        return 0;
     char what[64];
     snprintf(what, sizeof what, "tile %u,%u of level %u", tx, ty, level);
     rc = read_at(s, dst, e.length, e.offset, what, err);

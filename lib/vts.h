@@ -18,18 +18,18 @@ extern "C" {
 #define VTS_FORMAT_MINOR 0
 
 /* Limits a reader enforces before it allocates anything (see docs/vts-format.md, "Limits"). */
-#define VTS_MAX_DIMENSION      (1u << 30) /* level-0 width or height, texels */
-#define VTS_MAX_PAYLOAD_PX     16384u     /* tile payload edge (content + 2 * border) */
-#define VTS_MAX_LAYERS         64u
-#define VTS_MAX_LEVELS         32u
-#define VTS_MAX_META_BYTES     (16u << 20)
-#define VTS_MAX_META_ENTRIES   4096u
-#define VTS_MAX_KEY_BYTES      255u
-#define VTS_LAYER_NAME_BYTES   32u /* including the terminating NUL */
+#define VTS_MAX_DIMENSION    (1u << 30) /* level-0 width or height, texels */
+#define VTS_MAX_PAYLOAD_PX   16384u     /* tile payload edge (content + 2 * border) */
+#define VTS_MAX_LAYERS       64u
+#define VTS_MAX_LEVELS       32u
+#define VTS_MAX_META_BYTES   (16u << 20)
+#define VTS_MAX_META_ENTRIES 4096u
+#define VTS_MAX_KEY_BYTES    255u
+#define VTS_LAYER_NAME_BYTES 32u /* including the terminating NUL */
 
 /* Codec of a layer's payloads, a little-endian four-character code. */
 #define VTS_FOURCC(a, b, c, d)                                                                     \
-    ((uint32_t)(uint8_t)(a) | ((uint32_t)(uint8_t)(b) << 8) | ((uint32_t)(uint8_t)(c) << 16) |      \
+    ((uint32_t)(uint8_t)(a) | ((uint32_t)(uint8_t)(b) << 8) | ((uint32_t)(uint8_t)(c) << 16) |     \
      ((uint32_t)(uint8_t)(d) << 24))
 #define VTS_CODEC_RAW  VTS_FOURCC('R', 'A', 'W', ' ')
 #define VTS_CODEC_PNG  VTS_FOURCC('P', 'N', 'G', ' ')
@@ -74,20 +74,20 @@ struct vts_geometry {
 };
 
 struct vts_layer {
-    uint32_t codec;      /* VTS_CODEC_* fourcc */
-    uint8_t channels;    /* 1..4 */
-    uint8_t sample;      /* enum vts_sample */
-    uint8_t colour;      /* enum vts_colour */
-    uint8_t flags;       /* enum vts_layer_flags */
-    uint32_t codec_param; /* informational (e.g. JPEG quality); 0 if none */
+    uint32_t codec;                  /* VTS_CODEC_* fourcc */
+    uint8_t channels;                /* 1..4 */
+    uint8_t sample;                  /* enum vts_sample */
+    uint8_t colour;                  /* enum vts_colour */
+    uint8_t flags;                   /* enum vts_layer_flags */
+    uint32_t codec_param;            /* informational (e.g. JPEG quality); 0 if none */
     char name[VTS_LAYER_NAME_BYTES]; /* "diffuse", "normal"...; NUL-terminated */
 };
 
 /* Size of one level. Level l is ceil(width / 2^l) x ceil(height / 2^l) texels (never below 1). */
 struct vts_level {
-    uint32_t width, height;   /* texels */
+    uint32_t width, height;    /* texels */
     uint32_t tiles_x, tiles_y; /* ceil(size / tile_content_px) */
-    uint64_t first_tile;      /* position of tile (0,0) of this level within one layer's index */
+    uint64_t first_tile;       /* position of tile (0,0) of this level within one layer's index */
 };
 
 struct vts_tile_entry {
@@ -98,7 +98,8 @@ struct vts_tile_entry {
 
 /* ---- geometry helpers (pure functions, no I/O) ---- */
 
-/* Number of levels from level 0 down to the first level that fits in one tile. 0 if an argument is 0. */
+/* Number of levels from level 0 down to the first level that fits in one tile. 0 if an argument is
+ * 0. */
 uint32_t vts_full_level_count(uint32_t width, uint32_t height, uint32_t tile_content_px);
 
 /* Checks g for consistency and limits (sizes, payload = content + 2 * border, level and layer
@@ -147,7 +148,8 @@ uint64_t vts_store_file_size(const struct vts_store *store);
 const char *vts_store_name(const struct vts_store *store);
 void vts_store_version(const struct vts_store *store, unsigned *major, unsigned *minor);
 
-/* Index entry of one tile. Returns 0, or VT_ERR_RANGE when layer/level/tile is outside the store. */
+/* Index entry of one tile. Returns 0, or VT_ERR_RANGE when layer/level/tile is outside the store.
+ */
 int vts_store_tile(const struct vts_store *store, uint32_t layer, uint32_t level, uint32_t tx,
                    uint32_t ty, struct vts_tile_entry *out, struct vt_error *err);
 

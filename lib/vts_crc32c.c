@@ -32,9 +32,9 @@ static uint32_t crc32c_soft(uint32_t crc, const unsigned char *p, size_t len)
         memcpy(&hi, p + 4, 4);
         lo ^= crc; /* little-endian hosts only, like the rest of vtpipe */
         crc = crc_table[7][lo & 0xff] ^ crc_table[6][(lo >> 8) & 0xff] ^
-              crc_table[5][(lo >> 16) & 0xff] ^ crc_table[4][lo >> 24] ^
-              crc_table[3][hi & 0xff] ^ crc_table[2][(hi >> 8) & 0xff] ^
-              crc_table[1][(hi >> 16) & 0xff] ^ crc_table[0][hi >> 24];
+              crc_table[5][(lo >> 16) & 0xff] ^ crc_table[4][lo >> 24] ^ crc_table[3][hi & 0xff] ^
+              crc_table[2][(hi >> 8) & 0xff] ^ crc_table[1][(hi >> 16) & 0xff] ^
+              crc_table[0][hi >> 24];
         p += 8;
         len -= 8;
     }
@@ -47,7 +47,7 @@ static uint32_t crc32c_soft(uint32_t crc, const unsigned char *p, size_t len)
 #include <nmmintrin.h>
 
 __attribute__((target("sse4.2"))) static uint32_t crc32c_sse42(uint32_t crc, const unsigned char *p,
-                                                                size_t len)
+                                                               size_t len)
 {
     uint64_t c = crc;
     while (len >= 8) {

@@ -45,14 +45,14 @@ enum vts_header_field {
 
 /* Layer table entry field offsets. */
 enum vts_layer_field {
-    VTS_L_CODEC = 0,    /* u32 fourcc */
-    VTS_L_CHANNELS = 4, /* u8 */
-    VTS_L_SAMPLE = 5,   /* u8 */
-    VTS_L_COLOUR = 6,   /* u8 */
-    VTS_L_FLAGS = 7,    /* u8 */
-    VTS_L_PARAM = 8,    /* u32 */
+    VTS_L_CODEC = 0,     /* u32 fourcc */
+    VTS_L_CHANNELS = 4,  /* u8 */
+    VTS_L_SAMPLE = 5,    /* u8 */
+    VTS_L_COLOUR = 6,    /* u8 */
+    VTS_L_FLAGS = 7,     /* u8 */
+    VTS_L_PARAM = 8,     /* u32 */
     VTS_L_RESERVED = 12, /* u32, zero */
-    VTS_L_NAME = 16,    /* 32 bytes, NUL-padded */
+    VTS_L_NAME = 16,     /* 32 bytes, NUL-padded */
 };
 
 static inline uint16_t vts_load_u16(const unsigned char *p)

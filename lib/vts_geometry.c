@@ -63,17 +63,20 @@ int vts_geometry_check(const struct vts_geometry *g, struct vt_error *err)
                             g->tile_payload_px, VTS_MAX_PAYLOAD_PX);
     uint32_t full = vts_full_level_count(g->width, g->height, g->tile_content_px);
     if (g->level_count == 0 || g->level_count > full)
-        return vt_error_set(err, VT_ERR_ARG, "%u levels requested, %ux%u with %u px tiles has 1..%u",
-                            g->level_count, g->width, g->height, g->tile_content_px, full);
+        return vt_error_set(err, VT_ERR_ARG,
+                            "%u levels requested, %ux%u with %u px tiles has 1..%u", g->level_count,
+                            g->width, g->height, g->tile_content_px, full);
     if (g->layer_count == 0 || g->layer_count > VTS_MAX_LAYERS)
         return vt_error_set(err, VT_ERR_LIMIT, "%u layers is outside 1..%u", g->layer_count,
                             VTS_MAX_LAYERS);
     uint64_t tiles;
     if (!vt_u64_mul(vts_geometry_tiles_per_layer(g), g->layer_count, &tiles) ||
         tiles > VTS_MAX_TILES)
-        return vt_error_set(err, VT_ERR_LIMIT, "%ux%u with %u px tiles and %u layers has too many "
-                            "tiles (limit %llu)", g->width, g->height, g->tile_content_px,
-                            g->layer_count, (unsigned long long)VTS_MAX_TILES);
+        return vt_error_set(err, VT_ERR_LIMIT,
+                            "%ux%u with %u px tiles and %u layers has too many "
+                            "tiles (limit %llu)",
+                            g->width, g->height, g->tile_content_px, g->layer_count,
+                            (unsigned long long)VTS_MAX_TILES);
     return 0;
 }
 
@@ -117,7 +120,8 @@ void vts_codec_name(uint32_t fourcc, char out[5])
         unsigned char c = (unsigned char)(fourcc >> (8 * i));
         if (c == ' ' || c == '\0')
             break;
-        out[n++] = (char)(c >= 'A' && c <= 'Z' ? c + ('a' - 'A') : (c >= 0x20 && c < 0x7f ? c : '?'));
+        out[n++] =
+            (char)(c >= 'A' && c <= 'Z' ? c + ('a' - 'A') : (c >= 0x20 && c < 0x7f ? c : '?'));
     }
     out[n] = '\0';
 }

@@ -19,12 +19,12 @@
 #include "vts_format.h"
 #include "vts_order.h"
 
-#define SLOT_UNSET   0u /* tile never put: stored as empty */
-#define SLOT_EMPTY   1u /* tile put with no payload */
-#define SLOT_FIRST   2u /* slot = SLOT_FIRST + payload record number */
-#define NOT_PLACED   UINT64_MAX
-#define DATA_ALIGN   64u
-#define COPY_BUFFER  (1u << 20)
+#define SLOT_UNSET  0u /* tile never put: stored as empty */
+#define SLOT_EMPTY  1u /* tile put with no payload */
+#define SLOT_FIRST  2u /* slot = SLOT_FIRST + payload record number */
+#define NOT_PLACED  UINT64_MAX
+#define DATA_ALIGN  64u
+#define COPY_BUFFER (1u << 20)
 
 struct payload_rec {
     uint64_t spool_off;
@@ -139,8 +139,8 @@ static int spooled_equals(struct vts_writer *w, const struct payload_rec *rec, c
         return vt_error_set(err, VT_ERR_NOMEM, "out of memory comparing tiles");
     size_t done = 0;
     while (done < rec->length) {
-        ssize_t n = pread(w->spool.fd, buf + done, rec->length - done,
-                          (off_t)(rec->spool_off + done));
+        ssize_t n =
+            pread(w->spool.fd, buf + done, rec->length - done, (off_t)(rec->spool_off + done));
         if (n < 0 && errno == EINTR)
             continue;
         if (n <= 0) {
@@ -188,7 +188,8 @@ static int store_payload(struct vts_writer *w, const void *payload, uint32_t len
     if (rc)
         return rc;
     uint32_t k = bucket_of(w, crc, length);
-    w->recs[w->rec_count] = (struct payload_rec){w->spool_end, NOT_PLACED, length, crc, w->buckets[k]};
+    w->recs[w->rec_count] =
+        (struct payload_rec){w->spool_end, NOT_PLACED, length, crc, w->buckets[k]};
     w->buckets[k] = ++w->rec_count;
     w->spool_end += length;
     w->stats.unique_bytes += length;
@@ -414,8 +415,8 @@ static uint32_t meta_bytes(const struct vts_writer *w)
     return n > VTS_MAX_META_BYTES ? 0 : (uint32_t)n;
 }
 
-static int write_layers_and_meta(struct vts_writer *w, const struct layout *lay, uint32_t *layers_crc,
-                                 uint32_t *meta_crc, struct vt_error *err)
+static int write_layers_and_meta(struct vts_writer *w, const struct layout *lay,
+                                 uint32_t *layers_crc, uint32_t *meta_crc, struct vt_error *err)
 {
     unsigned char lt[VTS_MAX_LAYERS * VTS_LAYER_ENTRY_SIZE];
     memset(lt, 0, sizeof lt);

@@ -15,7 +15,7 @@ static int vt_test_checks;
         vt_test_checks++;                                                                          \
         if (!(cond)) {                                                                             \
             vt_test_failures++;                                                                    \
-            fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond);              \
+            fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond);               \
         }                                                                                          \
     } while (0)
 

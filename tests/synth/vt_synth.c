@@ -10,9 +10,15 @@
 
 void vt_synth_defaults(struct vt_synth_options *o)
 {
-    *o = (struct vt_synth_options){.width = 300, .height = 200, .tile_content_px = 64,
-                                   .border_px = 2, .layer_count = 1, .codec = VTS_CODEC_RAW,
-                                   .channels = 4, .sample = VTS_SAMPLE_U8, .seed = 1};
+    *o = (struct vt_synth_options){.width = 300,
+                                   .height = 200,
+                                   .tile_content_px = 64,
+                                   .border_px = 2,
+                                   .layer_count = 1,
+                                   .codec = VTS_CODEC_RAW,
+                                   .channels = 4,
+                                   .sample = VTS_SAMPLE_U8,
+                                   .seed = 1};
 }
 
 static uint32_t hash32(uint32_t v)
@@ -34,8 +40,9 @@ double vt_synth_texel(const struct vt_synth_options *o, uint32_t layer, uint32_t
     y = y < 0 ? 0 : (y >= h ? h - 1 : y);
     if (o->flat_left && (uint64_t)x < w / 4)
         return channel == 3 ? 1.0 : 0.25 + 0.1 * channel;
-    uint32_t v = hash32(o->seed * 0x9e3779b9u ^ hash32((uint32_t)x * 73856093u ^
-                        (uint32_t)y * 19349663u ^ level * 83492791u ^ layer * 2654435761u ^ channel));
+    uint32_t v =
+        hash32(o->seed * 0x9e3779b9u ^ hash32((uint32_t)x * 73856093u ^ (uint32_t)y * 19349663u ^
+                                              level * 83492791u ^ layer * 2654435761u ^ channel));
     return (v & 0xffff) / 65535.0;
 }
 
@@ -75,14 +82,20 @@ int vt_synth_store(const char *path, const struct vt_synth_options *o, struct vt
     const struct vt_codec *codec = vt_codec_by_fourcc(o->codec);
     if (!codec)
         return vt_error_set(err, VT_ERR_UNSUPPORTED, "vt-synth: unknown codec");
-    struct vts_geometry g = {o->width, o->height, o->tile_content_px, o->border_px,
-                             o->tile_content_px + 2 * o->border_px, 0, o->layer_count, 0};
+    struct vts_geometry g = {o->width,
+                             o->height,
+                             o->tile_content_px,
+                             o->border_px,
+                             o->tile_content_px + 2 * o->border_px,
+                             0,
+                             o->layer_count,
+                             0};
     g.level_count = vts_full_level_count(g.width, g.height, g.tile_content_px);
     struct vts_layer layers[VTS_MAX_LAYERS];
     memset(layers, 0, sizeof layers);
     for (uint32_t i = 0; i < o->layer_count && i < VTS_MAX_LAYERS; i++) {
-        layers[i] = (struct vts_layer){o->codec, (uint8_t)o->channels, (uint8_t)o->sample,
-                                       VTS_COLOUR_SRGB, 0, 0, {0}};
+        layers[i] = (struct vts_layer){
+            o->codec, (uint8_t)o->channels, (uint8_t)o->sample, VTS_COLOUR_SRGB, 0, 0, {0}};
         snprintf(layers[i].name, sizeof layers[i].name, i == 0 ? "diffuse" : "layer%u", i);
     }
     int rc = codec->check(g.tile_payload_px, o->channels, o->sample, err);

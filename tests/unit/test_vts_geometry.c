@@ -72,8 +72,9 @@ static void crc32c_matches_published_check_values(void)
         buf[i] = (unsigned char)(i * 31 + 7);
     uint32_t whole = vts_crc32c(0, buf + 1, 299);
     for (int cut = 0; cut <= 299; cut += 13)
-        VT_CHECK_INT_EQ(vts_crc32c(vts_crc32c(0, buf + 1, (size_t)cut), buf + 1 + cut,
-                                   (size_t)(299 - cut)), whole);
+        VT_CHECK_INT_EQ(
+            vts_crc32c(vts_crc32c(0, buf + 1, (size_t)cut), buf + 1 + cut, (size_t)(299 - cut)),
+            whole);
 }
 
 static void hilbert_order_visits_neighbours(void)

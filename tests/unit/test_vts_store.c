@@ -24,10 +24,10 @@ static const struct vts_geometry geo3x2 = {1000, 600, 120, 4, 128, 4, 2, VTS_STO
 static void make_layers(struct vts_layer layers[2])
 {
     memset(layers, 0, 2 * sizeof *layers);
-    layers[0] = (struct vts_layer){VTS_CODEC_RAW, 4, VTS_SAMPLE_U8, VTS_COLOUR_SRGB,
+    layers[0] = (struct vts_layer){VTS_CODEC_RAW,           4, VTS_SAMPLE_U8, VTS_COLOUR_SRGB,
                                    VTS_LAYER_PREMULTIPLIED, 0, "diffuse"};
-    layers[1] = (struct vts_layer){VTS_CODEC_PNG, 3, VTS_SAMPLE_U16, VTS_COLOUR_NORMAL, 0, 6,
-                                   "normal"};
+    layers[1] =
+        (struct vts_layer){VTS_CODEC_PNG, 3, VTS_SAMPLE_U16, VTS_COLOUR_NORMAL, 0, 6, "normal"};
 }
 
 /* Payload of a tile: a deterministic byte pattern whose length depends on the tile. Tiles with
@@ -40,7 +40,8 @@ static size_t payload_for(uint32_t layer, uint32_t level, uint32_t tx, uint32_t 
     bool shared = (tx + ty) % 4 == 1;
     size_t len = shared ? 77 : 50 + (tx * 7 + ty * 13 + level * 5) % 200;
     for (size_t i = 0; i < len; i++)
-        buf[i] = shared ? (unsigned char)(layer * 3 + i) : (unsigned char)(i ^ tx ^ (ty << 3) ^ (level << 5) ^ layer);
+        buf[i] = shared ? (unsigned char)(layer * 3 + i)
+                        : (unsigned char)(i ^ tx ^ (ty << 3) ^ (level << 5) ^ layer);
     return len;
 }
 
@@ -71,8 +72,9 @@ static void check_all_tiles(const struct vts_store *s, const struct vts_geometry
             for (uint32_t ty = 0; ty < L.tiles_y; ty++)
                 for (uint32_t tx = 0; tx < L.tiles_x; tx++) {
                     size_t want_len = payload_for(layer, level, tx, ty, want), got_len = 99;
-                    VT_CHECK_INT_EQ(vts_store_read(s, layer, level, tx, ty, got, sizeof got,
-                                                   &got_len, 0, NULL), 0);
+                    VT_CHECK_INT_EQ(
+                        vts_store_read(s, layer, level, tx, ty, got, sizeof got, &got_len, 0, NULL),
+                        0);
                     VT_CHECK_INT_EQ(got_len, want_len);
                     VT_CHECK(memcmp(got, want, want_len) == 0);
                 }

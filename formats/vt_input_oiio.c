@@ -1,0 +1,198 @@
+/* The OpenImageIO fallback for formats without a native reader (TGA, HDR, PSD, DDS, WebP...):
+ * loads libvt_oiio.so (vt_oiio_shim.cpp) with dlopen() when the first such file is opened, so that
+ * a process that reads only TIFF/PNG/JPEG/EXR never maps OpenImageIO (~0.4 s and ~130 MB).
+ * The module is searched, in order, at $VT_OIIO_MODULE, at its build-tree path, at its install
+ * path and at <dir of the executable>/../<libdir>/vtpipe/. It is opened with RTLD_NODELETE: each
+ * source holds a reference, and closing the last one does not unload OpenImageIO (whose static
+ * state does not survive unloading, and reloading costs the start-up again). No global state. */
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vt_input_impl.h"
+
+#ifndef VT_HAVE_OIIO
+
+int vt_input_oiio_open(const char *path, uint64_t max_pixels, struct vt_source *out,
+                       struct vt_error *err)
+{
+    (void)max_pixels;
+    (void)out;
+    return vt_error_set(err, VT_ERR_UNSUPPORTED,
+                        "'%s': format not supported (built without OpenImageIO)", path);
+}
+
+#else
+
+#include <dlfcn.h>
+#include <limits.h>
+#include <unistd.h>
+
+struct oiio_input {
+    void *module; /* dlopen() reference */
+    void *handle; /* the module's open image */
+    vt_oiio_read_fn read;
+    vt_oiio_close_fn close;
+    char name[256];
+};
+
+/* dlsym() into a function pointer without the object-to-function pointer cast. */
+static bool oiio_symbol(void *module, const char *symbol, void *fn, size_t fn_size)
+{
+    void *p = dlsym(module, symbol);
+    if (!p)
+        return false;
+    memcpy(fn, &p, fn_size);
+    return true;
+}
+
+/* Tries one candidate path; on failure appends dlerror() to why. */
+static void *oiio_try(const char *path, char *why, size_t why_size)
+{
+    if (!path || !path[0])
+        return NULL;
+    void *m = dlopen(path, RTLD_NOW | RTLD_LOCAL | RTLD_NODELETE);
+    if (!m) {
+        const char *e = dlerror();
+        size_t used = strlen(why);
+        if (used == 0) /* the first failure is the most telling (usually $VT_OIIO_MODULE) */
+            snprintf(why + used, why_size - used, "%s", e ? e : path);
+    }
+    return m;
+}
+
+/* <dir of the executable>/../VT_OIIO_RELATIVE_PATH, or "" if unknown. */
+static void oiio_exe_relative(char *buf, size_t size)
+{
+    char exe[PATH_MAX];
+    buf[0] = '\0';
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n <= 0)
+        return;
+    exe[n] = '\0';
+    char *slash = strrchr(exe, '/');
+    if (!slash)
+        return;
+    *slash = '\0';
+    snprintf(buf, size, "%s/../%s", exe, VT_OIIO_RELATIVE_PATH);
+}
+
+static void *oiio_load(char *why, size_t why_size)
+{
+    char relative[PATH_MAX + 64];
+    oiio_exe_relative(relative, sizeof relative);
+    const char *candidates[] = {getenv("VT_OIIO_MODULE"), VT_OIIO_BUILD_PATH,
+                                VT_OIIO_INSTALL_PATH, relative};
+    why[0] = '\0';
+    for (size_t i = 0; i < sizeof candidates / sizeof candidates[0]; i++) {
+        void *m = oiio_try(candidates[i], why, why_size);
+        if (m)
+            return m;
+    }
+    return NULL;
+}
+
+static int oiio_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,
+                            struct vt_error *err)
+{
+    struct oiio_input *t = ctx;
+    char msg[VT_OIIO_ERR_MAX] = "";
+    int r = t->read(t->handle, x, y, dst->width, dst->height, dst->pixels, dst->stride, msg);
+    if (r == VT_OIIO_OK)
+        return 0;
+    return vt_error_set(err, r == VT_OIIO_NOMEM ? VT_ERR_NOMEM : VT_ERR_BAD_INPUT,
+                        "cannot read '%s': rows %u-%u: %s", t->name, y, y + dst->height - 1, msg);
+}
+
+static void oiio_close(void *ctx)
+{
+    struct oiio_input *t = ctx;
+    if (!t)
+        return;
+    if (t->handle)
+        t->close(t->handle);
+    if (t->module)
+        dlclose(t->module);
+    free(t);
+}
+
+static const struct vt_source_ops oiio_ops = {oiio_read_region, oiio_close};
+
+static int oiio_status(int result)
+{
+    switch (result) {
+    case VT_OIIO_UNKNOWN_FORMAT:
+    case VT_OIIO_UNSUPPORTED:
+        return VT_ERR_UNSUPPORTED;
+    case VT_OIIO_NOMEM:
+        return VT_ERR_NOMEM;
+    default:
+        return VT_ERR_BAD_INPUT;
+    }
+}
+
+/* Resolves the module's functions and opens path through it. */
+static int oiio_open_with(struct oiio_input *t, const char *path, uint64_t max_pixels,
+                          struct vt_source *out, struct vt_error *err)
+{
+    vt_oiio_abi_version_fn version;
+    vt_oiio_open_fn open_fn;
+    if (!oiio_symbol(t->module, "vt_oiio_abi_version", &version, sizeof version) ||
+        !oiio_symbol(t->module, "vt_oiio_open", &open_fn, sizeof open_fn) ||
+        !oiio_symbol(t->module, "vt_oiio_read", &t->read, sizeof t->read) ||
+        !oiio_symbol(t->module, "vt_oiio_close", &t->close, sizeof t->close) ||
+        version() != VT_OIIO_ABI_VERSION)
+        return vt_error_set(err, VT_ERR_UNSUPPORTED,
+                            "'%s': format not supported: the OpenImageIO module does not match "
+                            "this build",
+                            path);
+    struct vt_oiio_info info;
+    char msg[VT_OIIO_ERR_MAX] = "";
+    int result = VT_OIIO_BAD_FILE;
+    t->handle = open_fn(path, &info, &result, msg);
+    if (!t->handle)
+        return vt_error_set(err, oiio_status(result), "cannot read '%s': %s", path, msg);
+    int rc = vt_input_check_size(path, info.width, info.height, max_pixels, err);
+    if (rc < 0)
+        return rc;
+    if (info.channels < 1 || info.channels > 4 || vts_sample_bytes(info.sample) == 0)
+        return vt_error_set(err, VT_ERR_UNSUPPORTED, "cannot read '%s': %u channels", path,
+                            info.channels);
+    char format[32];
+    snprintf(format, sizeof format, "oiio:%.*s", 10, info.format);
+    vt_input_set_info(&out->info, info.width, info.height, info.channels, info.sample,
+                      info.tile_w == 0, info.tile_w, info.tile_h, format);
+    out->info.has_alpha = info.has_alpha != 0;
+    return 0;
+}
+
+int vt_input_oiio_open(const char *path, uint64_t max_pixels, struct vt_source *out,
+                       struct vt_error *err)
+{
+    struct oiio_input *t = calloc(1, sizeof *t);
+    if (!t)
+        return vt_error_set(err, VT_ERR_NOMEM, "cannot read '%s': out of memory", path);
+    vt_input_copy_name(t->name, sizeof t->name, path);
+    char why[200];
+    t->module = oiio_load(why, sizeof why);
+    int rc;
+    if (!t->module) {
+        rc = vt_error_set(err, VT_ERR_UNSUPPORTED,
+                          "'%s': format not supported: cannot load the OpenImageIO module (%s)",
+                          path, why);
+        goto out_close;
+    }
+    rc = oiio_open_with(t, path, max_pixels, out, err);
+    if (rc < 0)
+        goto out_close;
+    out->ops = &oiio_ops;
+    out->ctx = t;
+    return 0;
+
+out_close:
+    oiio_close(t);
+    return rc;
+}
+
+#endif

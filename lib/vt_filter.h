@@ -1,0 +1,92 @@
+/* Mip filtering: 2:1 reduction kernels, conversions between stored samples and the float working
+ * space (linear light, premultiplied alpha, normals in [-1,1]), and normal renormalisation. */
+#ifndef VT_FILTER_H
+#define VT_FILTER_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vt_error.h"
+
+enum vt_filter_kind {
+    VT_FILTER_BOX = 0,      /* 2x2 average: exact, fastest, slightly blurry and aliasing */
+    VT_FILTER_TRIANGLE = 1, /* tent over 4x4 texels (bilinear-like), smoother */
+    VT_FILTER_LANCZOS3 = 2, /* windowed sinc, 3 lobes (12x12 texels): sharpest, may ring */
+    VT_FILTER_KAISER = 3,   /* Kaiser-windowed sinc (alpha 4, width 3): sharp, less ringing */
+};
+
+/* Parses "box", "triangle", "lanczos3", "kaiser"; returns 0 or VT_ERR_ARG. */
+int vt_filter_parse(const char *name, enum vt_filter_kind *out);
+const char *vt_filter_name(enum vt_filter_kind kind);
+
+#define VT_KERNEL_MAX_TAPS 16
+
+/* Taps of a 2:1 reduction: output texel i of the coarser level is the weighted sum of texels
+ * 2i + first .. 2i + first + count - 1 of the finer level. Weights sum to 1 (float). */
+struct vt_kernel {
+    enum vt_filter_kind kind;
+    int first;
+    int count;
+    float weights[VT_KERNEL_MAX_TAPS];
+};
+
+void vt_kernel_init(struct vt_kernel *k, enum vt_filter_kind kind);
+
+/* Finer-level texels needed beyond a reduced block on each side: a block of output texels
+ * [a, b) reads finer texels [2a - margin, 2b + margin). */
+uint32_t vt_kernel_margin(const struct vt_kernel *k);
+
+/* How stored texels map to the working space. */
+struct vt_pixel_mode {
+    uint32_t channels; /* 1..4 */
+    uint32_t colour;   /* enum vts_colour: srgb colour channels are linearised; normal: xyz
+                          mapped from [0,1] to [-1,1]; linear and data unchanged */
+    bool alpha;        /* last channel is alpha: colour channels are premultiplied in the working
+                          space (not for data) */
+};
+
+/* Converts n texels from a stored sample type (enum vts_sample; u8/u16 are normalised) to
+ * working floats (n * channels floats). */
+void vt_filter_to_working(const struct vt_pixel_mode *m, uint32_t sample, const void *src,
+                          float *dst, size_t n);
+
+/* Converts n working texels back: unpremultiplies (alpha 0 gives colour 0), linear -> sRGB,
+ * normals [-1,1] -> [0,1], clamps to [0,1] for u8/u16 and rounds to nearest (correctly rounded for
+ * sRGB u8: the code whose linear interval contains the value); f16 rounds to nearest even. */
+void vt_filter_from_working(const struct vt_pixel_mode *m, uint32_t sample, const float *src,
+                            void *dst, size_t n);
+
+/* Working-space pixels of a rectangle of one level, in that level's texel coordinates. */
+struct vt_fregion {
+    int64_t x0, y0;          /* level coordinates of px[0] */
+    uint32_t width, height;  /* texels */
+    uint32_t channels;
+    float *px;               /* width * height * channels, rows top to bottom, owned by caller */
+};
+
+/* Edge behaviour of a level. Clamp: a position outside [0, size) reads the nearest edge texel.
+ * Wrap: positions are not changed here (the caller reads level 0 modulo its size). */
+struct vt_edges {
+    uint32_t level_w, level_h; /* size of the finer (source) level */
+    bool wrap_x, wrap_y;
+};
+
+/* Computes every texel of dst (a region of the coarser level) from src (a region of the finer
+ * level) with kernel k: dst texel X reads finer texels 2X' + first ... where X' = X clamped to
+ * [0, ceil(level_w / 2)) unless wrap_x (same for Y); each finer position is clamped to
+ * [0, level_w) unless wrap. Every position read must lie inside src: otherwise VT_ERR_ARG and
+ * dst is unspecified (a caller bug). Separable (horizontal then vertical); scratch must hold
+ * scratch_floats >= vt_filter_reduce_scratch(k, src, dst) floats. Deterministic: the same
+ * inputs give the same bits whatever the region split. */
+int vt_filter_reduce(const struct vt_kernel *k, const struct vt_edges *edges,
+                     const struct vt_fregion *src, struct vt_fregion *dst, float *scratch,
+                     size_t scratch_floats, struct vt_error *err);
+size_t vt_filter_reduce_scratch(const struct vt_kernel *k, const struct vt_fregion *src,
+                                const struct vt_fregion *dst);
+
+/* Renormalises the xyz of every texel of a normal-map region to unit length (zero vectors
+ * become (0,0,1)). */
+void vt_filter_renormalize(struct vt_fregion *r);
+
+#endif

@@ -1,0 +1,3 @@
+# No STORE argument: exit 2.
+set -euo pipefail
+"$VT_INFO"

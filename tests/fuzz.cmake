@@ -1,0 +1,56 @@
+# libFuzzer targets, built only with -DVT_BUILD_FUZZERS=ON and clang (scripts/fuzz drives them).
+# The sanitizer and fuzzer flags apply to the fuzz targets alone: each compiles the library
+# sources it exercises directly, so that they are instrumented for coverage too.
+if(NOT VT_BUILD_FUZZERS)
+  return()
+endif()
+if(NOT CMAKE_C_COMPILER_ID MATCHES "Clang")
+  message(FATAL_ERROR "VT_BUILD_FUZZERS=ON needs clang (configure with CC=clang)")
+endif()
+
+set(VT_FUZZ_FLAGS -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
+    -fno-omit-frame-pointer -g)
+set(VT_FUZZ_LIST ${CMAKE_BINARY_DIR}/fuzz/targets.txt)
+file(WRITE ${VT_FUZZ_LIST} "")
+add_custom_target(fuzz_seeds)
+
+# vt_add_fuzzer(name SOURCES src... [SEED_COMMAND cmd... (run with the seed dir appended; creates it)]
+#               [SEED_DIRS dir...] [LIBS lib...]): a libFuzzer executable; scripts/fuzz runs it with
+# the corpus build-fuzz/fuzz/corpus/<name>, seeded from build-fuzz/fuzz/seeds/<name> (made by
+# SEED_COMMAND at `ninja fuzz_seeds`) and SEED_DIRS. A CTest test (label fuzz) runs every seed once.
+function(vt_add_fuzzer name)
+  cmake_parse_arguments(F "" "" "SOURCES;SEED_COMMAND;SEED_DIRS;LIBS" ${ARGN})
+  add_executable(${name} ${F_SOURCES})
+  target_include_directories(${name} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR} ${PROJECT_SOURCE_DIR}/lib)
+  target_compile_options(${name} PRIVATE ${VT_FUZZ_FLAGS})
+  target_link_options(${name} PRIVATE -fsanitize=fuzzer,address,undefined)
+  target_link_libraries(${name} PRIVATE ${F_LIBS})
+  vt_target_warnings(${name})
+  set(seeds ${CMAKE_BINARY_DIR}/fuzz/seeds/${name})
+  file(MAKE_DIRECTORY ${seeds})
+  if(F_SEED_COMMAND)
+    add_custom_target(${name}_make_seeds COMMAND ${F_SEED_COMMAND} ${seeds} VERBATIM)
+    add_dependencies(fuzz_seeds ${name}_make_seeds)
+  endif()
+  file(APPEND ${VT_FUZZ_LIST} "${name} ${seeds} ${F_SEED_DIRS}\n")
+  # Regression: every seed and every kept finding once, no fuzzing (-runs=0 runs the corpus).
+  if(F_SEED_COMMAND)
+    add_test(NAME ${name}_make_seeds COMMAND ${F_SEED_COMMAND} ${seeds})
+    set_tests_properties(${name}_make_seeds PROPERTIES LABELS fuzz FIXTURES_SETUP ${name}_seeds)
+  endif()
+  add_test(NAME ${name}_seeds COMMAND ${name} -runs=0 ${seeds} ${F_SEED_DIRS})
+  set_tests_properties(${name}_seeds PROPERTIES LABELS fuzz TIMEOUT 300 FIXTURES_REQUIRED
+                                                ${name}_seeds)
+endfunction()
+
+vt_add_fuzzer(fuzz_vts_reader
+  SOURCES fuzz/fuzz_vts_reader.c robust/vts_reseal.c
+          ${PROJECT_SOURCE_DIR}/lib/vts.c ${PROJECT_SOURCE_DIR}/lib/vts_geometry.c
+          ${PROJECT_SOURCE_DIR}/lib/vts_crc32c.c ${PROJECT_SOURCE_DIR}/lib/vt_error.c
+  LIBS Threads::Threads
+  SEED_COMMAND $<TARGET_FILE:make_vts_seeds>
+  SEED_DIRS ${CMAKE_CURRENT_SOURCE_DIR}/data/bad)
+
+add_executable(make_vts_seeds fuzz/make_vts_seeds.c)
+target_link_libraries(make_vts_seeds PRIVATE vts_fixture)
+vt_target_warnings(make_vts_seeds)

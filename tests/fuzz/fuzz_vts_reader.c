@@ -1,0 +1,81 @@
+/* libFuzzer target for the .vts store reader (scripts/fuzz): open the input from memory, and if it
+ * opens, read every tile into a buffer of exactly the largest payload and walk every accessor.
+ * Invariants are checked, not only crashes: a failed open must give a reader status with a one-line
+ * message naming the input; a store that opens must read every tile with status 0 or CHECKSUM.
+ *
+ * The custom mutator re-seals the CRCs of half of the mutants (tests/robust/vts_reseal.c), so that
+ * mutations reach the structural checks behind the header, layer, index and metadata CRCs. */
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "robust/vts_reseal.h"
+#include "vts.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+size_t LLVMFuzzerMutate(uint8_t *data, size_t size, size_t max_size);
+size_t LLVMFuzzerCustomMutator(uint8_t *data, size_t size, size_t max_size, unsigned int seed);
+
+#define NAME "fuzz.vts"
+
+static void walk(const struct vts_store *s)
+{
+    const struct vts_geometry *g = vts_store_geometry(s);
+    uint32_t max = vts_store_max_payload(s);
+    unsigned char *buf = max ? malloc(max) : NULL; /* no payload at all: reads need no buffer */
+    if (max && !buf)
+        abort();
+    for (uint32_t layer = 0; layer < g->layer_count; layer++) {
+        const struct vts_layer *L = vts_store_layer(s, layer);
+        if (!L || !memchr(L->name, '\0', sizeof L->name) || L->channels < 1 || L->channels > 4)
+            abort();
+        for (uint32_t level = 0; level < g->level_count; level++) {
+            struct vts_level lv;
+            vts_store_level(s, level, &lv);
+            for (uint32_t ty = 0; ty < lv.tiles_y; ty++)
+                for (uint32_t tx = 0; tx < lv.tiles_x; tx++) {
+                    struct vts_tile_entry e;
+                    struct vt_error err;
+                    size_t len;
+                    if (vts_store_tile(s, layer, level, tx, ty, &e, &err) != 0 || e.length > max ||
+                        e.offset > vts_store_file_size(s) ||
+                        e.length > vts_store_file_size(s) - e.offset)
+                        abort();
+                    int rc = vts_store_read(s, layer, level, tx, ty, buf, max, &len,
+                                            (tx ^ ty) & 1 ? VTS_READ_NO_CRC : 0, &err);
+                    if ((rc != 0 && rc != VT_ERR_CHECKSUM) || (rc == 0 && len != e.length))
+                        abort();
+                }
+        }
+    }
+    for (uint32_t i = 0; i < vts_store_meta_count(s); i++) {
+        const char *k = vts_store_meta_key(s, i), *v = vts_store_meta_value(s, i);
+        if (!k || !v || !*k || strchr(k, '=') || strchr(k, ' ') || !vts_store_meta_find(s, k))
+            abort();
+    }
+    free(buf);
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    struct vt_error err = {0};
+    struct vts_store *s = vts_open_memory(data, size, NAME, &err);
+    if (!s) {
+        if ((err.status != VT_ERR_NOT_VTS && err.status != VT_ERR_VERSION &&
+             err.status != VT_ERR_CORRUPT && err.status != VT_ERR_CHECKSUM) ||
+            !strstr(err.message, NAME) || strchr(err.message, '\n'))
+            abort();
+        return 0;
+    }
+    walk(s);
+    vts_close(s);
+    return 0;
+}
+
+size_t LLVMFuzzerCustomMutator(uint8_t *data, size_t size, size_t max_size, unsigned int seed)
+{
+    size = LLVMFuzzerMutate(data, size, max_size);
+    if (seed & 1)
+        vts_reseal_all(data, size);
+    return size;
+}

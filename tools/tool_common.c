@@ -1,0 +1,183 @@
+#include "tool_common.h"
+
+#include <stdarg.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h> /* isatty, optind, optopt */
+
+#include "vt_version.h"
+#include "vts.h"
+
+#define PROGRESS_REDRAW_S 0.2 /* at most 5 redraws per second */
+
+/* The only mutable globals of the tools: set once from main, read by every message. */
+static const char *tool_name = "vtpipe";
+static int log_level = VT_LOG_WARN; /* enum vt_log_level; messages above it are dropped */
+
+void vt_tool_init(const char *name)
+{
+    tool_name = name;
+}
+
+const char *vt_tool_name(void)
+{
+    return tool_name;
+}
+
+void vt_log_set_level(int level)
+{
+    log_level = level < VT_LOG_ERROR ? VT_LOG_ERROR : level;
+}
+
+int vt_log_get_level(void)
+{
+    return log_level;
+}
+
+#if defined(__GNUC__) /* lets the compiler check the callers' formats */
+static void log_va(const char *fmt, va_list ap) __attribute__((format(printf, 1, 0)));
+#endif
+
+static void log_va(const char *fmt, va_list ap)
+{
+    fprintf(stderr, "%s: ", tool_name);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+}
+
+void vt_log(int level, const char *fmt, ...)
+{
+    if (level > log_level)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    log_va(fmt, ap);
+    va_end(ap);
+}
+
+int vt_usage_error(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    log_va(fmt, ap);
+    va_end(ap);
+    fprintf(stderr, "try '%s --help'\n", tool_name);
+    return VT_EXIT_USAGE;
+}
+
+int vt_getopt_long(int argc, char *const argv[], const char *optstring,
+                   const struct option *longopts)
+{
+    int index = -1;
+    int c = getopt_long(argc, argv, optstring, longopts, &index);
+    if (c == -1 || c == '?' || c == ':' || index < 0)
+        return c;
+    /* The option's own element: the one before its argument when that came separately. */
+    int at = optarg && optind >= 2 && optarg == argv[optind - 1] ? optind - 2 : optind - 1;
+    const char *name = longopts[index].name;
+    size_t len = strcspn(argv[at], "=");
+    if (strncmp(argv[at], "--", 2) == 0 && len - 2 == strlen(name) &&
+        strncmp(argv[at] + 2, name, len - 2) == 0)
+        return c;
+    optind = at + 1; /* where vt_usage_getopt_error() looks for the option */
+    optopt = 0;
+    return '?';
+}
+
+int vt_usage_getopt_error(int c, char *const argv[])
+{
+    const char *arg = optind > 0 ? argv[optind - 1] : "";
+    char name[64];
+    if (strncmp(arg, "--", 2) == 0) /* long option: its text up to '=' */
+        snprintf(name, sizeof name, "%.*s", (int)strcspn(arg, "="), arg);
+    else
+        snprintf(name, sizeof name, "-%c", optopt ? optopt : '?');
+    if (c == ':')
+        return vt_usage_error("option '%s' needs an argument", name);
+    if (arg[0] == '-' && arg[1] == '-' && optopt != 0) /* glibc: "--flag=value" of a flag */
+        return vt_usage_error("option '%s' takes no argument", name);
+    return vt_usage_error("unknown option '%s'", name);
+}
+
+int vt_parse_u32(const char *s, uint32_t min, uint32_t max, uint32_t *out)
+{
+    uint64_t v = 0;
+    if (!s || !*s)
+        return -1;
+    for (const char *p = s; *p; p++) {
+        if (*p < '0' || *p > '9')
+            return -1;
+        v = v * 10 + (uint64_t)(*p - '0');
+        if (v > max)
+            return -1;
+    }
+    if (v < min)
+        return -1;
+    *out = (uint32_t)v;
+    return 0;
+}
+
+int vt_parse_u32_pair(const char *s, char sep, uint32_t min, uint32_t max, uint32_t *a, uint32_t *b)
+{
+    char first[16];
+    const char *mid = s ? strchr(s, sep) : NULL;
+    if (!mid || (size_t)(mid - s) >= sizeof first)
+        return -1;
+    memcpy(first, s, (size_t)(mid - s));
+    first[mid - s] = '\0';
+    uint32_t va, vb;
+    if (vt_parse_u32(first, min, max, &va) != 0 || vt_parse_u32(mid + 1, min, max, &vb) != 0)
+        return -1;
+    *a = va;
+    *b = vb;
+    return 0;
+}
+
+void vt_print_version(FILE *f)
+{
+    fprintf(f, "%s (vtpipe) %s\n", tool_name, VT_VERSION_STRING);
+    fprintf(f, ".vts format %d.%d (reads %d.x)\n", VTS_FORMAT_MAJOR, VTS_FORMAT_MINOR,
+            VTS_FORMAT_MAJOR);
+}
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+void vt_progress_start(struct vt_progress *p, const char *what, const char *unit, uint64_t total)
+{
+    *p = (struct vt_progress){.what = what, .unit = unit, .total = total};
+    p->enabled = log_level >= VT_LOG_WARN && isatty(STDERR_FILENO);
+    p->start_s = now_s();
+    p->last_draw_s = p->start_s;
+}
+
+void vt_progress_update(struct vt_progress *p, uint64_t done)
+{
+    if (!p->enabled)
+        return;
+    double t = now_s();
+    if (t - p->last_draw_s < PROGRESS_REDRAW_S)
+        return;
+    p->last_draw_s = t;
+    double rate = (double)done / (t - p->start_s);
+    unsigned long eta = 0;
+    if (rate > 0 && done < p->total)
+        eta = (unsigned long)((double)(p->total - done) / rate + 0.5);
+    fprintf(stderr, "\r\033[K%s: %s %llu/%llu %s (%.0f%%), %.0f %s/s, ETA %lu:%02lu", tool_name,
+            p->what, (unsigned long long)done, (unsigned long long)p->total, p->unit,
+            p->total ? 100.0 * (double)done / (double)p->total : 100.0, rate, p->unit, eta / 60,
+            eta % 60);
+    fflush(stderr);
+    p->drawn = true;
+}
+
+void vt_progress_end(struct vt_progress *p)
+{
+    if (p->drawn)
+        fputs("\r\033[K", stderr);
+    p->drawn = false;
+}

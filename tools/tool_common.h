@@ -1,0 +1,88 @@
+/* Shared by every vtpipe tool: exit codes, leveled logging to stderr, number parsing that rejects
+ * junk, usage errors, --version, and a progress line for terminals. Not for lib/ or formats/ (the
+ * libraries never print). */
+#ifndef TOOL_COMMON_H
+#define TOOL_COMMON_H
+
+#include <getopt.h>
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+
+/* Exit status of every tool. */
+enum vt_exit {
+    VT_EXIT_OK = 0,        /* success */
+    VT_EXIT_BAD_INPUT = 1, /* an input is unreadable or corrupt, or an output cannot be written */
+    VT_EXIT_USAGE = 2,     /* bad command line */
+};
+
+/* Log levels: a message is printed when its level <= the current level (default VT_LOG_WARN).
+ * -q sets VT_LOG_ERROR, each -v adds one. */
+enum vt_log_level {
+    VT_LOG_ERROR = 0, /* why the tool fails */
+    VT_LOG_WARN = 1,  /* results may not be what the user expects */
+    VT_LOG_INFO = 2,  /* what was done ("verified 20 tiles") */
+    VT_LOG_DEBUG = 3, /* details for developers */
+};
+
+/* Sets the name that prefixes every message ("vt-info"); call once at the start of main. */
+void vt_tool_init(const char *tool_name);
+const char *vt_tool_name(void);
+
+void vt_log_set_level(int level);
+int vt_log_get_level(void);
+
+/* Prints "<tool>: <message>\n" to stderr when level <= the current level. */
+void vt_log(int level, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* Prints "<tool>: <reason>" and "try '<tool> --help'" to stderr; returns VT_EXIT_USAGE. */
+int vt_usage_error(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
+/* getopt_long() without GNU's abbreviations: "--verb" for "--verbose" is an unknown option ('?'),
+ * so that adding an option never breaks a command line. Call with opterr = 0 and an optstring
+ * starting with ':'; report '?' and ':' with vt_usage_getopt_error(). */
+int vt_getopt_long(int argc, char *const argv[], const char *optstring,
+                   const struct option *longopts);
+
+/* Reports the vt_getopt_long() result c ('?' or ':', with opterr = 0 and an optstring starting with
+ * ':') as a usage error naming the option; returns VT_EXIT_USAGE. */
+int vt_usage_getopt_error(int c, char *const argv[]);
+
+/* Parses a decimal integer in min..max (no sign, no junk, no empty string) into *out. Returns 0,
+ * or -1 (and leaves *out alone) when s is not such a number. */
+int vt_parse_u32(const char *s, uint32_t min, uint32_t max, uint32_t *out);
+
+/* Parses "A<sep>B" (e.g. "3,1" or "300x200"), each part as vt_parse_u32. Returns 0 or -1. */
+int vt_parse_u32_pair(const char *s, char sep, uint32_t min, uint32_t max, uint32_t *a,
+                      uint32_t *b);
+
+/* Prints "<tool> (vtpipe) <version>" and the .vts format line to f. */
+void vt_print_version(FILE *f);
+
+/* A "done/total, rate, ETA" line on stderr, redrawn at most 5 times per second, only when stderr
+ * is a terminal and the log level is at least VT_LOG_WARN. Single-threaded: call from the thread
+ * that owns the loop. */
+struct vt_progress {
+    const char *what; /* "verifying" */
+    const char *unit; /* "tiles" */
+    uint64_t total;
+    bool enabled;
+    bool drawn;         /* a line is on screen and must be cleared */
+    double start_s;     /* monotonic clock at start */
+    double last_draw_s; /* monotonic clock at the last redraw */
+};
+
+void vt_progress_start(struct vt_progress *p, const char *what, const char *unit, uint64_t total);
+void vt_progress_update(struct vt_progress *p, uint64_t done);
+/* Clears the line; call before printing anything else and at the end. */
+void vt_progress_end(struct vt_progress *p);
+
+#endif

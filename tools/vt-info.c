@@ -1,0 +1,474 @@
+/* vt-info: describes a .vts tile store, verifies its tiles, or extracts a tile or level as PNG.
+ * Reference (options, output fields, JSON keys): docs/cli/vt-info.md. */
+#include <jansson.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tool_common.h"
+#include "vt_store_stats.h"
+#include "vt_tile_reader.h"
+#include "vts.h"
+
+#define EXTRACT_MAX_TEXELS (1ull << 32) /* --extract refuses larger images */
+
+struct options {
+    const char *store_path;
+    const char *out_path; /* -o */
+    bool json, verify, extract, has_tile, has_layer;
+    uint32_t level, tile_x, tile_y, layer; /* --extract, --tile, --layer */
+};
+
+enum { OPT_JSON = 256, OPT_VERIFY, OPT_EXTRACT, OPT_TILE, OPT_LAYER, OPT_VERSION };
+
+static const struct option long_options[] = {{"json", no_argument, NULL, OPT_JSON},
+                                             {"verify", no_argument, NULL, OPT_VERIFY},
+                                             {"extract", required_argument, NULL, OPT_EXTRACT},
+                                             {"tile", required_argument, NULL, OPT_TILE},
+                                             {"layer", required_argument, NULL, OPT_LAYER},
+                                             {"output", required_argument, NULL, 'o'},
+                                             {"quiet", no_argument, NULL, 'q'},
+                                             {"verbose", no_argument, NULL, 'v'},
+                                             {"help", no_argument, NULL, 'h'},
+                                             {"version", no_argument, NULL, OPT_VERSION},
+                                             {NULL, 0, NULL, 0}};
+
+static void usage(void)
+{
+    fputs("usage: vt-info [-q|-v] [--json | --verify] STORE\n"
+          "       vt-info --extract LEVEL [--tile X,Y] [--layer N] -o OUT.png STORE\n"
+          "Describe, check or extract from a .vts virtual-texture store.\n"
+          "\n"
+          "Modes (default: print a summary of STORE on stdout):\n"
+          "      --json           print the summary as JSON on stdout (keys: docs/cli/vt-info.md)\n"
+          "      --verify         read every stored tile, check its CRC-32C and decode it;\n"
+          "                       exit 1 naming the first bad tile\n"
+          "      --extract LEVEL  write level LEVEL (integer, 0..levels-1) as a PNG; needs -o\n"
+          "Extract options:\n"
+          "      --tile X,Y       write only tile X,Y (integers, 0..tiles-1 of LEVEL) with its\n"
+          "                       border; default: the whole level stitched without borders\n"
+          "      --layer N        layer to extract (integer, 0..layers-1; default 0)\n"
+          "  -o, --output FILE    PNG to write (replaced only when complete)\n"
+          "General:\n"
+          "  -q, --quiet          print errors only\n"
+          "  -v, --verbose        print more (repeatable: info, then debug)\n"
+          "  -h, --help           print this help and exit\n"
+          "      --version        print the version and exit\n"
+          "\n"
+          "Summary: 'shared' counts stored tiles whose payload an earlier tile (in index order)\n"
+          "already uses; 'bytes' counts each payload once. Bits per texel = 8 * payload bytes /\n"
+          "texels of all stored tiles (payload edge^2 each, borders included, all levels and\n"
+          "layers). Compression ratio = raw size of the stored tiles (payload edge^2 * channels *\n"
+          "sample bytes each) / payload bytes.\n"
+          "PNG: u8 -> 8-bit, u16 -> 16-bit, f16/f32 -> 16-bit clamped to [0,1] (with a warning);\n"
+          "1-4 channels -> gray, gray+alpha, RGB, RGBA; empty tiles are zero (transparent black).\n"
+          "Exit status: 0 ok, 1 bad input (unreadable or corrupt store, bad tile, output not\n"
+          "written), 2 bad usage (including a level, tile or layer the store does not have).\n",
+          stdout);
+}
+
+/* Returns an exit code when main should stop now (help, version, usage error), else -1. */
+static int parse_options(int argc, char **argv, struct options *o)
+{
+    int c, verbosity = VT_LOG_WARN;
+    *o = (struct options){0};
+    opterr = 0;
+    while ((c = vt_getopt_long(argc, argv, ":hqvo:", long_options)) != -1) {
+        if (c == 'h') {
+            usage();
+            return VT_EXIT_OK;
+        } else if (c == OPT_VERSION) {
+            vt_print_version(stdout);
+            return VT_EXIT_OK;
+        } else if (c == 'q' || c == 'v') {
+            verbosity = c == 'q' ? VT_LOG_ERROR : verbosity + 1;
+        } else if (c == 'o') {
+            o->out_path = optarg;
+        } else if (c == OPT_JSON) {
+            o->json = true;
+        } else if (c == OPT_VERIFY) {
+            o->verify = true;
+        } else if (c == OPT_EXTRACT) {
+            o->extract = true;
+            if (vt_parse_u32(optarg, 0, UINT32_MAX, &o->level) != 0)
+                return vt_usage_error("--extract: '%s' is not a level number", optarg);
+        } else if (c == OPT_TILE) {
+            o->has_tile = true;
+            if (vt_parse_u32_pair(optarg, ',', 0, UINT32_MAX, &o->tile_x, &o->tile_y) != 0)
+                return vt_usage_error("--tile: '%s' is not X,Y (two tile numbers)", optarg);
+        } else if (c == OPT_LAYER) {
+            o->has_layer = true;
+            if (vt_parse_u32(optarg, 0, UINT32_MAX, &o->layer) != 0)
+                return vt_usage_error("--layer: '%s' is not a layer number", optarg);
+        } else {
+            return vt_usage_getopt_error(c, argv);
+        }
+    }
+    vt_log_set_level(verbosity);
+    if (optind < argc)
+        o->store_path = argv[optind++];
+    if (optind < argc)
+        return vt_usage_error("unexpected argument '%s' (one STORE at a time)", argv[optind]);
+    return -1;
+}
+
+static int validate_options(const struct options *o)
+{
+    if (!o->store_path)
+        return vt_usage_error("missing STORE argument");
+    if (o->json + o->verify + o->extract > 1)
+        return vt_usage_error("--json, --verify and --extract are separate modes: give one");
+    if (!o->extract && (o->has_tile || o->has_layer || o->out_path))
+        return vt_usage_error("%s needs --extract", o->has_tile    ? "--tile"
+                                                    : o->has_layer ? "--layer"
+                                                                   : "-o");
+    if (o->extract && !o->out_path)
+        return vt_usage_error("--extract needs -o OUT.png");
+    return 0;
+}
+
+/* ---- summary, as text or JSON ---- */
+
+/* Writes the names of the set bits of flags (names[i] for bit i < 2, else "bit<i>"), space
+ * separated, into out; "" when none is set. */
+static void flag_names(char *out, size_t cap, uint32_t flags, const char *const names[2])
+{
+    size_t len = 0;
+    out[0] = '\0';
+    for (unsigned bit = 0; bit < 32 && len < cap; bit++) {
+        const char *name = bit < 2 ? names[bit] : NULL;
+        if (!(flags & (1u << bit)))
+            continue;
+        if (name)
+            len += (size_t)snprintf(out + len, cap - len, "%s%s", len ? " " : "", name);
+        else
+            len += (size_t)snprintf(out + len, cap - len, "%sbit%u", len ? " " : "", bit);
+    }
+}
+
+static const char *const store_flag_names[2] = {"wrap-x", "wrap-y"};
+static const char *const layer_flag_names[2] = {"premultiplied", NULL};
+
+/* Prints text from the file (a layer name, a metadata value) on one line: control characters as
+ * \xHH. */
+static void print_escaped(const char *s)
+{
+    for (; *s; s++) {
+        if ((unsigned char)*s < 0x20 || *s == 0x7f)
+            printf("\\x%02x", (unsigned)(unsigned char)*s);
+        else
+            putchar(*s);
+    }
+}
+
+static void print_counts(const char *level, const char *size, const char *tiles,
+                         const struct vt_tile_counts *st)
+{
+    printf("  %5s %13s %9s %7llu %7llu %7llu %13llu\n", level, size, tiles,
+           (unsigned long long)st->stored, (unsigned long long)st->empty,
+           (unsigned long long)st->shared, (unsigned long long)st->bytes);
+}
+
+static void print_layer(const struct vts_store *s, const struct vt_store_stats *st, uint32_t layer)
+{
+    const struct vts_geometry *g = vts_store_geometry(s);
+    const struct vts_layer *l = vts_store_layer(s, layer);
+    char flags[128], codec[5], level[16], size[32], tiles[32];
+    vts_codec_name(l->codec, codec);
+    flag_names(flags, sizeof flags, l->flags, layer_flag_names);
+    printf("layer %u '", layer);
+    print_escaped(l->name);
+    printf("': %s, %u channels, %s, %s, flags %s\n", codec, l->channels, vts_sample_name(l->sample),
+           vts_colour_name(l->colour), flags[0] ? flags : "none");
+    printf("  level          size     tiles  stored   empty  shared         bytes\n");
+    for (uint32_t i = 0; i < g->level_count; i++) {
+        struct vts_level L;
+        vts_store_level(s, i, &L);
+        snprintf(level, sizeof level, "%u", i);
+        snprintf(size, sizeof size, "%ux%u", L.width, L.height);
+        snprintf(tiles, sizeof tiles, "%ux%u", L.tiles_x, L.tiles_y);
+        print_counts(level, size, tiles, vt_store_stats_at(st, layer, i));
+    }
+    const struct vt_tile_counts *total = vt_store_stats_at(st, layer, g->level_count);
+    snprintf(tiles, sizeof tiles, "%llu", (unsigned long long)total->tiles);
+    print_counts("total", "", tiles, total);
+}
+
+static void print_summary(const struct vts_store *s, const struct vt_store_stats *st)
+{
+    const struct vts_geometry *g = vts_store_geometry(s);
+    const struct vt_tile_counts *t = &st->total;
+    unsigned major, minor;
+    char flags[128];
+    vts_store_version(s, &major, &minor);
+    flag_names(flags, sizeof flags, g->flags, store_flag_names);
+    printf("file:              %s\nformat version:    %u.%u\n", vts_store_name(s), major, minor);
+    printf("size:              %u x %u texels\n", g->width, g->height);
+    printf("tile:              %u content + 2 x %u border = %u payload texels\n",
+           g->tile_content_px, g->border_px, g->tile_payload_px);
+    printf("levels:            %u\nlayers:            %u\nflags:             %s\n", g->level_count,
+           g->layer_count, flags[0] ? flags : "none");
+    for (uint32_t layer = 0; layer < g->layer_count; layer++)
+        print_layer(s, st, layer);
+    printf("tiles:             %llu stored, %llu empty, %llu shared\n",
+           (unsigned long long)t->stored, (unsigned long long)t->empty,
+           (unsigned long long)t->shared);
+    printf("payload bytes:     %llu\nfile size:         %llu bytes\n", (unsigned long long)t->bytes,
+           (unsigned long long)vts_store_file_size(s));
+    if (isnan(st->bits_per_texel))
+        printf("bits per texel:    n/a\ncompression ratio: n/a\n");
+    else
+        printf("bits per texel:    %.3f\ncompression ratio: %.3f\n", st->bits_per_texel,
+               st->compression_ratio);
+    printf("metadata:          %u entries\n", vts_store_meta_count(s));
+    for (uint32_t i = 0; i < vts_store_meta_count(s); i++) {
+        printf("  %s=", vts_store_meta_key(s, i));
+        print_escaped(vts_store_meta_value(s, i));
+        putchar('\n');
+    }
+}
+
+/* A JSON string of text from the file (layer names and metadata values are not checked for
+ * UTF-8): as is when valid UTF-8, else with every byte >= 0x80 replaced by '?'. */
+static json_t *json_text(const char *text)
+{
+    json_t *j = json_string(text);
+    if (j)
+        return j;
+    char *copy = strdup(text);
+    for (char *p = copy; p && *p; p++)
+        *p = (unsigned char)*p >= 0x80 ? '?' : *p;
+    j = copy ? json_string(copy) : NULL;
+    free(copy);
+    return j;
+}
+
+/* Sets the counters of st into obj (a new object when obj is NULL) and returns obj. */
+static json_t *json_counts(json_t *obj, const struct vt_tile_counts *st)
+{
+    if (!obj)
+        obj = json_object();
+    json_object_set_new(obj, "tiles", json_integer((json_int_t)st->tiles));
+    json_object_set_new(obj, "stored", json_integer((json_int_t)st->stored));
+    json_object_set_new(obj, "empty", json_integer((json_int_t)st->empty));
+    json_object_set_new(obj, "shared", json_integer((json_int_t)st->shared));
+    json_object_set_new(obj, "bytes", json_integer((json_int_t)st->bytes));
+    json_object_set_new(obj, "raw_bytes", json_integer((json_int_t)st->raw_bytes));
+    return obj;
+}
+
+static json_t *json_flags(uint32_t flags, const char *const names[2])
+{
+    char text[128];
+    json_t *array = json_array();
+    flag_names(text, sizeof text, flags, names);
+    for (char *name = strtok(text, " "); name; name = strtok(NULL, " "))
+        json_array_append_new(array, json_string(name));
+    return array;
+}
+
+static json_t *json_layer(const struct vts_store *s, const struct vt_store_stats *st,
+                          uint32_t layer)
+{
+    const struct vts_geometry *g = vts_store_geometry(s);
+    const struct vts_layer *l = vts_store_layer(s, layer);
+    char codec[5];
+    json_t *levels = json_array();
+    for (uint32_t i = 0; i < g->level_count; i++) {
+        struct vts_level L;
+        vts_store_level(s, i, &L);
+        json_t *j = json_pack("{s:I, s:I, s:I, s:I, s:I}", "level", (json_int_t)i, "width",
+                              (json_int_t)L.width, "height", (json_int_t)L.height, "tiles_x",
+                              (json_int_t)L.tiles_x, "tiles_y", (json_int_t)L.tiles_y);
+        json_array_append_new(levels, json_counts(j, vt_store_stats_at(st, layer, i)));
+    }
+    vts_codec_name(l->codec, codec);
+    return json_pack("{s:I, s:o, s:s, s:I, s:s, s:s, s:o, s:I, s:o, s:o}", "index",
+                     (json_int_t)layer, "name", json_text(l->name), "codec", codec, "channels",
+                     (json_int_t)l->channels, "sample", vts_sample_name(l->sample), "colour",
+                     vts_colour_name(l->colour), "flags", json_flags(l->flags, layer_flag_names),
+                     "codec_param", (json_int_t)l->codec_param, "levels", levels, "totals",
+                     json_counts(NULL, vt_store_stats_at(st, layer, g->level_count)));
+}
+
+static int print_json(const struct vts_store *s, const struct vt_store_stats *st)
+{
+    const struct vts_geometry *g = vts_store_geometry(s);
+    unsigned major, minor;
+    double bpt = st->bits_per_texel, ratio = st->compression_ratio;
+    json_t *layers = json_array(), *meta = json_object();
+    vts_store_version(s, &major, &minor);
+    for (uint32_t layer = 0; layer < g->layer_count; layer++)
+        json_array_append_new(layers, json_layer(s, st, layer));
+    for (uint32_t i = 0; i < vts_store_meta_count(s); i++)
+        json_object_set_new(meta, vts_store_meta_key(s, i), json_text(vts_store_meta_value(s, i)));
+    json_t *totals = json_counts(NULL, &st->total);
+    json_object_set_new(totals, "file_size", json_integer((json_int_t)vts_store_file_size(s)));
+    json_object_set_new(totals, "bits_per_texel", isnan(bpt) ? json_null() : json_real(bpt));
+    json_object_set_new(totals, "compression_ratio", isnan(ratio) ? json_null() : json_real(ratio));
+    json_t *root =
+        json_pack("{s:o, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:o, s:o, s:o, s:o}", "file",
+                  json_text(vts_store_name(s)), "format_major", (json_int_t)major, "format_minor",
+                  (json_int_t)minor, "width", (json_int_t)g->width, "height", (json_int_t)g->height,
+                  "tile_content_px", (json_int_t)g->tile_content_px, "border_px",
+                  (json_int_t)g->border_px, "tile_payload_px", (json_int_t)g->tile_payload_px,
+                  "level_count", (json_int_t)g->level_count, "layer_count",
+                  (json_int_t)g->layer_count, "flags", json_flags(g->flags, store_flag_names),
+                  "layers", layers, "totals", totals, "metadata", meta);
+    int rc = root ? json_dumpf(root, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(6)) : -1;
+    json_decref(root);
+    if (rc != 0) {
+        vt_log(VT_LOG_ERROR, "'%s': cannot write the JSON summary", vts_store_name(s));
+        return VT_EXIT_BAD_INPUT;
+    }
+    putchar('\n');
+    return VT_EXIT_OK;
+}
+
+static int run_summary(const struct vts_store *s, bool json)
+{
+    struct vt_store_stats st;
+    struct vt_error err = {0};
+    int rc = VT_EXIT_OK;
+    if (vt_store_stats_init(&st, s, &err) != 0) {
+        vt_log(VT_LOG_ERROR, "%s", err.message);
+        rc = VT_EXIT_BAD_INPUT;
+    } else if (json) {
+        rc = print_json(s, &st);
+    } else {
+        print_summary(s, &st);
+    }
+    vt_store_stats_release(&st);
+    return rc;
+}
+
+/* ---- --verify and --extract ---- */
+
+static int run_verify(const struct vts_store *s)
+{
+    const struct vts_geometry *g = vts_store_geometry(s);
+    struct vt_tile_reader r = {0};
+    struct vt_error err = {0};
+    struct vt_progress progress;
+    uint64_t stored = 0, done = 0;
+    int rc = 0;
+    for (uint64_t i = 0; i < vts_store_tile_count(s); i++)
+        stored += vts_store_entry(s, i)->length > 0;
+    vt_progress_start(&progress, "verifying", "tiles", stored);
+    for (uint32_t layer = 0; layer < g->layer_count && rc == 0; layer++) {
+        vt_tile_reader_release(&r);
+        rc = vt_tile_reader_init(&r, s, layer, &err);
+        for (uint32_t level = 0; level < g->level_count && rc == 0; level++) {
+            struct vts_level L;
+            vts_store_level(s, level, &L);
+            for (uint32_t ty = 0; ty < L.tiles_y && rc == 0; ty++)
+                for (uint32_t tx = 0; tx < L.tiles_x && rc == 0; tx++) {
+                    bool is_stored = false;
+                    rc = vt_tile_reader_read(&r, level, tx, ty, &is_stored, &err);
+                    done += is_stored;
+                    vt_progress_update(&progress, done);
+                }
+        }
+    }
+    vt_tile_reader_release(&r);
+    vt_progress_end(&progress);
+    if (rc != 0) {
+        vt_log(VT_LOG_ERROR, "%s", err.message);
+        return VT_EXIT_BAD_INPUT;
+    }
+    vt_log(VT_LOG_INFO, "verified %llu tiles", (unsigned long long)done);
+    return VT_EXIT_OK;
+}
+
+/* Usage errors for a layer, level or tile the store does not have, giving the valid range. */
+static int check_extract_range(const struct vts_store *s, const struct options *o)
+{
+    const struct vts_geometry *g = vts_store_geometry(s);
+    const char *name = vts_store_name(s);
+    struct vts_level L;
+    if (o->layer >= g->layer_count)
+        return vt_usage_error("layer %u is outside '%s' (layers 0..%u)", o->layer, name,
+                              g->layer_count - 1);
+    if (o->level >= g->level_count)
+        return vt_usage_error("level %u is outside '%s' (levels 0..%u)", o->level, name,
+                              g->level_count - 1);
+    vts_store_level(s, o->level, &L);
+    if (o->has_tile && (o->tile_x >= L.tiles_x || o->tile_y >= L.tiles_y))
+        return vt_usage_error("tile %u,%u is outside level %u of '%s' (tiles 0..%u,0..%u)",
+                              o->tile_x, o->tile_y, o->level, name, L.tiles_x - 1, L.tiles_y - 1);
+    uint32_t fit = o->level;
+    for (; !o->has_tile && (uint64_t)L.width * L.height > EXTRACT_MAX_TEXELS; fit++)
+        vts_store_level(s, fit + 1, &L); /* the last level fits in one tile */
+    if (fit != o->level)
+        return vt_usage_error("level %u of '%s' has more than 2^32 texels, the most --extract "
+                              "writes: use level %u or coarser, or --tile",
+                              o->level, name, fit);
+    return 0;
+}
+
+static int run_extract(const struct vts_store *s, const struct options *o)
+{
+    struct vt_tile_reader r;
+    struct vt_error err = {0};
+    struct vts_tile_entry e;
+    int rc = check_extract_range(s, o);
+    if (rc != 0)
+        return rc;
+    rc = vt_tile_reader_init(&r, s, o->layer, &err);
+    if (rc == 0 && (r.img.sample == VTS_SAMPLE_F16 || r.img.sample == VTS_SAMPLE_F32))
+        vt_log(VT_LOG_WARN, "layer %u holds %s samples: writing a 16-bit PNG clamped to [0,1]",
+               o->layer, vts_sample_name(r.img.sample));
+    if (rc == 0 && o->has_tile &&
+        vts_store_tile(s, o->layer, o->level, o->tile_x, o->tile_y, &e, NULL) == 0 && e.length == 0)
+        vt_log(VT_LOG_WARN, "tile %u,%u of level %u is empty: writing zeros", o->tile_x, o->tile_y,
+               o->level);
+    if (rc == 0)
+        rc = vt_tile_reader_write_png(&r, o->level, o->has_tile, o->tile_x, o->tile_y, o->out_path,
+                                      &err);
+    vt_tile_reader_release(&r);
+    if (rc != 0) {
+        vt_log(VT_LOG_ERROR, "%s", err.message);
+        return VT_EXIT_BAD_INPUT;
+    }
+    vt_log(VT_LOG_INFO, "wrote '%s'", o->out_path);
+    return VT_EXIT_OK;
+}
+
+static int run(const struct options *o)
+{
+    struct vt_error err = {0};
+    struct vts_store *s = vts_open(o->store_path, &err);
+    int rc;
+    if (!s) {
+        vt_log(VT_LOG_ERROR, "%s", err.message);
+        return VT_EXIT_BAD_INPUT;
+    }
+    vt_log(VT_LOG_DEBUG, "opened '%s': %llu index entries, %llu bytes", o->store_path,
+           (unsigned long long)vts_store_tile_count(s), (unsigned long long)vts_store_file_size(s));
+    if (o->verify)
+        rc = run_verify(s);
+    else if (o->extract)
+        rc = run_extract(s, o);
+    else
+        rc = run_summary(s, o->json);
+    vts_close(s);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    struct options o;
+    vt_tool_init("vt-info");
+    int rc = parse_options(argc, argv, &o);
+    if (rc >= 0)
+        return rc;
+    rc = validate_options(&o);
+    if (rc != 0)
+        return rc;
+    rc = run(&o);
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        vt_log(VT_LOG_ERROR, "cannot write to standard output");
+        return VT_EXIT_BAD_INPUT;
+    }
+    return rc;
+}

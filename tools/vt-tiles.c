@@ -1,0 +1,428 @@
+/* vt-tiles: out-of-core mip pyramid + bordered tiles from one image into a .vts store. */
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tool_common.h"
+#include "vt_codec.h"
+#include "vt_image_input.h"
+#include "vt_pool.h"
+#include "vt_pyramid.h"
+#include "vt_version.h"
+#include "vts_writer.h"
+
+struct options {
+    const char *input, *output, *codec_name, *name, *temp_dir;
+    uint32_t tile_size, border, quality, threads, colour, aniso, subsampling;
+    bool border_set, colour_set, keep_content, wrap, best;
+    enum vt_filter_kind filter;
+    const char *filtering; /* bilinear, trilinear, anisoN */
+    uint64_t max_pixels;
+};
+
+static void usage(FILE *f)
+{
+    fprintf(
+        f,
+        "usage: vt-tiles INPUT -o OUT.vts [options]\n"
+        "Builds every mip level of INPUT, cut into bordered tiles, into one .vts store.\n"
+        "INPUT: TIFF/BigTIFF (tiled or striped), PNG, JPEG, EXR; other formats through "
+        "OpenImageIO.\n\n"
+        "  -o, --output FILE        the store to write (replaced atomically)\n"
+        "      --tile-size N        tile payload edge in texels, 8..16384 (default 256)\n"
+        "      --keep payload|content  which edge is the given size: payload (content =\n"
+        "                           size - 2*border, default) or content (payload grows)\n"
+        "      --border N           border texels per side, 0..64 (default: from --filtering\n"
+        "                           and the codec: bilinear 1, trilinear 2, anisoN N/2;\n"
+        "                           at least 4 for bc1/bc3)\n"
+        "      --filtering MODE     bilinear | trilinear | aniso2..aniso16 (default "
+        "trilinear)\n"
+        "      --filter NAME        mip filter: box | triangle | lanczos3 | kaiser (default "
+        "box)\n"
+        "      --colour SPACE       srgb | linear | normal | data (default: srgb for 8/16-bit\n"
+        "                           images, linear for float)\n"
+        "      --wrap               tiling texture: borders and filters wrap around\n"
+        "      --codec NAME         raw | png | jpeg | bc1 | bc3 | auto (default auto: jpeg for\n"
+        "                           opaque 8-bit colour, png for alpha, 16-bit, normal or "
+        "data,\n"
+        "                           raw for float)\n"
+        "      --quality Q          jpeg quality 1..100 (default 85)\n"
+        "      --subsampling S      jpeg chroma subsampling 420 | 444 (default 420)\n"
+        "      --mode fast|best     bc1/bc3 encoder, png compression (default fast)\n"
+        "      --name NAME          layer name (default diffuse)\n"
+        "      --max-pixels N       refuse inputs with more texels (default 2^34)\n"
+        "      --temp-dir DIR       where pass images go (default: the output's directory)\n"
+        "  -j, --threads N          worker threads (default: all cores)\n"
+        "  -q, --quiet              errors only;  -v, --verbose  more detail\n"
+        "  -h, --help               this help;    --version  version\n");
+}
+
+static const struct option long_options[] = {{"output", required_argument, 0, 'o'},
+                                             {"tile-size", required_argument, 0, 't'},
+                                             {"keep", required_argument, 0, 'K'},
+                                             {"border", required_argument, 0, 'b'},
+                                             {"filtering", required_argument, 0, 'F'},
+                                             {"filter", required_argument, 0, 'f'},
+                                             {"colour", required_argument, 0, 'c'},
+                                             {"wrap", no_argument, 0, 'w'},
+                                             {"codec", required_argument, 0, 'C'},
+                                             {"quality", required_argument, 0, 'Q'},
+                                             {"subsampling", required_argument, 0, 'S'},
+                                             {"mode", required_argument, 0, 'M'},
+                                             {"name", required_argument, 0, 'N'},
+                                             {"max-pixels", required_argument, 0, 'P'},
+                                             {"temp-dir", required_argument, 0, 'T'},
+                                             {"threads", required_argument, 0, 'j'},
+                                             {"quiet", no_argument, 0, 'q'},
+                                             {"verbose", no_argument, 0, 'v'},
+                                             {"help", no_argument, 0, 'h'},
+                                             {"version", no_argument, 0, 'V'},
+                                             {0, 0, 0, 0}};
+
+static int parse_colour(const char *s, uint32_t *out)
+{
+    static const char *const names[] = {"srgb", "linear", "normal", "data"};
+    for (uint32_t i = 0; i < 4; i++)
+        if (strcmp(s, names[i]) == 0) {
+            *out = VTS_COLOUR_SRGB + i;
+            return 0;
+        }
+    return -1;
+}
+
+/* Returns -1 to continue, or an exit status. */
+static int parse_options(int argc, char **argv, struct options *o)
+{
+    *o = (struct options){.tile_size = 256,
+                          .threads = vt_pool_cpu_count(),
+                          .codec_name = "auto",
+                          .name = "diffuse",
+                          .filtering = "trilinear",
+                          .quality = 85,
+                          .subsampling = 420,
+                          .max_pixels = VT_INPUT_DEFAULT_MAX_PIXELS};
+    int c;
+    uint32_t v;
+    opterr = 0;
+    while ((c = vt_getopt_long(argc, argv, ":o:j:qvh", long_options)) != -1) {
+        switch (c) {
+        case 'o':
+            o->output = optarg;
+            break;
+        case 't':
+            if (vt_parse_u32(optarg, 8, VTS_MAX_PAYLOAD_PX, &o->tile_size))
+                return vt_usage_error("--tile-size must be 8..%u, not '%s'", VTS_MAX_PAYLOAD_PX,
+                                      optarg);
+            break;
+        case 'K':
+            if (strcmp(optarg, "content") && strcmp(optarg, "payload"))
+                return vt_usage_error("--keep must be content or payload, not '%s'", optarg);
+            o->keep_content = strcmp(optarg, "content") == 0;
+            break;
+        case 'b':
+            if (vt_parse_u32(optarg, 0, 64, &o->border))
+                return vt_usage_error("--border must be 0..64, not '%s'", optarg);
+            o->border_set = true;
+            break;
+        case 'F':
+            o->filtering = optarg;
+            break;
+        case 'f':
+            if (vt_filter_parse(optarg, &o->filter))
+                return vt_usage_error("unknown --filter '%s' (box, triangle, lanczos3, kaiser)",
+                                      optarg);
+            break;
+        case 'c':
+            if (parse_colour(optarg, &o->colour))
+                return vt_usage_error("unknown --colour '%s' (srgb, linear, normal, data)", optarg);
+            o->colour_set = true;
+            break;
+        case 'w':
+            o->wrap = true;
+            break;
+        case 'C':
+            o->codec_name = optarg;
+            break;
+        case 'Q':
+            if (vt_parse_u32(optarg, 1, 100, &o->quality))
+                return vt_usage_error("--quality must be 1..100, not '%s'", optarg);
+            break;
+        case 'S':
+            if (vt_parse_u32(optarg, 420, 444, &v) || (v != 420 && v != 444))
+                return vt_usage_error("--subsampling must be 420 or 444, not '%s'", optarg);
+            o->subsampling = v;
+            break;
+        case 'M':
+            if (strcmp(optarg, "fast") && strcmp(optarg, "best"))
+                return vt_usage_error("--mode must be fast or best, not '%s'", optarg);
+            o->best = strcmp(optarg, "best") == 0;
+            break;
+        case 'N':
+            if (strlen(optarg) == 0 || strlen(optarg) >= VTS_LAYER_NAME_BYTES)
+                return vt_usage_error("--name must have 1..%u bytes", VTS_LAYER_NAME_BYTES - 1);
+            o->name = optarg;
+            break;
+        case 'P': {
+            char *end;
+            unsigned long long n = strtoull(optarg, &end, 10);
+            if (*optarg < '0' || *optarg > '9' || *end || n == 0)
+                return vt_usage_error("--max-pixels must be a positive number, not '%s'", optarg);
+            o->max_pixels = n;
+            break;
+        }
+        case 'T':
+            o->temp_dir = optarg;
+            break;
+        case 'j':
+            if (vt_parse_u32(optarg, 1, 256, &o->threads))
+                return vt_usage_error("-j must be 1..256, not '%s'", optarg);
+            break;
+        case 'q':
+            vt_log_set_level(VT_LOG_ERROR);
+            break;
+        case 'v':
+            vt_log_set_level(vt_log_get_level() + 1);
+            break;
+        case 'h':
+            usage(stdout);
+            return VT_EXIT_OK;
+        case 'V':
+            vt_print_version(stdout);
+            return VT_EXIT_OK;
+        default:
+            return vt_usage_getopt_error(c, argv);
+        }
+    }
+    if (optind != argc - 1)
+        return vt_usage_error(optind >= argc ? "missing INPUT" : "more than one INPUT");
+    o->input = argv[optind];
+    if (!o->output)
+        return vt_usage_error("missing -o OUT.vts");
+    if (strcmp(o->filtering, "bilinear") == 0)
+        o->aniso = 0;
+    else if (strcmp(o->filtering, "trilinear") == 0)
+        o->aniso = 1;
+    else if (strncmp(o->filtering, "aniso", 5) || vt_parse_u32(o->filtering + 5, 2, 16, &o->aniso))
+        return vt_usage_error(
+            "--filtering must be bilinear, trilinear or aniso2..aniso16, not '%s'", o->filtering);
+    return -1;
+}
+
+struct run {
+    const struct options *o;
+    const struct vt_codec *codec;
+    struct vt_codec_params params;
+    struct vts_writer *writer;
+    unsigned char **bufs; /* one encode buffer per worker */
+    size_t cap;
+    struct vt_progress progress;
+};
+
+static int emit_tile(void *user, unsigned worker, uint32_t level, uint32_t tx, uint32_t ty,
+                     const struct vt_image *payload, struct vt_error *err)
+{
+    struct run *r = user;
+    size_t len = 0;
+    if (payload) {
+        struct vt_error cerr = {0};
+        int rc = r->codec->encode(payload, &r->params, r->bufs[worker], r->cap, &len, &cerr);
+        if (rc)
+            return vt_error_set(err, rc, "cannot encode tile %u,%u of level %u: %s", tx, ty, level,
+                                cerr.message);
+    }
+    return vts_writer_put(r->writer, 0, level, tx, ty, r->bufs[worker], len, err);
+}
+
+static int show_progress(void *user, uint64_t done, uint64_t total)
+{
+    struct run *r = user;
+    (void)total;
+    vt_progress_update(&r->progress, done);
+    return 0;
+}
+
+/* Picks codec, output channels and sample for the input; logs what it decided. */
+static const struct vt_codec *choose_codec(const struct options *o, const struct vt_source_info *in,
+                                           uint32_t colour, bool keep_alpha, uint32_t *out_sample)
+{
+    const char *name = o->codec_name;
+    bool is_float = in->sample == VTS_SAMPLE_F16 || in->sample == VTS_SAMPLE_F32;
+    if (strcmp(name, "auto") == 0)
+        name = is_float ? "raw"
+               : in->sample == VTS_SAMPLE_U16 || keep_alpha || colour == VTS_COLOUR_NORMAL ||
+                       colour == VTS_COLOUR_DATA
+                   ? "png"
+                   : "jpeg";
+    const struct vt_codec *codec = vt_codec_find(name);
+    if (!codec)
+        return NULL;
+    *out_sample = in->sample;
+    if (codec->fourcc == VTS_CODEC_PNG && is_float)
+        *out_sample = VTS_SAMPLE_U16;
+    else if (codec->fourcc != VTS_CODEC_RAW && codec->fourcc != VTS_CODEC_PNG)
+        *out_sample = VTS_SAMPLE_U8;
+    if (*out_sample != in->sample)
+        vt_log(VT_LOG_WARN, "'%s': %s samples stored as %s for codec %s", o->input,
+               vts_sample_name(in->sample), vts_sample_name(*out_sample), codec->name);
+    return codec;
+}
+
+static int open_sources(const struct options *o, struct vt_source *src, unsigned n,
+                        struct vt_error *err)
+{
+    struct vt_input_limits limits = {o->max_pixels};
+    int rc = vt_image_input_open(o->input, &limits, &src[0], err);
+    for (unsigned i = 1; rc == 0 && !src[0].info.sequential && i < n; i++)
+        rc = vt_image_input_open(o->input, &limits, &src[i], err);
+    return rc;
+}
+
+static int set_metadata(struct vts_writer *w, const struct options *o, const char *codec,
+                        struct vt_error *err)
+{
+    char quality[16];
+    snprintf(quality, sizeof quality, "%u", o->quality);
+    const char *pairs[][2] = {{"tool", "vt-tiles"},        {"tool.version", VT_VERSION_STRING},
+                              {"source", o->input},        {"filter", vt_filter_name(o->filter)},
+                              {"filtering", o->filtering}, {"codec", codec},
+                              {"quality", quality},        {"wrap", o->wrap ? "yes" : "no"}};
+    for (size_t i = 0; i < sizeof pairs / sizeof pairs[0]; i++) {
+        int rc = vts_writer_set_meta(w, pairs[i][0], pairs[i][1], err);
+        if (rc)
+            return rc;
+    }
+    return 0;
+}
+
+/* Border and tile geometry from the options; returns 0 or a usage exit status. */
+static int make_geometry(struct options *o, const struct vt_source_info *in,
+                         const struct vt_codec *codec, struct vts_geometry *g)
+{
+    bool bc = codec->fourcc == VTS_CODEC_BC1 || codec->fourcc == VTS_CODEC_BC3;
+    if (!o->border_set) {
+        o->border = o->aniso <= 1 ? o->aniso + 1 : o->aniso / 2;
+        if (bc && o->border < 4)
+            o->border = 4;
+    }
+    uint32_t content = o->keep_content ? o->tile_size : o->tile_size - 2 * o->border;
+    if (!o->keep_content && o->tile_size <= 2 * o->border)
+        return vt_usage_error("--tile-size %u leaves no content with --border %u", o->tile_size,
+                              o->border);
+    if (o->border > content)
+        return vt_usage_error("--border %u is larger than the tile content %u", o->border, content);
+    *g = (struct vts_geometry){in->width, in->height, content, o->border, content + 2 * o->border,
+                               0, 1, o->wrap ? VTS_STORE_WRAP_X | VTS_STORE_WRAP_Y : 0};
+    if (g->tile_payload_px > VTS_MAX_PAYLOAD_PX)
+        return vt_usage_error("tile payload %u exceeds %u", g->tile_payload_px, VTS_MAX_PAYLOAD_PX);
+    g->level_count = vts_full_level_count(g->width, g->height, g->tile_content_px);
+    return 0;
+}
+
+static int build(struct run *r, struct vt_source *src, const struct vt_pyramid_options *po,
+                 struct vt_error *err)
+{
+    struct vt_source *ptrs[256];
+    for (unsigned i = 0; i < po->threads; i++)
+        ptrs[i] = src[0].info.sequential ? NULL : &src[i];
+    ptrs[0] = &src[0];
+    vt_progress_start(&r->progress, "tiling", "tiles", vt_pyramid_tile_count(po));
+    int rc = vt_pyramid_build(ptrs, po, err);
+    vt_progress_end(&r->progress);
+    return rc;
+}
+
+static int run(struct options *o)
+{
+    struct vt_source src[256];
+    memset(src, 0, sizeof src);
+    struct vt_error err = {0};
+    struct run r = {.o = o};
+    struct vts_geometry g;
+    int status = VT_EXIT_BAD_INPUT, rc = open_sources(o, src, o->threads, &err);
+    if (rc)
+        goto out;
+    const struct vt_source_info *in = &src[0].info;
+    uint32_t colour = o->colour_set ? o->colour : in->colour;
+    bool opaque = true;
+    if (in->has_alpha && (rc = vt_source_alpha_opaque(&src[0], &opaque, &err)) != 0)
+        goto out;
+    bool keep_alpha = in->has_alpha && !opaque;
+    uint32_t out_sample;
+    r.codec = choose_codec(o, in, colour, keep_alpha, &out_sample);
+    if (!r.codec) {
+        status = vt_usage_error("unknown --codec '%s'", o->codec_name);
+        goto out;
+    }
+    status = make_geometry(o, in, r.codec, &g);
+    if (status >= 0 && status != -1)
+        goto out;
+    status = VT_EXIT_BAD_INPUT;
+    uint32_t channels = in->channels - (in->has_alpha && !keep_alpha);
+    if ((rc = r.codec->check(g.tile_payload_px, channels, out_sample, &err)) != 0)
+        goto out;
+    struct vts_layer layer = {r.codec->fourcc, (uint8_t)channels, (uint8_t)out_sample,
+                              (uint8_t)colour, 0, 0, {0}};
+    layer.codec_param = r.codec->fourcc == VTS_CODEC_JPEG ? o->quality : 0;
+    snprintf(layer.name, sizeof layer.name, "%s", o->name);
+    r.params = (struct vt_codec_params){(int)o->quality, o->best ? (r.codec->fourcc == VTS_CODEC_PNG ? 9 : 1) : 0,
+                                        (int)o->subsampling};
+    r.cap = r.codec->encoded_bound(g.tile_payload_px, g.tile_payload_px, channels, out_sample);
+    r.bufs = calloc(o->threads, sizeof *r.bufs);
+    for (unsigned i = 0; r.bufs && i < o->threads; i++)
+        if (!(r.bufs[i] = malloc(r.cap))) {
+            rc = vt_error_set(&err, VT_ERR_NOMEM, "out of memory for encode buffers");
+            goto out;
+        }
+    if (!(r.writer = vts_writer_create(o->output, &g, &layer, &err))) {
+        rc = err.status;
+        goto out;
+    }
+    struct vt_pyramid_options po = {
+        .width = g.width, .height = g.height, .tile_content_px = g.tile_content_px,
+        .border_px = g.border_px, .level_count = g.level_count, .filter = o->filter,
+        .colour = colour, .wrap = o->wrap, .out_channels = channels, .out_sample = out_sample,
+        .threads = o->threads, .temp_dir = o->temp_dir, .emit = emit_tile,
+        .progress = show_progress, .user = &r};
+    char dir[4096];
+    if (!po.temp_dir) {
+        const char *slash = strrchr(o->output, '/');
+        snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - o->output) + (slash == o->output) : 1,
+                 slash ? o->output : ".");
+        po.temp_dir = dir;
+    }
+    rc = build(&r, src, &po, &err);
+    if (rc == 0)
+        rc = set_metadata(r.writer, o, r.codec->name, &err);
+    if (rc == 0)
+        rc = vts_writer_finish(r.writer, &err);
+    if (rc == 0) {
+        struct vts_writer_stats st;
+        vts_writer_stats(r.writer, &st);
+        vt_log(VT_LOG_INFO, "wrote '%s': %ux%u, %u levels, %llu tiles stored (%llu shared), "
+               "%llu empty, %llu payload bytes", o->output, g.width, g.height, g.level_count,
+               (unsigned long long)st.tiles_stored, (unsigned long long)st.tiles_shared,
+               (unsigned long long)st.tiles_empty, (unsigned long long)st.unique_bytes);
+        status = VT_EXIT_OK;
+    }
+out:
+    if (rc)
+        vt_log(VT_LOG_ERROR, "%s", err.message);
+    vts_writer_destroy(r.writer);
+    for (unsigned i = 0; r.bufs && i < o->threads; i++)
+        free(r.bufs[i]);
+    free(r.bufs);
+    for (unsigned i = 0; i < o->threads; i++)
+        vt_source_close(&src[i]);
+    return status;
+}
+
+int main(int argc, char **argv)
+{
+    vt_tool_init("vt-tiles");
+    struct options o;
+    int status = parse_options(argc, argv, &o);
+    if (status >= 0)
+        return status;
+    return run(&o);
+}
