@@ -1,6 +1,8 @@
 #include "vt_atomic_file.h"
 
 #include <errno.h>
+#include <pthread.h>
+#include <signal.h>
 #include <fcntl.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -8,6 +10,56 @@
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
+
+/* Temporary files the signal handler removes. A process-wide table is unavoidable here: a signal
+ * handler has no other way to find them. Slots hold pointers into live vt_atomic_file structs;
+ * the handler only reads them and calls unlink(), which is async-signal-safe. */
+#define TEMP_SLOTS 256
+static const char *volatile temp_slots[TEMP_SLOTS];
+static pthread_mutex_t temp_lock = PTHREAD_MUTEX_INITIALIZER;
+
+static void temp_register(const char *path)
+{
+    pthread_mutex_lock(&temp_lock);
+    for (int i = 0; i < TEMP_SLOTS; i++)
+        if (!temp_slots[i]) {
+            temp_slots[i] = path;
+            break;
+        }
+    pthread_mutex_unlock(&temp_lock);
+}
+
+static void temp_unregister(const char *path)
+{
+    pthread_mutex_lock(&temp_lock);
+    for (int i = 0; i < TEMP_SLOTS; i++)
+        if (temp_slots[i] == path)
+            temp_slots[i] = NULL;
+    pthread_mutex_unlock(&temp_lock);
+}
+
+static void remove_temps_and_die(int sig)
+{
+    for (int i = 0; i < TEMP_SLOTS; i++) {
+        const char *p = temp_slots[i];
+        if (p)
+            unlink(p);
+    }
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+void vt_atomic_file_cleanup_on_signals(void)
+{
+    static const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
+    for (size_t i = 0; i < sizeof sigs / sizeof sigs[0]; i++) {
+        struct sigaction sa;
+        memset(&sa, 0, sizeof sa);
+        sa.sa_handler = remove_temps_and_die;
+        sigemptyset(&sa.sa_mask);
+        sigaction(sigs[i], &sa, NULL);
+    }
+}
 
 /* Splits path into directory (without trailing slash; "." when none) and base name. */
 static int split_path(const char *path, char *dir, size_t dir_cap, const char **base)
@@ -58,8 +110,10 @@ int vt_atomic_file_create(struct vt_atomic_file *f, const char *final_path, cons
         if (n < 0 || (size_t)n >= sizeof f->temp_path)
             return vt_error_set(err, VT_ERR_ARG, "output path '%s' is too long", final_path);
         f->fd = open(f->temp_path, O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-        if (f->fd >= 0)
+        if (f->fd >= 0) {
+            temp_register(f->temp_path);
             return 0;
+        }
         if (errno != EEXIST)
             break;
     }
@@ -113,6 +167,7 @@ int vt_atomic_file_commit(struct vt_atomic_file *f, struct vt_error *err)
     if (rc == 0 && rename(f->temp_path, f->final_path) != 0)
         rc = vt_error_set(err, VT_ERR_IO, "cannot rename onto '%s': %s", f->final_path,
                           strerror(errno));
+    temp_unregister(f->temp_path);
     if (rc != 0) {
         unlink(f->temp_path);
         f->temp_path[0] = '\0';
@@ -130,7 +185,9 @@ void vt_atomic_file_abort(struct vt_atomic_file *f)
     if (f->fd >= 0)
         close(f->fd);
     f->fd = -1;
-    if (f->temp_path[0])
+    if (f->temp_path[0]) {
+        temp_unregister(f->temp_path);
         unlink(f->temp_path);
+    }
     f->temp_path[0] = '\0';
 }

@@ -31,4 +31,8 @@ void vt_atomic_file_abort(struct vt_atomic_file *f);
 int vt_atomic_file_pwrite(struct vt_atomic_file *f, const void *buf, size_t len,
                           unsigned long long off, struct vt_error *err);
 
+/* Installs SIGINT, SIGTERM and SIGHUP handlers that remove every temporary file still open in this
+ * process, then die of the signal as before. Call once at the start of a tool's main. */
+void vt_atomic_file_cleanup_on_signals(void);
+
 #endif

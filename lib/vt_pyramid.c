@@ -20,7 +20,8 @@ struct segment {
 };
 
 struct scratch {
-    struct vt_image in;                         /* block + margin, source channels/sample */
+    struct vt_image in;                         /* allocation for block + margin */
+    struct vt_image block;                      /* the current block: a tight view of in */
     struct vt_fregion w[MAX_LEVELS_PER_PASS + 1]; /* working regions per relative level */
     float *reduce_scratch;
     size_t reduce_floats;
@@ -264,7 +265,7 @@ static int emit_base_tile(struct pass *p, unsigned worker, struct scratch *s, in
     uint32_t pp = o->tile_content_px + 2 * o->border_px;
     int64_t x = (int64_t)tx * o->tile_content_px - o->border_px - rx0;
     int64_t y = (int64_t)ty * o->tile_content_px - o->border_px - ry0;
-    struct vt_image v = view_of(&s->in, x, y, pp, pp);
+    struct vt_image v = view_of(&s->block, x, y, pp, pp);
     if (o->out_sample == p->sample) {
         copy_channels(&v, &s->tile_full);
     } else {
@@ -304,15 +305,18 @@ static int emit_working_tile(struct pass *p, unsigned worker, struct scratch *s,
 /* ---- blocks ---- */
 
 struct span {
-    int64_t c0, c1; /* content owned by the block at this level */
+    int64_t c0;    /* first texel the block owns at this level */
+    int64_t c1;    /* end of its whole tiles (past the level's edge for the last tiles) */
+    int64_t inner; /* end of the texels it owns inside the level */
 };
 
 static struct span block_span(const struct pass *p, uint32_t b, uint32_t r, uint32_t size)
 {
-    uint64_t s = p->block >> r;
-    uint32_t extent = level_extent(size, r);
-    uint64_t c1 = (uint64_t)(b + 1) * s;
-    return (struct span){(int64_t)((uint64_t)b * s), (int64_t)(c1 < extent ? c1 : extent)};
+    uint64_t s = p->block >> r, c = p->o->tile_content_px;
+    uint64_t extent = level_extent(size, r), tiles_end = (extent + c - 1) / c * c;
+    uint64_t end = (uint64_t)(b + 1) * s;
+    return (struct span){(int64_t)((uint64_t)b * s), (int64_t)(end < tiles_end ? end : tiles_end),
+                         (int64_t)(end < extent ? end : extent)};
 }
 
 static int emit_level_tiles(struct pass *p, unsigned worker, struct scratch *s, uint32_t r,
@@ -334,15 +338,27 @@ static int store_next_pass(struct pass *p, struct scratch *s, uint32_t bx, uint3
 {
     const struct vt_fregion *w = &s->w[p->depth];
     struct span sx = block_span(p, bx, p->depth, p->w), sy = block_span(p, by, p->depth, p->h);
-    for (int64_t y = sy.c0; y < sy.c1; y++) {
+    for (int64_t y = sy.c0; y < sy.inner; y++) {
         const float *row = w->px + ((size_t)(y - w->y0) * w->width + (size_t)(sx.c0 - w->x0)) *
                                        w->channels;
         int rc = vt_float_file_write(p->next, (uint32_t)sx.c0, (uint32_t)y, row,
-                                     (uint32_t)(sx.c1 - sx.c0), err);
+                                     (uint32_t)(sx.inner - sx.c0), err);
         if (rc)
             return rc;
     }
     return 0;
+}
+
+/* End of the texels relative level r must hold: its whole tiles, and at least twice the end of
+ * level r + 1 (with --wrap, coarser tiles past the edge are computed from finer texels past it). */
+static int64_t region_end(const struct pass *p, uint32_t b, uint32_t r, uint32_t size)
+{
+    int64_t end = block_span(p, b, r, size).c1;
+    if (r < p->depth) {
+        int64_t coarser = 2 * region_end(p, b, r + 1, size);
+        end = coarser > end ? coarser : end;
+    }
+    return end;
 }
 
 static void region_at(const struct pass *p, uint32_t bx, uint32_t by, uint32_t r,
@@ -352,8 +368,8 @@ static void region_at(const struct pass *p, uint32_t bx, uint32_t by, uint32_t r
     uint32_t m = p->margin[r];
     out->x0 = sx.c0 - m;
     out->y0 = sy.c0 - m;
-    out->width = (uint32_t)(sx.c1 - sx.c0) + 2 * m;
-    out->height = (uint32_t)(sy.c1 - sy.c0) + 2 * m;
+    out->width = (uint32_t)(region_end(p, bx, r, p->w) - sx.c0) + 2 * m;
+    out->height = (uint32_t)(region_end(p, by, r, p->h) - sy.c0) + 2 * m;
     out->channels = p->channels;
 }
 
@@ -363,12 +379,13 @@ static int do_block(struct pass *p, unsigned worker, uint32_t bx, uint32_t by,
     struct scratch *s = &p->scratch[worker];
     struct vt_fregion r0;
     region_at(p, bx, by, 0, &r0);
-    struct vt_image in = s->in;
-    in.width = r0.width;
-    in.height = r0.height;
-    in.stride = r0.width * vt_image_texel_bytes(&in); /* tight: it may double as working region */
+    struct vt_image *in = &s->block;
+    *in = s->in;
+    in->width = r0.width;
+    in->height = r0.height;
+    in->stride = r0.width * vt_image_texel_bytes(in); /* tight: it may double as working region */
     struct vt_source *src = p->sequential ? &p->band_source : p->sources[worker];
-    int rc = read_region(p, s, src, r0.x0, r0.y0, &in, err);
+    int rc = read_region(p, s, src, r0.x0, r0.y0, in, err);
     if (rc == 0 && p->emit_base)
         rc = emit_level_tiles(p, worker, s, 0, bx, by, r0.x0, r0.y0, err);
     if (rc || (p->depth == 0 && !p->next))
@@ -379,9 +396,9 @@ static int do_block(struct pass *p, unsigned worker, uint32_t bx, uint32_t by,
     s->w[0].height = r0.height;
     s->w[0].channels = p->channels;
     if (p->source_is_working)
-        s->w[0].px = in.pixels;
+        s->w[0].px = in->pixels;
     else
-        vt_filter_to_working(&p->mode, p->sample, in.pixels, s->w[0].px,
+        vt_filter_to_working(&p->mode, p->sample, in->pixels, s->w[0].px,
                              (size_t)r0.width * r0.height);
     for (uint32_t r = 1; rc == 0 && r <= p->depth; r++) {
         float *px = s->w[r].px;

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "tool_common.h"
+#include "vt_atomic_file.h"
 #include "vt_store_stats.h"
 #include "vt_tile_reader.h"
 #include "vts.h"
@@ -459,6 +460,7 @@ int main(int argc, char **argv)
 {
     struct options o;
     vt_tool_init("vt-info");
+    vt_atomic_file_cleanup_on_signals(); /* --extract writes through a temporary file */
     int rc = parse_options(argc, argv, &o);
     if (rc >= 0)
         return rc;

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "tool_common.h"
+#include "vt_atomic_file.h"
 #include "vt_codec.h"
 #include "vt_image_input.h"
 #include "vt_pool.h"
@@ -255,8 +256,10 @@ static const struct vt_codec *choose_codec(const struct options *o, const struct
                    ? "png"
                    : "jpeg";
     const struct vt_codec *codec = vt_codec_find(name);
-    if (!codec)
+    if (!codec) {
+        vt_usage_error("codec '%s' is not available (raw, png, jpeg, bc1, bc3, auto)", name);
         return NULL;
+    }
     *out_sample = in->sample;
     if (codec->fourcc == VTS_CODEC_PNG && is_float)
         *out_sample = VTS_SAMPLE_U16;
@@ -351,11 +354,11 @@ static int run(struct options *o)
     uint32_t out_sample;
     r.codec = choose_codec(o, in, colour, keep_alpha, &out_sample);
     if (!r.codec) {
-        status = vt_usage_error("unknown --codec '%s'", o->codec_name);
+        status = VT_EXIT_USAGE;
         goto out;
     }
     status = make_geometry(o, in, r.codec, &g);
-    if (status >= 0 && status != -1)
+    if (status != 0)
         goto out;
     status = VT_EXIT_BAD_INPUT;
     uint32_t channels = in->channels - (in->has_alpha && !keep_alpha);
@@ -420,6 +423,7 @@ out:
 int main(int argc, char **argv)
 {
     vt_tool_init("vt-tiles");
+    vt_atomic_file_cleanup_on_signals();
     struct options o;
     int status = parse_options(argc, argv, &o);
     if (status >= 0)
