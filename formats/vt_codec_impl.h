@@ -10,8 +10,11 @@
 #include "vt_codec.h"
 
 /* One definition per codec file; adding a codec = one extern here + one line in vt_codec.c. */
-extern const struct vt_codec vt_codec_raw; /* vt_codec_raw.c: tight little-endian rows, exact */
-extern const struct vt_codec vt_codec_png; /* vt_codec_png.c: libpng, u8/u16, 1..4 channels */
+extern const struct vt_codec vt_codec_raw;  /* vt_codec_raw.c: tight little-endian rows, exact */
+extern const struct vt_codec vt_codec_png;  /* vt_codec_png.c: libpng, u8/u16, 1..4 channels */
+extern const struct vt_codec vt_codec_jpeg; /* vt_codec_jpeg.c: TurboJPEG, u8 grey or RGB */
+extern const struct vt_codec vt_codec_bc1;  /* vt_codec_bc.c: BC1/DXT1, u8 RGB(A), 1-bit alpha */
+extern const struct vt_codec vt_codec_bc3;  /* vt_codec_bc.c: BC3/DXT5, u8 RGBA */
 
 /* True on a little-endian host (payload samples and vt_image samples are little-endian there). */
 static inline bool vt_host_is_little_endian(void)

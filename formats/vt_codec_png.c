@@ -5,8 +5,9 @@
  * (png_*_body) whose frame the longjmp discards, on objects the caller owns, so no local is left
  * indeterminate (C11 7.13.2.1).
  *
- * params->effort: 1..9 is the zlib level, 0 the default (2: fast, tiles are small). Levels 1..3 use the SUB filter on
- * every row (fast: ~30 MP/s at level 1); levels 4..9 let libpng pick a filter per row. */
+ * params->effort: 1..9 is the zlib level, 0 the default (2: fast, tiles are small). Levels 1..3 use
+ * the SUB filter on every row (fast: ~30 MP/s at level 1); levels 4..9 let libpng pick a filter per
+ * row. */
 #include <png.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -17,7 +18,7 @@
 #include "vt_codec.h"
 #include "vt_codec_impl.h"
 
-#define PNG_DEFAULT_LEVEL 2
+#define PNG_DEFAULT_LEVEL  2
 #define PNG_FAST_MAX_LEVEL 3
 #define PNG_MAX_EDGE       0x7fffffffu /* PNG_UINT_31_MAX */
 

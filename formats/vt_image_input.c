@@ -53,8 +53,8 @@ int vt_image_input_open(const char *path, const struct vt_input_limits *limits,
     memset(out, 0, sizeof *out);
     if (!path || !path[0])
         return vt_error_set(err, VT_ERR_ARG, "cannot open an image: empty path");
-    uint64_t max_pixels = limits && limits->max_pixels ? limits->max_pixels
-                                                       : VT_INPUT_DEFAULT_MAX_PIXELS;
+    uint64_t max_pixels =
+        limits && limits->max_pixels ? limits->max_pixels : VT_INPUT_DEFAULT_MAX_PIXELS;
     unsigned char magic[8];
     size_t len = 0;
     int rc = input_read_magic(path, magic, &len, err);
@@ -89,8 +89,8 @@ int vt_input_check_size(const char *path, uint64_t width, uint64_t height, uint6
                         struct vt_error *err)
 {
     if (width == 0 || height == 0)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': image size %llux%llu",
-                            path, (unsigned long long)width, (unsigned long long)height);
+        return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': image size %llux%llu", path,
+                            (unsigned long long)width, (unsigned long long)height);
     uint64_t pixels;
     if (width > UINT32_MAX || height > UINT32_MAX || !vt_u64_mul(width, height, &pixels) ||
         pixels > max_pixels)

@@ -28,8 +28,8 @@ struct exr_input {
     char name[256];
     char message[160]; /* the last error OpenEXR reported */
     uint32_t width, height;
-    int32_t x0, y0;    /* data window corner */
-    uint32_t channels; /* output channels */
+    int32_t x0, y0;      /* data window corner */
+    uint32_t channels;   /* output channels */
     int file_channel[4]; /* output channel -> index in the file's channel list */
     uint32_t sample;     /* VTS_SAMPLE_F16 or VTS_SAMPLE_F32 */
     size_t sample_bytes;
@@ -39,8 +39,8 @@ struct exr_input {
     bool decoder_ready;
     unsigned char *planes; /* channels planes of chunk_w * chunk_h samples */
     size_t plane_bytes;
-    uint64_t cached;                 /* 1 + index of the chunk in planes, 0 = none */
-    uint32_t cached_w, cached_h;     /* its size (edge chunks are smaller) */
+    uint64_t cached;             /* 1 + index of the chunk in planes, 0 = none */
+    uint32_t cached_w, cached_h; /* its size (edge chunks are smaller) */
 };
 
 static void exr_input_on_error(exr_const_context_t ctxt, exr_result_t code, const char *msg)
@@ -285,17 +285,16 @@ static exr_result_t exr_chunk_info(struct exr_input *t, uint32_t cx, uint32_t cy
     if (t->tiled)
         rv = exr_read_tile_chunk_info(t->exr, 0, (int)cx, (int)cy, 0, 0, ci);
     else
-        rv = exr_read_scanline_chunk_info(t->exr, 0, (int)(t->y0 + (int64_t)cy * t->chunk_h),
-                                          ci);
+        rv = exr_read_scanline_chunk_info(t->exr, 0, (int)(t->y0 + (int64_t)cy * t->chunk_h), ci);
     if (rv != EXR_ERR_SUCCESS)
         return rv;
     /* tiles: start_x/start_y are tile indices (OpenEXR 3.1.5) */
     int64_t sx = t->tiled ? (int64_t)ci->start_x * t->chunk_w : (int64_t)ci->start_x - t->x0;
     int64_t sy = t->tiled ? (int64_t)ci->start_y * t->chunk_h : (int64_t)ci->start_y - t->y0;
-    uint32_t want_w = t->width - cx * t->chunk_w < t->chunk_w ? t->width - cx * t->chunk_w
-                                                                : t->chunk_w;
-    uint32_t want_h = t->height - cy * t->chunk_h < t->chunk_h ? t->height - cy * t->chunk_h
-                                                                 : t->chunk_h;
+    uint32_t want_w =
+        t->width - cx * t->chunk_w < t->chunk_w ? t->width - cx * t->chunk_w : t->chunk_w;
+    uint32_t want_h =
+        t->height - cy * t->chunk_h < t->chunk_h ? t->height - cy * t->chunk_h : t->chunk_h;
     if (sx != (int64_t)cx * t->chunk_w || sy != (int64_t)cy * t->chunk_h ||
         ci->width != (int32_t)want_w || ci->height != (int32_t)want_h) {
         snprintf(t->message, sizeof t->message, "chunk table does not match the image");
@@ -350,9 +349,9 @@ static int exr_load_chunk(struct exr_input *t, uint32_t cx, uint32_t cy, struct 
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_decoding_run(t->exr, 0, &t->decoder);
     if (rv != EXR_ERR_SUCCESS)
-        return vt_error_set(err, exr_input_status(rv), "cannot read '%s': %s at %u,%u: %s",
-                            t->name, t->tiled ? "tile" : "chunk", cx * t->chunk_w,
-                            cy * t->chunk_h, exr_input_message(t, rv));
+        return vt_error_set(err, exr_input_status(rv), "cannot read '%s': %s at %u,%u: %s", t->name,
+                            t->tiled ? "tile" : "chunk", cx * t->chunk_w, cy * t->chunk_h,
+                            exr_input_message(t, rv));
     t->cached = index + 1;
     t->cached_w = (uint32_t)ci.width;
     t->cached_h = (uint32_t)ci.height;
@@ -368,8 +367,8 @@ static void exr_copy_chunk(const struct exr_input *t, uint32_t px, uint32_t py, 
     for (uint32_t r = r0; r < r1; r++) {
         unsigned char *out = vt_image_at(dst, px + c0 - x, py + r - y);
         for (uint32_t c = 0; c < t->channels; c++) {
-            const unsigned char *plane = t->planes + c * t->plane_bytes +
-                                         ((size_t)r * t->cached_w + c0) * sb;
+            const unsigned char *plane =
+                t->planes + c * t->plane_bytes + ((size_t)r * t->cached_w + c0) * sb;
             for (uint32_t i = 0; i < c1 - c0; i++)
                 memcpy(out + (i * t->channels + c) * sb, plane + i * sb, sb);
         }

@@ -1,9 +1,10 @@
 /* JPEG input through the libjpeg API of libjpeg-turbo: grey -> 1 channel, YCbCr/RGB -> RGB, 8-bit.
- * A decode session crops to the columns a region needs (jpeg_crop_scanline, whole width for
- * full-width regions), skips rows above it (jpeg_skip_scanlines) and keeps its position, so bands
- * read top-down decode each row once; a region above the current row or outside the session's
- * columns restarts the decode from the top of the file. A truncated file is an error (libjpeg
- * would pad it with grey and warn); other corrupt-data warnings are not.
+ * Texels equal a full decode with libjpeg's defaults. A decode session crops to the columns a
+ * region needs plus one iMCU each side (jpeg_crop_scanline; whole width for full-width regions),
+ * skips rows above it (jpeg_skip_scanlines) and keeps its position, so bands read top-down decode
+ * each row once; a region above the current row or outside the session's columns restarts the
+ * decode from the top of the file. A truncated file is an error (libjpeg would pad it with grey and
+ * warn); other corrupt-data warnings are not.
  *
  * setjmp/longjmp stay in this file; the functions that call setjmp (*_run) change no local after
  * it (C11 7.13.2.1). */
@@ -20,8 +21,10 @@
 
 #include "vt_input_impl.h"
 
-/* Coefficient memory a (progressive) decode may use before it is refused. */
-#define JPEG_INPUT_MAX_MEMORY VT_INPUT_MAX_BUFFER_BYTES
+/* Memory a decode may use before it is refused: a progressive JPEG keeps every coefficient of the
+ * image (2 bytes per sample), so this admits progressive 4:2:0 images up to ~26k x 26k texels and
+ * 4:4:4 ones up to ~18k x 18k; baseline JPEGs need a few rows only. */
+#define JPEG_INPUT_MAX_MEMORY (2ull << 30)
 
 struct jpeg_input;
 
@@ -35,9 +38,9 @@ struct jpeg_input {
     FILE *file;
     struct jpeg_decompress_struct cinfo;
     struct jpeg_input_error jerr;
-    bool created;  /* jpeg_create_decompress() done */
-    bool started;  /* a decode session is running (jpeg_start_decompress() done) */
-    bool in_rows;  /* errors happen while decoding rows: name the row */
+    bool created; /* jpeg_create_decompress() done */
+    bool started; /* a decode session is running (jpeg_start_decompress() done) */
+    bool in_rows; /* errors happen while decoding rows: name the row */
     char name[256];
     struct vt_error error; /* filled by the error handler */
     uint32_t width, height, channels;
@@ -56,6 +59,9 @@ static void jpeg_input_fail(j_common_ptr cinfo, bool truncated)
         int status = VT_ERR_BAD_INPUT;
         if (truncated)
             snprintf(msg, sizeof msg, "truncated");
+        else if (code == JERR_NO_BACKING_STORE)
+            snprintf(msg, sizeof msg, "decoding needs more than %llu MiB (progressive JPEG?)",
+                     (unsigned long long)(JPEG_INPUT_MAX_MEMORY >> 20));
         else
             cinfo->err->format_message(cinfo, msg);
         if (code == JERR_OUT_OF_MEMORY)
@@ -119,7 +125,7 @@ static void jpeg_input_header_body(struct jpeg_input *t)
     if (!t->created) {
         jpeg_create_decompress(&t->cinfo);
         t->created = true;
-        t->cinfo.mem->max_memory_to_use = JPEG_INPUT_MAX_MEMORY;
+        t->cinfo.mem->max_memory_to_use = (long)JPEG_INPUT_MAX_MEMORY;
     } else {
         jpeg_abort_decompress(&t->cinfo);
     }
@@ -145,8 +151,13 @@ static void jpeg_input_start_body(struct jpeg_input *t, uint32_t x, uint32_t w)
     jpeg_start_decompress(&t->cinfo);
     t->started = true;
     t->crop_x = 0;
-    if (x != 0 || w != t->width) {
-        JDIMENSION crop_x = x, crop_w = w;
+    /* The upsampler treats the crop's edges as image edges, so that with fancy (smoothed) chroma
+     * upsampling the edge columns differ from a full decode: crop one iMCU wider on each side. */
+    uint32_t margin = (uint32_t)t->cinfo.max_h_samp_factor * DCTSIZE;
+    uint32_t x0 = x > margin ? x - margin : 0;
+    uint32_t x1 = t->width - (x + w) > margin ? x + w + margin : t->width;
+    if (x0 != 0 || x1 != t->width) {
+        JDIMENSION crop_x = x0, crop_w = x1 - x0;
         jpeg_crop_scanline(&t->cinfo, &crop_x, &crop_w); /* widens to whole iMCUs */
         t->crop_x = crop_x;
     }
@@ -228,8 +239,7 @@ out_close:
 
 /* ---- rows ---- */
 
-static void jpeg_input_rows_body(struct jpeg_input *t, uint32_t x, uint32_t y,
-                                 struct vt_image *dst)
+static void jpeg_input_rows_body(struct jpeg_input *t, uint32_t x, uint32_t y, struct vt_image *dst)
 {
     struct jpeg_decompress_struct *c = &t->cinfo;
     t->in_rows = true;

@@ -82,8 +82,8 @@ static void *oiio_load(char *why, size_t why_size)
 {
     char relative[PATH_MAX + 64];
     oiio_exe_relative(relative, sizeof relative);
-    const char *candidates[] = {getenv("VT_OIIO_MODULE"), VT_OIIO_BUILD_PATH,
-                                VT_OIIO_INSTALL_PATH, relative};
+    const char *candidates[] = {getenv("VT_OIIO_MODULE"), VT_OIIO_BUILD_PATH, VT_OIIO_INSTALL_PATH,
+                                relative};
     why[0] = '\0';
     for (size_t i = 0; i < sizeof candidates / sizeof candidates[0]; i++) {
         void *m = oiio_try(candidates[i], why, why_size);

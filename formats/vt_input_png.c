@@ -148,8 +148,8 @@ static int png_input_start(struct png_input *t, struct vt_error *err)
     t->next_row = 0;
     if (fseek(t->file, 0, SEEK_SET) != 0)
         return vt_error_set(err, VT_ERR_IO, "cannot read '%s': %s", t->name, strerror(errno));
-    t->png = png_create_read_struct(PNG_LIBPNG_VER_STRING, t, png_input_on_error,
-                                    png_input_on_warning);
+    t->png =
+        png_create_read_struct(PNG_LIBPNG_VER_STRING, t, png_input_on_error, png_input_on_warning);
     t->info = t->png ? png_create_info_struct(t->png) : NULL;
     if (!t->info)
         return vt_error_set(err, VT_ERR_NOMEM, "cannot read '%s': out of memory", t->name);
@@ -169,7 +169,10 @@ static int png_input_check_header(struct png_input *t, uint64_t max_pixels, stru
         return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': no IHDR chunk", t->name);
     uint32_t w = (uint32_t)h[16] << 24 | (uint32_t)h[17] << 16 | (uint32_t)h[18] << 8 | h[19];
     uint32_t ht = (uint32_t)h[20] << 24 | (uint32_t)h[21] << 16 | (uint32_t)h[22] << 8 | h[23];
-    return vt_input_check_size(t->name, w, ht, max_pixels, err);
+    int rc = vt_input_check_size(t->name, w, ht, max_pixels, err);
+    if (rc == 0 && (uint64_t)w * 8 > VT_INPUT_MAX_BUFFER_BYTES) /* RGBA16 rows, before libpng's */
+        rc = vt_error_set(err, VT_ERR_LIMIT, "'%s': rows of %u texels are too long", t->name, w);
+    return rc;
 }
 
 static int png_input_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,

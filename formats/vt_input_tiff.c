@@ -34,7 +34,7 @@ struct tiff_input {
     uint32_t sample_bytes;
     enum tiff_layout layout;
     enum tiff_convert convert;
-    bool separate;    /* PLANARCONFIG_SEPARATE: one plane per channel */
+    bool separate; /* PLANARCONFIG_SEPARATE: one plane per channel */
     bool min_is_white;
     uint32_t chunk_w, chunk_h; /* tile size, or full width x rows per strip (1 for scanlines) */
     size_t chunk_bytes;        /* bytes of one decoded chunk of one plane */
@@ -43,6 +43,9 @@ struct tiff_input {
     uint64_t cached[4];        /* per plane: 1 + index of the chunk held in chunk[], 0 = none */
     uint8_t palette[256][3];
 };
+
+static int tiff_on_error(TIFF *tif, void *user_data, const char *module, const char *fmt,
+                         va_list ap) __attribute__((format(printf, 4, 0)));
 
 static int tiff_on_error(TIFF *tif, void *user_data, const char *module, const char *fmt,
                          va_list ap)
@@ -113,12 +116,13 @@ static int tiff_check_pixels(struct tiff_input *t, uint32_t *sample, struct vt_e
     TIFF *tif = t->tif;
     uint16_t spp = tiff_get16(tif, TIFFTAG_SAMPLESPERPIXEL, 1);
     uint16_t format = tiff_get16(tif, TIFFTAG_SAMPLEFORMAT, SAMPLEFORMAT_UINT);
-    uint16_t photometric = tiff_get16(tif, TIFFTAG_PHOTOMETRIC,
-                                      spp >= 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK);
+    uint16_t photometric =
+        tiff_get16(tif, TIFFTAG_PHOTOMETRIC, spp >= 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK);
     uint16_t compression = tiff_get16(tif, TIFFTAG_COMPRESSION, COMPRESSION_NONE);
     t->bps = tiff_get16(tif, TIFFTAG_BITSPERSAMPLE, 1);
-    t->separate = tiff_get16(tif, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG) ==
-                  PLANARCONFIG_SEPARATE;
+    t->separate =
+        spp > 1 && /* one sample per texel: the same layout either way */
+        tiff_get16(tif, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG) == PLANARCONFIG_SEPARATE;
     t->channels = spp;
     if (photometric == PHOTOMETRIC_YCBCR && compression == COMPRESSION_JPEG) {
         if (!TIFFSetField(tif, TIFFTAG_JPEGCOLORMODE, JPEGCOLORMODE_RGB))
@@ -139,7 +143,8 @@ static int tiff_check_pixels(struct tiff_input *t, uint32_t *sample, struct vt_e
     t->min_is_white = photometric == PHOTOMETRIC_MINISWHITE;
     if (format == SAMPLEFORMAT_UINT && (t->bps == 8 || t->bps == 16)) {
         *sample = t->bps == 8 ? VTS_SAMPLE_U8 : VTS_SAMPLE_U16;
-    } else if (format == SAMPLEFORMAT_IEEEFP && (t->bps == 16 || t->bps == 32) && !t->min_is_white) {
+    } else if (format == SAMPLEFORMAT_IEEEFP && (t->bps == 16 || t->bps == 32) &&
+               !t->min_is_white) {
         *sample = t->bps == 16 ? VTS_SAMPLE_F16 : VTS_SAMPLE_F32;
     } else if (format == SAMPLEFORMAT_UINT && spp == 1 &&
                (t->bps == 1 || t->bps == 2 || t->bps == 4)) {
@@ -155,8 +160,8 @@ static int tiff_check_pixels(struct tiff_input *t, uint32_t *sample, struct vt_e
     if (photometric == PHOTOMETRIC_PALETTE) {
         uint16_t *r, *g, *b;
         if (t->bps > 8 || !TIFFGetField(tif, TIFFTAG_COLORMAP, &r, &g, &b))
-            return vt_error_set(err, VT_ERR_UNSUPPORTED,
-                                "cannot read '%s': %u-bit palette image", t->name, t->bps);
+            return vt_error_set(err, VT_ERR_UNSUPPORTED, "cannot read '%s': %u-bit palette image",
+                                t->name, t->bps);
         tiff_load_palette(t, r, g, b);
         t->convert = TIFF_PALETTE;
         t->channels = 3;
@@ -174,8 +179,8 @@ static int tiff_check_layout(struct tiff_input *t, struct vt_error *err)
         TIFFGetField(tif, TIFFTAG_TILEWIDTH, &tw);
         TIFFGetField(tif, TIFFTAG_TILELENGTH, &th);
         if (tw == 0 || th == 0)
-            return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': tile size %ux%u",
-                                t->name, tw, th);
+            return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': tile size %ux%u", t->name,
+                                tw, th);
         t->layout = TIFF_TILES;
         t->chunk_w = tw;
         t->chunk_h = th;
@@ -197,10 +202,11 @@ static int tiff_check_layout(struct tiff_input *t, struct vt_error *err)
             chunk_bytes = row_bytes;
         }
     }
-    uint64_t texel_bits = (uint64_t)t->bps * (t->separate ? 1 : (t->convert == TIFF_PALETTE ? 1
-                                                                     : t->channels));
+    uint64_t texel_bits =
+        (uint64_t)t->bps * (t->separate ? 1 : (t->convert == TIFF_PALETTE ? 1 : t->channels));
     uint64_t need_row, need_chunk;
-    if (row_bytes == 0 || chunk_bytes == 0 || chunk_bytes > VT_INPUT_MAX_BUFFER_BYTES ||
+    uint32_t planes = t->separate ? t->channels : 1;
+    if (row_bytes == 0 || chunk_bytes == 0 || chunk_bytes > VT_INPUT_MAX_BUFFER_BYTES / planes ||
         !vt_u64_mul(t->chunk_w, texel_bits, &need_row) || (need_row + 7) / 8 > row_bytes ||
         !vt_u64_mul(row_bytes, t->chunk_h, &need_chunk) || need_chunk > chunk_bytes)
         return vt_error_set(err, VT_ERR_BAD_INPUT,
@@ -209,7 +215,6 @@ static int tiff_check_layout(struct tiff_input *t, struct vt_error *err)
                             (unsigned long long)chunk_bytes);
     t->chunk_bytes = (size_t)chunk_bytes;
     t->row_bytes = (size_t)row_bytes;
-    uint32_t planes = t->separate ? t->channels : 1;
     for (uint32_t s = 0; s < planes; s++) {
         t->chunk[s] = malloc(t->chunk_bytes);
         if (!t->chunk[s])
@@ -239,7 +244,7 @@ int vt_input_tiff_open(const char *path, uint64_t max_pixels, struct vt_source *
     TIFFOpenOptionsSetErrorHandlerExtR(opts, tiff_on_error, t);
     TIFFOpenOptionsSetWarningHandlerExtR(opts, tiff_on_warning, t);
     TIFFOpenOptionsSetMaxSingleMemAlloc(opts, (tmsize_t)VT_INPUT_MAX_BUFFER_BYTES);
-    t->tif = TIFFOpenExt(path, "r", opts);
+    t->tif = TIFFOpenExt(path, "rm", opts); /* "m": no mmap, or every page read counts as RSS */
     TIFFOpenOptionsFree(opts);
     if (!t->tif) {
         rc = vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': %s", path, tiff_message(t));
@@ -295,8 +300,8 @@ static int tiff_load_chunk(struct tiff_input *t, uint32_t cx, uint32_t cy, uint1
              (tmsize_t)t->chunk_bytes;
     } else if (t->layout == TIFF_STRIPS) {
         uint32_t rows = t->height - py < t->chunk_h ? t->height - py : t->chunk_h;
-        tmsize_t n = TIFFReadEncodedStrip(t->tif, (uint32_t)index, t->chunk[s],
-                                          (tmsize_t)t->chunk_bytes);
+        tmsize_t n =
+            TIFFReadEncodedStrip(t->tif, (uint32_t)index, t->chunk[s], (tmsize_t)t->chunk_bytes);
         ok = n >= 0 && (uint64_t)n >= (uint64_t)rows * t->row_bytes;
     } else {
         ok = TIFFReadScanline(t->tif, t->chunk[s], py, s) == 1;

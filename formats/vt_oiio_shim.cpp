@@ -17,7 +17,8 @@
 
 #define VT_OIIO_EXPORT extern "C" __attribute__((visibility("default")))
 
-namespace {
+namespace
+{
 
 struct Handle {
     std::unique_ptr<OIIO::ImageInput> in;
@@ -105,8 +106,8 @@ bool read_scanlines(Handle *h, uint32_t x, uint32_t y, uint32_t w, uint32_t rows
                                    h->buffer.data()))
             return false;
         for (uint32_t i = 0; i < n; i++)
-            std::memcpy(dst + (r + i) * dst_stride, h->buffer.data() + i * row_bytes +
-                        x * h->texel_bytes, w * h->texel_bytes);
+            std::memcpy(dst + (r + i) * dst_stride,
+                        h->buffer.data() + i * row_bytes + x * h->texel_bytes, w * h->texel_bytes);
     }
     return true;
 }

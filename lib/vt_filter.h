@@ -59,10 +59,10 @@ void vt_filter_from_working(const struct vt_pixel_mode *m, uint32_t sample, cons
 
 /* Working-space pixels of a rectangle of one level, in that level's texel coordinates. */
 struct vt_fregion {
-    int64_t x0, y0;          /* level coordinates of px[0] */
-    uint32_t width, height;  /* texels */
+    int64_t x0, y0;         /* level coordinates of px[0] */
+    uint32_t width, height; /* texels */
     uint32_t channels;
-    float *px;               /* width * height * channels, rows top to bottom, owned by caller */
+    float *px; /* width * height * channels, rows top to bottom, owned by caller */
 };
 
 /* Edge behaviour of a level. Clamp: a position outside [0, size) reads the nearest edge texel.

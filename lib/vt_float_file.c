@@ -30,8 +30,8 @@ struct vt_float_file *vt_float_file_create(const char *dir, uint32_t width, uint
     }
     f->fd = mkstemp(path);
     if (f->fd < 0) {
-        vt_error_set(err, VT_ERR_IO, "cannot create a temporary file in '%s': %s",
-                     dir ? dir : ".", strerror(errno));
+        vt_error_set(err, VT_ERR_IO, "cannot create a temporary file in '%s': %s", dir ? dir : ".",
+                     strerror(errno));
         free(f);
         return NULL;
     }
@@ -107,9 +107,12 @@ int vt_float_file_source(struct vt_float_file *f, uint32_t colour, bool has_alph
 {
     (void)err;
     memset(out, 0, sizeof *out);
-    out->info = (struct vt_source_info){.width = f->width, .height = f->height,
-                                        .channels = f->channels, .sample = VTS_SAMPLE_F32,
-                                        .colour = colour, .has_alpha = has_alpha};
+    out->info = (struct vt_source_info){.width = f->width,
+                                        .height = f->height,
+                                        .channels = f->channels,
+                                        .sample = VTS_SAMPLE_F32,
+                                        .colour = colour,
+                                        .has_alpha = has_alpha};
     snprintf(out->info.format, sizeof out->info.format, "float-temp");
     snprintf(out->name, sizeof out->name, "(pass image)");
     out->ops = &float_ops;

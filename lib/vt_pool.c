@@ -16,7 +16,7 @@ struct pool {
     pthread_cond_t done_cond;
     unsigned running;
     bool stop;
-    int status;         /* of the failed job with the lowest number */
+    int status; /* of the failed job with the lowest number */
     uint64_t failed_job;
     struct vt_error error;
 };

@@ -7,9 +7,11 @@
 #include "vt_checked.h"
 #include "vt_float_file.h"
 #include "vt_pool.h"
+#include "vt_tile_cache.h"
 
 #define DEFAULT_LEVELS_PER_PASS 2
 #define MAX_LEVELS_PER_PASS     6
+#define INPUT_CACHE_BYTES       (48u << 20) /* decoded input tiles shared by the workers */
 
 /* One stretch of a region along one axis: dst positions [dst, dst + len) read source positions
  * [src, src + len), or all repeat source position src when replicate (clamped edge). */
@@ -20,8 +22,8 @@ struct segment {
 };
 
 struct scratch {
-    struct vt_image in;                         /* allocation for block + margin */
-    struct vt_image block;                      /* the current block: a tight view of in */
+    struct vt_image in;                           /* allocation for block + margin */
+    struct vt_image block;                        /* the current block: a tight view of in */
     struct vt_fregion w[MAX_LEVELS_PER_PASS + 1]; /* working regions per relative level */
     float *reduce_scratch;
     size_t reduce_floats;
@@ -46,7 +48,7 @@ struct pass {
     bool emit_base;
     uint32_t base, depth, k; /* base level, levels reduced here, levels per pass */
     uint32_t w, h, channels, sample;
-    uint64_t block;          /* S = content << k */
+    uint64_t block; /* S = content << k */
     uint32_t margin[MAX_LEVELS_PER_PASS + 1];
     uint32_t blocks_x, blocks_y, row, next_bx;
     struct vt_kernel kernel;
@@ -86,8 +88,8 @@ static size_t make_segments(int64_t a, int64_t b, uint32_t n, bool wrap, struct 
         if (lo < hi)
             seg[k++] = (struct segment){lo - a, (uint32_t)lo, (uint32_t)(hi - lo), false};
         if (b > n)
-            seg[k++] = (struct segment){(a > n ? a : n) - a, n - 1,
-                                        (uint32_t)(b - (a > n ? a : n)), true};
+            seg[k++] =
+                (struct segment){(a > n ? a : n) - a, n - 1, (uint32_t)(b - (a > n ? a : n)), true};
         return k;
     }
     for (int64_t p = a; p < b && k < cap;) {
@@ -124,8 +126,8 @@ static int read_region(struct pass *p, struct scratch *s, struct vt_source *src,
         for (size_t i = 0; i < nx; i++) {
             if (s->xs[i].replicate)
                 continue;
-            struct vt_image v = view_of(dst, s->xs[i].dst, s->ys[j].dst, s->xs[i].len,
-                                        s->ys[j].len);
+            struct vt_image v =
+                view_of(dst, s->xs[i].dst, s->ys[j].dst, s->xs[i].len, s->ys[j].len);
             int rc = vt_source_read(src, s->xs[i].src, s->ys[j].src, &v, err);
             if (rc)
                 return rc;
@@ -285,8 +287,8 @@ static int emit_base_tile(struct pass *p, unsigned worker, struct scratch *s, in
 
 /* Payload of tile (tx, ty) of a reduced level from its working region. */
 static int emit_working_tile(struct pass *p, unsigned worker, struct scratch *s,
-                             const struct vt_fregion *w, uint32_t level, uint32_t tx,
-                             uint32_t ty, struct vt_error *err)
+                             const struct vt_fregion *w, uint32_t level, uint32_t tx, uint32_t ty,
+                             struct vt_error *err)
 {
     const struct vt_pyramid_options *o = p->o;
     uint32_t pp = o->tile_content_px + 2 * o->border_px;
@@ -294,8 +296,7 @@ static int emit_working_tile(struct pass *p, unsigned worker, struct scratch *s,
     int64_t y = (int64_t)ty * o->tile_content_px - o->border_px - w->y0;
     for (uint32_t r = 0; r < pp; r++) {
         const float *src = w->px + ((size_t)(y + r) * w->width + (size_t)x) * w->channels;
-        vt_filter_from_working(&p->mode, o->out_sample, src, vt_image_at(&s->tile_full, 0, r),
-                               pp);
+        vt_filter_from_working(&p->mode, o->out_sample, src, vt_image_at(&s->tile_full, 0, r), pp);
     }
     if (o->out_channels != p->channels)
         copy_channels(&s->tile_full, &s->tile);
@@ -339,8 +340,8 @@ static int store_next_pass(struct pass *p, struct scratch *s, uint32_t bx, uint3
     const struct vt_fregion *w = &s->w[p->depth];
     struct span sx = block_span(p, bx, p->depth, p->w), sy = block_span(p, by, p->depth, p->h);
     for (int64_t y = sy.c0; y < sy.inner; y++) {
-        const float *row = w->px + ((size_t)(y - w->y0) * w->width + (size_t)(sx.c0 - w->x0)) *
-                                       w->channels;
+        const float *row =
+            w->px + ((size_t)(y - w->y0) * w->width + (size_t)(sx.c0 - w->x0)) * w->channels;
         int rc = vt_float_file_write(p->next, (uint32_t)sx.c0, (uint32_t)y, row,
                                      (uint32_t)(sx.inner - sx.c0), err);
         if (rc)
@@ -373,8 +374,7 @@ static void region_at(const struct pass *p, uint32_t bx, uint32_t by, uint32_t r
     out->channels = p->channels;
 }
 
-static int do_block(struct pass *p, unsigned worker, uint32_t bx, uint32_t by,
-                    struct vt_error *err)
+static int do_block(struct pass *p, unsigned worker, uint32_t bx, uint32_t by, struct vt_error *err)
 {
     struct scratch *s = &p->scratch[worker];
     struct vt_fregion r0;
@@ -489,8 +489,10 @@ static int scratch_alloc(struct pass *p, struct vt_error *err)
         if (ok && floats)
             ok = (s->reduce_scratch = malloc(floats * sizeof(float))) != NULL;
         if (!ok)
-            return vt_error_set(err, VT_ERR_NOMEM, "out of memory for the working blocks of %ux%u "
-                                "texels", big.width, big.height);
+            return vt_error_set(err, VT_ERR_NOMEM,
+                                "out of memory for the working blocks of %ux%u "
+                                "texels",
+                                big.width, big.height);
     }
     return 0;
 }
@@ -570,7 +572,8 @@ static int check_options(struct vt_source *const *sources, const struct vt_pyram
                             VTS_MAX_PAYLOAD_PX);
     for (unsigned i = 0; !in->sequential && i < o->threads; i++)
         if (!sources[i])
-            return vt_error_set(err, VT_ERR_ARG, "a random-access input needs one source per "
+            return vt_error_set(err, VT_ERR_ARG,
+                                "a random-access input needs one source per "
                                 "worker");
     return 0;
 }
@@ -585,10 +588,19 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
     uint32_t k = o->levels_per_pass ? o->levels_per_pass : DEFAULT_LEVELS_PER_PASS;
     k = k > MAX_LEVELS_PER_PASS ? MAX_LEVELS_PER_PASS : k;
     uint64_t done = 0;
-    struct pass p = {.o = o, .sources = sources, .sequential = in->sequential, .emit_base = true,
-                     .k = k, .w = o->width, .h = o->height, .channels = in->channels,
-                     .sample = in->sample, .block = (uint64_t)o->tile_content_px << k,
-                     .threads = o->threads, .done = &done, .total = vt_pyramid_tile_count(o)};
+    struct pass p = {.o = o,
+                     .sources = sources,
+                     .sequential = in->sequential,
+                     .emit_base = true,
+                     .k = k,
+                     .w = o->width,
+                     .h = o->height,
+                     .channels = in->channels,
+                     .sample = in->sample,
+                     .block = (uint64_t)o->tile_content_px << k,
+                     .threads = o->threads,
+                     .done = &done,
+                     .total = vt_pyramid_tile_count(o)};
     p.mode = (struct vt_pixel_mode){in->channels, o->colour,
                                     in->has_alpha && o->colour != VTS_COLOUR_DATA};
     vt_kernel_init(&p.kernel, o->filter);
@@ -597,6 +609,17 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
     struct vt_float_file *prev = NULL;
     struct vt_source temp_source = {0};
     struct vt_source **temp_sources = NULL;
+    /* tiled inputs: workers share decoded tiles, so block margins do not decode tiles twice */
+    struct vt_source cached[256], *cached_ptrs[256];
+    struct vt_tile_cache *cache = NULL;
+    if (!in->sequential && in->tile_w && in->tile_h && o->threads <= 256) {
+        cache = vt_tile_cache_create(sources, o->threads, INPUT_CACHE_BYTES, cached, err);
+        if (!cache)
+            return err ? err->status : VT_ERR_NOMEM;
+        for (unsigned i = 0; i < o->threads; i++)
+            cached_ptrs[i] = &cached[i];
+        p.sources = cached_ptrs;
+    }
     for (;;) {
         uint32_t left = o->level_count - 1 - p.base;
         p.depth = left < k ? left : k;
@@ -610,6 +633,13 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
             }
         }
         rc = run_pass(&p, err);
+        if (cache && getenv("VT_DEBUG_CACHE")) {
+            unsigned long long d, h;
+            vt_tile_cache_counts(cache, &d, &h);
+            fprintf(stderr, "input tiles decoded %llu, cache hits %llu\n", d, h);
+        }
+        vt_tile_cache_destroy(cache); /* only pass 0 reads the input */
+        cache = NULL;
         vt_source_close(&temp_source);
         vt_float_file_destroy(prev);
         prev = p.next;
@@ -634,6 +664,7 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
         p.h = level_extent(p.h, p.depth);
         p.sample = VTS_SAMPLE_F32;
     }
+    vt_tile_cache_destroy(cache);
     vt_source_close(&temp_source);
     vt_float_file_destroy(prev);
     free(temp_sources);

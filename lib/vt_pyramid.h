@@ -6,7 +6,8 @@
  * last level is written to a temporary float image that is the source of the next pass. Memory is
  * bounded by the block size, the number of workers and (for sequential inputs such as PNG) one
  * band of block rows; never by the image area. Every texel is computed from the same finer texels
- * in the same order whatever the block split or thread count, so output bytes do not depend on -j. */
+ * in the same order whatever the block split or thread count, so output bytes do not depend on -j.
+ */
 #ifndef VT_PYRAMID_H
 #define VT_PYRAMID_H
 

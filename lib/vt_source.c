@@ -9,14 +9,16 @@ int vt_source_read(struct vt_source *src, uint32_t x, uint32_t y, struct vt_imag
 {
     const struct vt_source_info *in = &src->info;
     if (dst->channels != in->channels || dst->sample != in->sample)
-        return vt_error_set(err, VT_ERR_ARG, "'%s': region buffer has %u channels of sample %u, "
-                            "source has %u of %u", src->name, dst->channels, dst->sample,
-                            in->channels, in->sample);
+        return vt_error_set(err, VT_ERR_ARG,
+                            "'%s': region buffer has %u channels of sample %u, "
+                            "source has %u of %u",
+                            src->name, dst->channels, dst->sample, in->channels, in->sample);
     if (x >= in->width || y >= in->height || dst->width > in->width - x ||
         dst->height > in->height - y)
-        return vt_error_set(err, VT_ERR_RANGE, "'%s': region %ux%u at %u,%u is outside the %ux%u "
-                            "image", src->name, dst->width, dst->height, x, y, in->width,
-                            in->height);
+        return vt_error_set(err, VT_ERR_RANGE,
+                            "'%s': region %ux%u at %u,%u is outside the %ux%u "
+                            "image",
+                            src->name, dst->width, dst->height, x, y, in->width, in->height);
     return src->ops->read_region(src->ctx, x, y, dst, err);
 }
 
@@ -69,7 +71,8 @@ int vt_source_alpha_opaque(struct vt_source *src, bool *opaque, struct vt_error 
         return 0;
     struct vt_image band;
     uint32_t rows = src->info.height < SCAN_ROWS ? src->info.height : SCAN_ROWS;
-    int rc = vt_image_alloc(&band, src->info.width, rows, src->info.channels, src->info.sample, err);
+    int rc =
+        vt_image_alloc(&band, src->info.width, rows, src->info.channels, src->info.sample, err);
     for (uint32_t y = 0; rc == 0 && y < src->info.height && *opaque; y += rows) {
         band.height = src->info.height - y < rows ? src->info.height - y : rows;
         rc = vt_source_read(src, 0, y, &band, err);

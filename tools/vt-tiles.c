@@ -314,8 +314,14 @@ static int make_geometry(struct options *o, const struct vt_source_info *in,
                               o->border);
     if (o->border > content)
         return vt_usage_error("--border %u is larger than the tile content %u", o->border, content);
-    *g = (struct vts_geometry){in->width, in->height, content, o->border, content + 2 * o->border,
-                               0, 1, o->wrap ? VTS_STORE_WRAP_X | VTS_STORE_WRAP_Y : 0};
+    *g = (struct vts_geometry){in->width,
+                               in->height,
+                               content,
+                               o->border,
+                               content + 2 * o->border,
+                               0,
+                               1,
+                               o->wrap ? VTS_STORE_WRAP_X | VTS_STORE_WRAP_Y : 0};
     if (g->tile_payload_px > VTS_MAX_PAYLOAD_PX)
         return vt_usage_error("tile payload %u exceeds %u", g->tile_payload_px, VTS_MAX_PAYLOAD_PX);
     g->level_count = vts_full_level_count(g->width, g->height, g->tile_content_px);
@@ -364,11 +370,12 @@ static int run(struct options *o)
     uint32_t channels = in->channels - (in->has_alpha && !keep_alpha);
     if ((rc = r.codec->check(g.tile_payload_px, channels, out_sample, &err)) != 0)
         goto out;
-    struct vts_layer layer = {r.codec->fourcc, (uint8_t)channels, (uint8_t)out_sample,
-                              (uint8_t)colour, 0, 0, {0}};
+    struct vts_layer layer = {
+        r.codec->fourcc, (uint8_t)channels, (uint8_t)out_sample, (uint8_t)colour, 0, 0, {0}};
     layer.codec_param = r.codec->fourcc == VTS_CODEC_JPEG ? o->quality : 0;
     snprintf(layer.name, sizeof layer.name, "%s", o->name);
-    r.params = (struct vt_codec_params){(int)o->quality, o->best ? (r.codec->fourcc == VTS_CODEC_PNG ? 9 : 1) : 0,
+    r.params = (struct vt_codec_params){(int)o->quality,
+                                        o->best ? (r.codec->fourcc == VTS_CODEC_PNG ? 9 : 1) : 0,
                                         (int)o->subsampling};
     r.cap = r.codec->encoded_bound(g.tile_payload_px, g.tile_payload_px, channels, out_sample);
     r.bufs = calloc(o->threads, sizeof *r.bufs);
@@ -381,16 +388,26 @@ static int run(struct options *o)
         rc = err.status;
         goto out;
     }
-    struct vt_pyramid_options po = {
-        .width = g.width, .height = g.height, .tile_content_px = g.tile_content_px,
-        .border_px = g.border_px, .level_count = g.level_count, .filter = o->filter,
-        .colour = colour, .wrap = o->wrap, .out_channels = channels, .out_sample = out_sample,
-        .threads = o->threads, .temp_dir = o->temp_dir, .emit = emit_tile,
-        .progress = show_progress, .user = &r};
+    struct vt_pyramid_options po = {.width = g.width,
+                                    .height = g.height,
+                                    .tile_content_px = g.tile_content_px,
+                                    .border_px = g.border_px,
+                                    .level_count = g.level_count,
+                                    .filter = o->filter,
+                                    .colour = colour,
+                                    .wrap = o->wrap,
+                                    .out_channels = channels,
+                                    .out_sample = out_sample,
+                                    .threads = o->threads,
+                                    .temp_dir = o->temp_dir,
+                                    .emit = emit_tile,
+                                    .progress = show_progress,
+                                    .user = &r};
     char dir[4096];
     if (!po.temp_dir) {
         const char *slash = strrchr(o->output, '/');
-        snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - o->output) + (slash == o->output) : 1,
+        snprintf(dir, sizeof dir, "%.*s",
+                 slash ? (int)(slash - o->output) + (slash == o->output) : 1,
                  slash ? o->output : ".");
         po.temp_dir = dir;
     }
@@ -402,10 +419,12 @@ static int run(struct options *o)
     if (rc == 0) {
         struct vts_writer_stats st;
         vts_writer_stats(r.writer, &st);
-        vt_log(VT_LOG_INFO, "wrote '%s': %ux%u, %u levels, %llu tiles stored (%llu shared), "
-               "%llu empty, %llu payload bytes", o->output, g.width, g.height, g.level_count,
-               (unsigned long long)st.tiles_stored, (unsigned long long)st.tiles_shared,
-               (unsigned long long)st.tiles_empty, (unsigned long long)st.unique_bytes);
+        vt_log(VT_LOG_INFO,
+               "wrote '%s': %ux%u, %u levels, %llu tiles stored (%llu shared), "
+               "%llu empty, %llu payload bytes",
+               o->output, g.width, g.height, g.level_count, (unsigned long long)st.tiles_stored,
+               (unsigned long long)st.tiles_shared, (unsigned long long)st.tiles_empty,
+               (unsigned long long)st.unique_bytes);
         status = VT_EXIT_OK;
     }
 out:

@@ -71,7 +71,8 @@ int main(int argc, char **argv)
         for (uint32_t tx = 0; tx < size; tx += CELL) {
             uint32_t h = hash(tx * 7919u + ty * 104729u + 17u);
             const struct photo *p = &ph[h % (uint32_t)n];
-            uint32_t ox = hash(h) % (p->w - CELL + 1), oy = hash(h ^ 0x5bd1e995u) % (p->h - CELL + 1);
+            uint32_t ox = hash(h) % (p->w - CELL + 1),
+                     oy = hash(h ^ 0x5bd1e995u) % (p->h - CELL + 1);
             int flip_x = h >> 30 & 1, flip_y = h >> 31 & 1;
             for (uint32_t y = 0; y < CELL; y++)
                 for (uint32_t x = 0; x < CELL; x++) {

@@ -21,13 +21,27 @@ size_t LLVMFuzzerCustomMutator(uint8_t *data, size_t size, size_t max_size, unsi
 static void walk(const struct vts_store *s)
 {
     const struct vts_geometry *g = vts_store_geometry(s);
+    uint64_t per_layer = vts_store_tile_count(s) / g->layer_count;
     uint32_t max = vts_store_max_payload(s);
     unsigned char *buf = max ? malloc(max) : NULL; /* no payload at all: reads need no buffer */
     if (max && !buf)
         abort();
+    unsigned major, minor;
+    vts_store_version(s, &major, &minor);
+    if (major != VTS_FORMAT_MAJOR || strcmp(vts_store_name(s), NAME) != 0 ||
+        vts_store_layer(s, g->layer_count) != NULL || vts_store_entry(s, vts_store_tile_count(s)))
+        abort();
+    struct vt_error err;
+    size_t len;
     for (uint32_t layer = 0; layer < g->layer_count; layer++) {
         const struct vts_layer *L = vts_store_layer(s, layer);
         if (!L || !memchr(L->name, '\0', sizeof L->name) || L->channels < 1 || L->channels > 4)
+            abort();
+        /* what vt-info prints of a layer, from untrusted bytes */
+        char codec[5];
+        vts_codec_name(L->codec, codec);
+        if (strlen(codec) > 4 || strcmp(vts_sample_name(L->sample), "?") == 0 ||
+            strcmp(vts_colour_name(L->colour), "?") == 0 || vts_layer_tile_bytes(g, L) == 0)
             abort();
         for (uint32_t level = 0; level < g->level_count; level++) {
             struct vts_level lv;
@@ -35,17 +49,25 @@ static void walk(const struct vts_store *s)
             for (uint32_t ty = 0; ty < lv.tiles_y; ty++)
                 for (uint32_t tx = 0; tx < lv.tiles_x; tx++) {
                     struct vts_tile_entry e;
-                    struct vt_error err;
-                    size_t len;
                     if (vts_store_tile(s, layer, level, tx, ty, &e, &err) != 0 || e.length > max ||
                         e.offset > vts_store_file_size(s) ||
                         e.length > vts_store_file_size(s) - e.offset)
+                        abort();
+                    const struct vts_tile_entry *by_index = vts_store_entry(
+                        s, layer * per_layer + lv.first_tile + (uint64_t)ty * lv.tiles_x + tx);
+                    if (!by_index || memcmp(by_index, &e, sizeof e) != 0)
                         abort();
                     int rc = vts_store_read(s, layer, level, tx, ty, buf, max, &len,
                                             (tx ^ ty) & 1 ? VTS_READ_NO_CRC : 0, &err);
                     if ((rc != 0 && rc != VT_ERR_CHECKSUM) || (rc == 0 && len != e.length))
                         abort();
+                    if (e.length > 0 && vts_store_read(s, layer, level, tx, ty, buf, e.length - 1,
+                                                       &len, 0, &err) != VT_ERR_LIMIT)
+                        abort();
                 }
+            if (vts_store_read(s, layer, level, lv.tiles_x, 0, buf, max, &len, 0, &err) !=
+                VT_ERR_RANGE)
+                abort();
         }
     }
     for (uint32_t i = 0; i < vts_store_meta_count(s); i++) {

@@ -1,22 +1,22 @@
 /* The writer's atomic-output promise under SIGKILL and a full disk. A child process writes a
  * largish store (2048 distinct tiles of 64 KiB: a 128 MiB spool, then a 128 MiB output) to a path
- * where a valid old store already exists; the parent kills it at seeded random moments, right
- * before vts_writer_finish() (the child waits on a pipe there), and at short delays after finish
- * began. Afterwards the file under the final name must be the old store byte for byte, or, only
- * when the kill came after finish began, the complete new store; and the directory may hold
- * nothing else but hidden temporaries (.store.vts.spool-*, .store.vts.tmp-*). A run that is not
- * killed must replace the old store and leave no temporaries, and runs whose file-size limit
+ * where a valid old store already exists, reporting its phases through a pipe. The parent kills it
+ * at seeded random moments, at fixed points while it spools (writer created, half the tiles put),
+ * right before vts_writer_finish() (the child waits on a pipe there), and at fractions of the
+ * measured duration of finish after it began. Afterwards the file under the final name must be the
+ * old store byte for byte, or, only when the kill came after finish began, the complete new store;
+ * and the directory may hold nothing else but hidden temporaries (.store.vts.spool-*,
+ * .store.vts.tmp-*). A run that is not killed must replace the old store by a rename (a reader that
+ * holds the old store keeps reading it) and leave no temporaries, and runs whose file-size limit
  * (RLIMIT_FSIZE, a full disk as the writer sees it) is hit must fail with VT_ERR_IO, keep the old
  * store and remove their temporaries. */
 #include <dirent.h>
 #include <errno.h>
-#include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
-#include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -45,13 +45,22 @@ static uint64_t mix(uint64_t z)
     return z ^ (z >> 31);
 }
 
-/* Tile t's payload: distinct per tile, so nothing is deduplicated. */
+/* Tile t's payload: one pseudo-random 64 KiB block with the tile number stamped at both ends,
+ * so that every tile differs (nothing is deduplicated) and filling one costs a memcpy. */
 static void fill_tile(uint32_t t, unsigned char *buf)
 {
-    for (uint32_t i = 0; i < TILE_BYTES; i += 8) {
-        uint64_t v = mix(((uint64_t)t << 32) | i);
-        memcpy(buf + i, &v, 8);
+    static unsigned char block[TILE_BYTES];
+    static bool made;
+    if (!made) {
+        for (uint32_t i = 0; i < TILE_BYTES; i += 8) {
+            uint64_t v = mix(i + 1);
+            memcpy(block + i, &v, 8);
+        }
+        made = true;
     }
+    memcpy(buf, block, TILE_BYTES);
+    memcpy(buf, &t, sizeof t);
+    memcpy(buf + TILE_BYTES - sizeof t, &t, sizeof t);
 }
 
 enum child_mode {
@@ -64,6 +73,7 @@ enum child_mode {
 #define PUT      '\002' /* every tile put */
 #define FINISH   '\003' /* vts_writer_finish() begins */
 #define FINISHED '\004' /* vts_writer_finish() returned */
+#define HALF     '\005' /* half of the tiles put */
 
 /* The child: reports its phases on report_fd, then the message of a failure, and exits with 0, or
  * 10 + the status of the failing call, negated. With fsize_limit, RLIMIT_FSIZE is set first
@@ -88,6 +98,8 @@ static void child(const char *path, int report_fd, int wait_fd, enum child_mode 
     for (uint32_t t = 0; t < TILES_X * TILES_Y && rc == 0; t++) {
         fill_tile(t, buf);
         rc = vts_writer_put(w, 0, 0, t % TILES_X, t / TILES_X, buf, TILE_BYTES, &err);
+        if (t == TILES_X * TILES_Y / 2 && write(report_fd, (char[]){HALF}, 1) != 1)
+            _exit(98);
     }
     if (rc == 0)
         rc = vts_writer_set_meta(w, "writer", "test_kill_writer", &err);
@@ -249,7 +261,8 @@ static void restore_old(void)
     VT_CHECK_INT_EQ(vts_fixture_write_file(final_path, old_bytes, old_size), 0);
 }
 
-static double full_run_seconds = 1.0;
+/* Phase durations of an unkilled run, measured by calibrate_and_check_a_full_write(). */
+static double put_seconds = 0.2, finish_seconds = 0.2;
 
 /* Checks after a killed run: once finish began, the rename may already be done. */
 static void check_after_kill(const struct run *r, const char *what, int *replaced)
@@ -276,21 +289,30 @@ static void calibrate_and_check_a_full_write(void)
     snprintf(path, sizeof path, "%s/calibrate.vts", tmpdir);
     struct run r;
     start(&r, path, RUN_THROUGH, 0);
+    double t0 = now();
+    VT_CHECK(wait_for(&r, PUT));
+    double t_put = now();
+    VT_CHECK(wait_for(&r, FINISH));
+    double t_finish = now();
     finish_run(&r, false);
     VT_CHECK(WIFEXITED(r.wait_status) && WEXITSTATUS(r.wait_status) == 0);
     VT_CHECK(final_is_new(path));
-    full_run_seconds = r.seconds;
-    fprintf(stderr, "     a full write takes %.2f s\n", r.seconds);
+    put_seconds = t_put - t0;
+    finish_seconds = t0 + r.seconds - t_finish;
+    fprintf(stderr, "     a full write: %.2f s of puts, %.2f s of finish\n", put_seconds,
+            finish_seconds);
     unlink(path);
 }
 
+/* Seeded random delays within the measured duration of the puts: whatever phase a kill hits, the
+ * old store must survive (or, after the rename, the complete new one). */
 static void kills_at_random_moments_leave_the_old_store(void)
 {
     uint64_t seed = 12345;
     int replaced = 0, before_finish = 0;
     for (int i = 0; i < 8; i++) {
         seed = mix(seed + i);
-        double delay = full_run_seconds * (double)(seed % 1000) / 1000.0;
+        double delay = put_seconds * (double)(seed % 1000) / 1000.0;
         struct run r;
         start(&r, final_path, RUN_THROUGH, 0);
         sleep_seconds(delay);
@@ -300,9 +322,29 @@ static void kills_at_random_moments_leave_the_old_store(void)
         before_finish += strchr(r.phases, FINISH) == NULL;
         check_after_kill(&r, what, &replaced);
     }
+    /* how many landed where depends on the machine's speed; the fixed points below do not */
     fprintf(stderr, "     8 random kills: %d before finish, %d after the rename\n", before_finish,
             replaced);
-    VT_CHECK(before_finish >= 2); /* the delays really hit the writing phase */
+}
+
+/* Deterministic points while spooling: as soon as the writer exists (spool created, empty) and
+ * when half of the tiles are put. */
+static void kills_while_spooling_leave_the_old_store_and_a_spool(void)
+{
+    const char points[] = {CREATED, HALF};
+    for (int i = 0; i < 2; i++) {
+        struct run r;
+        start(&r, final_path, RUN_THROUGH, 0);
+        VT_CHECK(wait_for(&r, points[i]));
+        finish_run(&r, true);
+        VT_CHECK(WIFSIGNALED(r.wait_status) && WTERMSIG(r.wait_status) == SIGKILL);
+        VT_CHECK(strchr(r.phases, FINISH) == NULL);
+        VT_CHECK(final_is_old());
+        int temporaries, others;
+        list_dir(&temporaries, &others, true);
+        VT_CHECK_INT_EQ(temporaries, 1);
+        VT_CHECK_INT_EQ(others, 0);
+    }
 }
 
 static void kill_right_before_finish_leaves_the_old_store_and_a_spool(void)
@@ -322,25 +364,54 @@ static void kill_right_before_finish_leaves_the_old_store_and_a_spool(void)
     VT_CHECK_INT_EQ(others, 0);
 }
 
+/* Kills at fractions of the measured duration of finish (layout, copy, fsync, rename), from the
+ * moment the child reports that finish begins. */
 static void kills_during_finish_leave_old_or_complete_new_store(void)
 {
-    static const double delays_ms[] = {0, 1, 3, 10, 30, 100, 300};
+    static const double fractions[] = {0, 0.01, 0.05, 0.1, 0.25, 0.5, 0.75, 0.9, 1.0};
     int replaced = 0;
-    for (size_t i = 0; i < sizeof delays_ms / sizeof delays_ms[0]; i++) {
+    for (size_t i = 0; i < sizeof fractions / sizeof fractions[0]; i++) {
         struct run r;
         start(&r, final_path, RUN_THROUGH, 0);
         VT_CHECK(wait_for(&r, FINISH));
-        sleep_seconds(delays_ms[i] / 1000.0);
+        sleep_seconds(fractions[i] * finish_seconds);
         finish_run(&r, true);
         char what[64];
-        snprintf(what, sizeof what, "kill %.0f ms into finish", delays_ms[i]);
+        snprintf(what, sizeof what, "kill %.0f %% into finish", fractions[i] * 100);
         check_after_kill(&r, what, &replaced);
     }
-    fprintf(stderr, "     7 kills during finish: %d after the rename\n", replaced);
+    fprintf(stderr, "     %zu kills during finish: %d after the rename\n",
+            sizeof fractions / sizeof fractions[0], replaced);
 }
 
+/* Every tile of an open old store still reads back as the old fixture's payload. */
+static bool old_store_reads_back(const struct vts_store *s)
+{
+    const struct vts_geometry *g = vts_fixture_geometry(VTS_FIXTURE_MEDIUM);
+    bool ok = memcmp(vts_store_geometry(s), g, sizeof *g) == 0;
+    unsigned char want[VTS_FIXTURE_MAX_PAYLOAD], got[VTS_FIXTURE_MAX_PAYLOAD];
+    for (uint32_t layer = 0; layer < g->layer_count && ok; layer++)
+        for (uint32_t level = 0; level < g->level_count && ok; level++) {
+            struct vts_level L;
+            vts_store_level(s, level, &L);
+            for (uint32_t t = 0; t < L.tiles_x * L.tiles_y && ok; t++) {
+                uint32_t tx = t % L.tiles_x, ty = t / L.tiles_x;
+                size_t want_len =
+                    vts_fixture_payload(VTS_FIXTURE_MEDIUM, layer, level, tx, ty, want);
+                size_t len = 0;
+                ok = vts_store_read(s, layer, level, tx, ty, got, sizeof got, &len, 0, NULL) == 0 &&
+                     len == want_len && memcmp(got, want, len) == 0;
+            }
+        }
+    return ok;
+}
+
+/* The new store replaces the old one by a rename, never by rewriting it in place: a reader that
+ * had the old store open keeps reading the old tiles. */
 static void a_run_that_is_not_killed_replaces_the_old_store(void)
 {
+    struct vts_store *reader = vts_open(final_path, NULL);
+    VT_CHECK(reader != NULL);
     struct run r;
     start(&r, final_path, RUN_THROUGH, 0);
     finish_run(&r, false);
@@ -348,6 +419,8 @@ static void a_run_that_is_not_killed_replaces_the_old_store(void)
     VT_CHECK(strchr(r.phases, FINISHED) != NULL);
     VT_CHECK(!final_is_old());
     VT_CHECK(final_is_new(final_path));
+    VT_CHECK(reader && old_store_reads_back(reader));
+    vts_close(reader);
     int temporaries, others;
     list_dir(&temporaries, &others, false);
     VT_CHECK_INT_EQ(temporaries, 0);
@@ -392,6 +465,7 @@ int main(void)
     }
     VT_RUN(calibrate_and_check_a_full_write);
     VT_RUN(kills_at_random_moments_leave_the_old_store);
+    VT_RUN(kills_while_spooling_leave_the_old_store_and_a_spool);
     VT_RUN(kill_right_before_finish_leaves_the_old_store_and_a_spool);
     VT_RUN(kills_during_finish_leave_old_or_complete_new_store);
     VT_RUN(a_run_that_is_not_killed_replaces_the_old_store);

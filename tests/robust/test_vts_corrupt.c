@@ -6,7 +6,6 @@
  *   test_vts_corrupt                 run the cases
  *   test_vts_corrupt --write-bad DIR also write every case as DIR/<name>.vts plus DIR/MANIFEST
  *                                    (how tests/data/bad/ is regenerated) */
-#include <errno.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,7 +16,6 @@
 #include "robust/vts_fixture.h"
 #include "vt_test.h"
 #include "vts.h"
-#include "vts_crc32c.h"
 #include "vts_format.h"
 
 static char tmpdir[256];

@@ -45,16 +45,17 @@ struct vt_synth_image_options {
     uint32_t bits;           /* PNG/TIFF grey or palette index bits: 1, 2, 4 or 8 (0 = 8) */
     bool palette;            /* PNG/TIFF: indices into a palette (200 colours at 8 bits) */
     bool bigtiff;
-    bool separate_planes;    /* TIFF PLANARCONFIG_SEPARATE */
-    bool min_is_white;       /* TIFF grey stored inverted (read back as the pattern) */
-    bool interlaced;         /* PNG Adam7 */
-    uint32_t compression;    /* enum vt_synth_compression of the format */
+    bool separate_planes;     /* TIFF PLANARCONFIG_SEPARATE */
+    bool min_is_white;        /* TIFF grey stored inverted (read back as the pattern) */
+    uint32_t extra_channels;  /* TIFF: more samples per texel than channels (to test refusals) */
+    bool interlaced;          /* PNG Adam7 */
+    uint32_t compression;     /* enum vt_synth_compression of the format */
     const char *exr_channels; /* EXR channel names, comma-separated ("B,G,R,A", "Y", "Y,A,Z");
                                  NULL = "R,G,B,A" cut to channels (1: "Y", 2: "Y,A") */
     int32_t exr_origin_x, exr_origin_y; /* EXR data window corner */
-    uint32_t quality;        /* JPEG quality 1..100 */
-    bool jpeg_420;           /* JPEG 4:2:0 chroma (else 4:4:4) */
-    bool progressive;        /* JPEG */
+    uint32_t quality;                   /* JPEG quality 1..100 */
+    bool jpeg_420;                      /* JPEG 4:2:0 chroma (else 4:4:4) */
+    bool progressive;                   /* JPEG */
 };
 
 /* Defaults: 97x61 RGBA8 TIFF, seed 1, striped 16 rows, deflate/zip, JPEG quality 90. */

@@ -97,7 +97,8 @@ static void level_sizes_and_borders_for_odd_inputs(void)
             struct vts_level top;
             vts_store_level(s, g->level_count - 1, &top);
             VT_CHECK(top.width <= 60 && top.height <= 60);
-            VT_CHECK_INT_EQ(top.width, (w + (1u << (g->level_count - 1)) - 1) >> (g->level_count - 1));
+            VT_CHECK_INT_EQ(top.width,
+                            (w + (1u << (g->level_count - 1)) - 1) >> (g->level_count - 1));
             VT_CHECK_INT_EQ(vts_store_layer(s, 0)->channels, 3);
             check_borders(s, &img, false);
             vts_close(s);
@@ -155,7 +156,8 @@ static void box_levels_match_a_double_reference(void)
                     uint32_t y0 = 2 * y, y1 = 2 * y + 1 < lh ? 2 * y + 1 : lh - 1;
                     next[((size_t)y * nw + x) * 3 + c] =
                         (ref[((size_t)y0 * lw + x0) * 3 + c] + ref[((size_t)y0 * lw + x1) * 3 + c] +
-                         ref[((size_t)y1 * lw + x0) * 3 + c] + ref[((size_t)y1 * lw + x1) * 3 + c]) /
+                         ref[((size_t)y1 * lw + x0) * 3 + c] +
+                         ref[((size_t)y1 * lw + x1) * 3 + c]) /
                         4;
                 }
         double *t = ref;
@@ -281,9 +283,8 @@ static void sixteen_bit_and_float_inputs_keep_their_precision(void)
     o.sample = VTS_SAMPLE_F32;
     struct vt_error err;
     VT_CHECK_INT_EQ(vt_synth_image_write(tiles_path("f32.tif"), &o, &err), 0);
-    VT_CHECK_INT_EQ(tiles_run(tiles_path("f32.tif"), tiles_path("f32.vts"),
-                              "--tile-size 32 --border 1"),
-                    0);
+    VT_CHECK_INT_EQ(
+        tiles_run(tiles_path("f32.tif"), tiles_path("f32.vts"), "--tile-size 32 --border 1"), 0);
     s = vts_open(tiles_path("f32.vts"), NULL);
     VT_CHECK(s != NULL);
     if (s) {
