@@ -338,6 +338,15 @@ void vt_filter_to_working(const struct vt_pixel_mode *m, uint32_t sample, const 
         pthread_once(&once_u8, build_u8_tables);
     else if (sample == VTS_SAMPLE_U16 && mi.srgb)
         pthread_once(&once_u16, build_u16_tables);
+    if (sample == VTS_SAMPLE_U8 && !mi.premultiply && mi.normal_n == 0) {
+        /* the common case (opaque 8-bit colour or data): one table lookup per sample */
+        const float *colour = mi.srgb ? lin_u8 : unorm_u8;
+        const uint8_t *in = src;
+        for (size_t i = 0; i < n; i++)
+            for (uint32_t c = 0; c < ch; c++)
+                dst[i * ch + c] = (c < mi.colour_n ? colour : unorm_u8)[in[i * ch + c]];
+        return;
+    }
     if (sample == VTS_SAMPLE_F32 && !mi.srgb && !mi.premultiply && mi.normal_n == 0) {
         memcpy(dst, src, n * ch * sizeof(float));
         return;

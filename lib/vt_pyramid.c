@@ -11,6 +11,7 @@
 
 #define DEFAULT_LEVELS_PER_PASS 2
 #define MAX_LEVELS_PER_PASS     6
+#define BAND_ROWS               16 /* coarser rows reduced from one converted band of input rows */
 #define INPUT_CACHE_BYTES       (48u << 20) /* decoded input tiles shared by the workers */
 
 /* One stretch of a region along one axis: dst positions [dst, dst + len) read source positions
@@ -27,6 +28,7 @@ struct scratch {
     struct vt_fregion w[MAX_LEVELS_PER_PASS + 1]; /* working regions per relative level */
     float *reduce_scratch;
     size_t reduce_floats;
+    uint32_t band_rows;              /* rows of the w[0] band buffer (native sources) */
     struct vt_image tile_full, tile; /* payload in out sample: source channels / out channels */
     struct segment *xs, *ys;
     size_t seg_cap;
@@ -374,6 +376,48 @@ static void region_at(const struct pass *p, uint32_t bx, uint32_t by, uint32_t r
     out->channels = p->channels;
 }
 
+static int64_t clamp_to(int64_t v, int64_t size, bool wrap)
+{
+    return wrap ? v : (v < 0 ? 0 : (v >= size ? size - 1 : v));
+}
+
+/* Reduces the native block `in` (region r0 of the base level) into s->w[1], converting to the
+ * working space only the rows each band of BAND_ROWS coarser rows reads. Gives the same bits as
+ * converting the whole block first (the reduction does not depend on how it is split), with a
+ * working buffer of a few rows instead of the whole block. */
+static int reduce_from_native(struct pass *p, struct scratch *s, const struct vt_image *in,
+                              const struct vt_fregion *r0, const struct vt_edges *edges,
+                              struct vt_error *err)
+{
+    const struct vt_kernel *k = &p->kernel;
+    struct vt_fregion *dst = &s->w[1];
+    int64_t coarse_h = level_extent(p->h, 1);
+    for (uint32_t row = 0; row < dst->height; row += BAND_ROWS) {
+        uint32_t rows = dst->height - row < BAND_ROWS ? dst->height - row : BAND_ROWS;
+        int64_t a = dst->y0 + row, b = a + rows; /* coarser rows [a, b) */
+        int64_t lo = clamp_to(2 * clamp_to(a, coarse_h, edges->wrap_y) + k->first, edges->level_h,
+                              edges->wrap_y);
+        int64_t hi =
+            clamp_to(2 * clamp_to(b - 1, coarse_h, edges->wrap_y) + k->first + k->count - 1,
+                     edges->level_h, edges->wrap_y) +
+            1;
+        if (lo < r0->y0 || hi > r0->y0 + r0->height || hi - lo > (int64_t)s->band_rows)
+            return vt_error_set(err, VT_ERR_ARG, "band rows %lld..%lld outside the block",
+                                (long long)lo, (long long)hi);
+        struct vt_fregion band = {r0->x0,      lo,        r0->width, (uint32_t)(hi - lo),
+                                  p->channels, s->w[0].px};
+        vt_filter_to_working(&p->mode, p->sample, vt_image_at(in, 0, (uint32_t)(lo - r0->y0)),
+                             band.px, (size_t)band.width * band.height);
+        struct vt_fregion out = {dst->x0,       a,
+                                 dst->width,    rows,
+                                 dst->channels, dst->px + (size_t)row * dst->width * dst->channels};
+        int rc = vt_filter_reduce(k, edges, &band, &out, s->reduce_scratch, s->reduce_floats, err);
+        if (rc)
+            return rc;
+    }
+    return 0;
+}
+
 static int do_block(struct pass *p, unsigned worker, uint32_t bx, uint32_t by, struct vt_error *err)
 {
     struct scratch *s = &p->scratch[worker];
@@ -390,24 +434,19 @@ static int do_block(struct pass *p, unsigned worker, uint32_t bx, uint32_t by, s
         rc = emit_level_tiles(p, worker, s, 0, bx, by, r0.x0, r0.y0, err);
     if (rc || (p->depth == 0 && !p->next))
         return rc;
-    s->w[0].x0 = r0.x0;
-    s->w[0].y0 = r0.y0;
-    s->w[0].width = r0.width;
-    s->w[0].height = r0.height;
-    s->w[0].channels = p->channels;
-    if (p->source_is_working)
-        s->w[0].px = in->pixels;
-    else
-        vt_filter_to_working(&p->mode, p->sample, in->pixels, s->w[0].px,
-                             (size_t)r0.width * r0.height);
+    if (p->source_is_working) /* pass images are already in the working space */
+        s->w[0] = (struct vt_fregion){r0.x0, r0.y0, r0.width, r0.height, p->channels, in->pixels};
     for (uint32_t r = 1; rc == 0 && r <= p->depth; r++) {
         float *px = s->w[r].px;
         region_at(p, bx, by, r, &s->w[r]);
         s->w[r].px = px;
         struct vt_edges edges = {level_extent(p->w, r - 1), level_extent(p->h, r - 1), p->o->wrap,
                                  p->o->wrap};
-        rc = vt_filter_reduce(&p->kernel, &edges, &s->w[r - 1], &s->w[r], s->reduce_scratch,
-                              s->reduce_floats, err);
+        if (r == 1 && !p->source_is_working)
+            rc = reduce_from_native(p, s, in, &r0, &edges, err);
+        else
+            rc = vt_filter_reduce(&p->kernel, &edges, &s->w[r - 1], &s->w[r], s->reduce_scratch,
+                                  s->reduce_floats, err);
         if (rc == 0 && p->o->colour == VTS_COLOUR_NORMAL)
             vt_filter_renormalize(&s->w[r]);
         if (rc == 0)
@@ -473,6 +512,8 @@ static int scratch_alloc(struct pass *p, struct vt_error *err)
         for (uint32_t r = 0; ok && r <= p->depth; r++) {
             struct vt_fregion reg;
             max_region(p, r, &reg);
+            if (r == 0 && !p->source_is_working) /* a band of rows, see reduce_from_native */
+                reg.height = s->band_rows = 2 * BAND_ROWS + (uint32_t)p->kernel.count;
             if (r > 0 || !p->source_is_working) {
                 size_t n;
                 ok = vt_size_mul3(reg.width, reg.height, p->channels, &n) &&
