@@ -1,3 +1,4 @@
+#define _GNU_SOURCE /* O_TMPFILE */
 #include "vt_atomic_file.h"
 
 #include <errno.h>
@@ -121,6 +122,25 @@ int vt_atomic_file_create(struct vt_atomic_file *f, const char *final_path, cons
     f->temp_path[0] = '\0';
     return vt_error_set(err, VT_ERR_IO, "cannot create a file next to '%s': %s", final_path,
                         strerror(e));
+}
+
+int vt_atomic_file_create_scratch(struct vt_atomic_file *f, const char *final_path,
+                                  struct vt_error *err)
+{
+    char dir[VT_PATH_MAX];
+    const char *base;
+    size_t len = strlen(final_path);
+    f->fd = -1;
+    f->temp_path[0] = '\0';
+    if (len == 0 || len >= sizeof f->final_path || split_path(final_path, dir, sizeof dir, &base))
+        return vt_error_set(err, VT_ERR_ARG, "invalid output path '%s'", final_path);
+    memcpy(f->final_path, final_path, len + 1);
+#ifdef O_TMPFILE
+    f->fd = open(dir, O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+    if (f->fd >= 0)
+        return 0;
+#endif
+    return vt_atomic_file_create(f, final_path, "spool", err);
 }
 
 int vt_atomic_file_pwrite(struct vt_atomic_file *f, const void *buf, size_t len,

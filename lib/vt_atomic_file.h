@@ -19,6 +19,12 @@ struct vt_atomic_file {
 int vt_atomic_file_create(struct vt_atomic_file *f, const char *final_path, const char *tag,
                           struct vt_error *err);
 
+/* Like vt_atomic_file_create(), for a scratch file that is never committed: it has no name where
+ * the file system allows (O_TMPFILE), so nothing is left even if the process is killed; falls
+ * back to a hidden named file otherwise. */
+int vt_atomic_file_create_scratch(struct vt_atomic_file *f, const char *final_path,
+                                  struct vt_error *err);
+
 /* Flushes the temporary file to disk, closes it and renames it over final_path, then flushes the
  * directory. On failure the temporary file is removed and final_path is untouched. */
 int vt_atomic_file_commit(struct vt_atomic_file *f, struct vt_error *err);

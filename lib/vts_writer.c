@@ -100,7 +100,7 @@ struct vts_writer *vts_writer_create(const char *path, const struct vts_geometry
                      (unsigned long long)w->tile_count);
         goto fail;
     }
-    if (vt_atomic_file_create(&w->spool, path, "spool", err) != 0)
+    if (vt_atomic_file_create_scratch(&w->spool, path, err) != 0)
         goto fail;
     return w;
 fail:

@@ -16,3 +16,8 @@ if(TARGET vt_oiio)
   add_dependencies(test_vt_image_input vt_oiio)
   target_compile_definitions(test_vt_image_input PRIVATE VT_TEST_HAVE_OIIO=1)
 endif()
+
+# Command-line wrapper of the generator, used by scripts/demo.
+add_executable(vt-synth-image synth/vt_synth_image_main.c)
+target_link_libraries(vt-synth-image PRIVATE vt_synth_images)
+vt_target_warnings(vt-synth-image)

@@ -286,6 +286,8 @@ static int set_metadata(struct vts_writer *w, const struct options *o, const cha
 {
     char quality[16];
     snprintf(quality, sizeof quality, "%u", o->quality);
+    if (strcmp(codec, "jpeg") != 0) /* the only codec with a quality */
+        snprintf(quality, sizeof quality, "-");
     const char *pairs[][2] = {{"tool", "vt-tiles"},        {"tool.version", VT_VERSION_STRING},
                               {"source", o->input},        {"filter", vt_filter_name(o->filter)},
                               {"filtering", o->filtering}, {"codec", codec},

@@ -200,7 +200,7 @@ static void synth_tiff_fields(TIFF *tif, const struct vt_synth_image_options *o)
 /* Writes every tile or strip of every plane. */
 static int synth_tiff_pixels(TIFF *tif, const struct vt_synth_image_options *o)
 {
-    uint32_t planes = o->separate_planes ? o->channels + o->extra_channels : 1;
+    uint32_t planes = o->separate_planes && !o->palette ? o->channels + o->extra_channels : 1;
     uint32_t cw = o->tile_w ? o->tile_w : o->width;
     uint32_t ch = o->tile_w ? o->tile_h : (o->rows_per_strip ? o->rows_per_strip : 16);
     size_t row_bytes = (size_t)(o->tile_w ? TIFFTileRowSize64(tif) : TIFFScanlineSize64(tif));

@@ -379,6 +379,46 @@ static void bad_input_fails_cleanly_without_output(void)
     VT_CHECK(access(tiles_path("x.vts"), F_OK) != 0);
 }
 
+/* SIGINT in the middle of a run: no output, no hidden temporary left, an old output intact. */
+static void interrupted_run_leaves_nothing_behind(void)
+{
+    struct vt_image img;
+    vt_image_alloc(&img, 2500, 2500, 3, VTS_SAMPLE_U8, NULL);
+    fill_random(&img);
+    tiles_write_png(tiles_path("sig.png"), &img);
+    vt_image_release(&img);
+    FILE *old = fopen(tiles_path("sig.vts"), "w");
+    fputs("previous output", old);
+    fclose(old);
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd,
+             "'%s' '%s' -o '%s' -q --codec png --mode best -j 1 & pid=$!; sleep 0.5; "
+             "kill -INT $pid; wait $pid; echo $? > '%s'",
+             tiles_tool, tiles_path("sig.png"), tiles_path("sig.vts"), tiles_path("sig.status"));
+    VT_CHECK(system(cmd) == 0);
+    FILE *f = fopen(tiles_path("sig.status"), "r");
+    int status = -1;
+    VT_CHECK(f && fscanf(f, "%d", &status) == 1);
+    if (f)
+        fclose(f);
+    VT_CHECK_INT_EQ(status, 128 + 2); /* died of SIGINT, not finished */
+    char text[32] = {0};
+    f = fopen(tiles_path("sig.vts"), "r");
+    VT_CHECK(f && fgets(text, sizeof text, f));
+    if (f)
+        fclose(f);
+    VT_CHECK(strcmp(text, "previous output") == 0);
+    snprintf(cmd, sizeof cmd, "ls -a '%s' | grep -c '^\\.sig\\.vts\\.' > '%s'", tiles_dir,
+             tiles_path("sig.count"));
+    VT_CHECK(system(cmd) != -1);
+    f = fopen(tiles_path("sig.count"), "r");
+    int leftovers = -1;
+    VT_CHECK(f && fscanf(f, "%d", &leftovers) == 1);
+    if (f)
+        fclose(f);
+    VT_CHECK_INT_EQ(leftovers, 0);
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 2)
@@ -397,6 +437,7 @@ int main(int argc, char **argv)
     VT_RUN(normal_map_mips_stay_unit_length);
     VT_RUN(output_does_not_depend_on_threads);
     VT_RUN(bad_input_fails_cleanly_without_output);
+    VT_RUN(interrupted_run_leaves_nothing_behind);
     char cmd[400];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", tiles_dir);
     if (vt_test_failures == 0 && system(cmd) != 0)

@@ -262,6 +262,7 @@ static void tiff_expands_low_bits_palettes_and_min_is_white(void)
 
     o = synth(VT_SYNTH_TIFF, 3, VTS_SAMPLE_U8);
     o.palette = true, o.bits = 4, o.tile_w = 32, o.tile_h = 32;
+    o.separate_planes = true; /* one sample per texel: PLANARCONFIG_SEPARATE changes nothing */
     check_file(&o, "palette4_tiles.tif", "tiff", false, false);
 }
 
