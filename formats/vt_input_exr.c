@@ -266,6 +266,7 @@ int vt_input_exr_open(const char *path, uint64_t max_pixels, struct vt_source *o
     vt_input_set_info(&out->info, t->width, t->height, t->channels, t->sample, !t->tiled,
                       t->tiled ? t->chunk_w : 0, t->tiled ? t->chunk_h : 0, "exr");
     out->info.has_alpha = has_alpha;
+    out->info.premultiplied = has_alpha; /* OpenEXR stores associated (premultiplied) alpha */
     out->ops = &exr_input_ops;
     out->ctx = t;
     return 0;

@@ -642,8 +642,11 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
                      .threads = o->threads,
                      .done = &done,
                      .total = vt_pyramid_tile_count(o)};
-    p.mode = (struct vt_pixel_mode){in->channels, o->colour,
-                                    in->has_alpha && o->colour != VTS_COLOUR_DATA};
+    /* premultiply while filtering, unless the input already is (then it is filtered and stored
+     * premultiplied, and the layer says so) */
+    p.mode =
+        (struct vt_pixel_mode){in->channels, o->colour,
+                               in->has_alpha && !in->premultiplied && o->colour != VTS_COLOUR_DATA};
     vt_kernel_init(&p.kernel, o->filter);
     p.band_source = (struct vt_source){.info = *in, .ops = &band_ops, .ctx = &p.band};
     snprintf(p.band_source.name, sizeof p.band_source.name, "%s", sources[0]->name);

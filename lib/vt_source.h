@@ -15,8 +15,9 @@ struct vt_source_info {
     uint32_t sample;        /* enum vts_sample of read_region() output */
     uint32_t colour; /* enum vts_colour the input suggests (8/16-bit colour: srgb; float: linear) */
     bool has_alpha;  /* the last channel is alpha (channels 2 or 4) */
-    bool sequential; /* regions are cheap only top-down in full-width bands (PNG, JPEG,
-                        striped TIFF): read whole bands in increasing y */
+    bool premultiplied;      /* colour is already multiplied by alpha (OpenEXR's convention) */
+    bool sequential;         /* regions are cheap only top-down in full-width bands (PNG, JPEG,
+                                striped TIFF): read whole bands in increasing y */
     uint32_t tile_w, tile_h; /* native tile size of a tiled input, else 0 */
     char format[16];         /* "tiff", "png", "jpeg", "exr", "oiio:tga", "float-temp"... */
 };

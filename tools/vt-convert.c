@@ -18,47 +18,48 @@ struct options {
 
 enum { OPT_CODEC = 256, OPT_QUALITY, OPT_SUBSAMPLING, OPT_MODE, OPT_LAYER, OPT_VERSION };
 
-static const struct option long_options[] = {{"output", required_argument, NULL, 'o'},
-                                             {"codec", required_argument, NULL, OPT_CODEC},
-                                             {"quality", required_argument, NULL, OPT_QUALITY},
-                                             {"subsampling", required_argument, NULL,
-                                              OPT_SUBSAMPLING},
-                                             {"mode", required_argument, NULL, OPT_MODE},
-                                             {"layer", required_argument, NULL, OPT_LAYER},
-                                             {"threads", required_argument, NULL, 'j'},
-                                             {"quiet", no_argument, NULL, 'q'},
-                                             {"verbose", no_argument, NULL, 'v'},
-                                             {"help", no_argument, NULL, 'h'},
-                                             {"version", no_argument, NULL, OPT_VERSION},
-                                             {NULL, 0, NULL, 0}};
+static const struct option long_options[] = {
+    {"output", required_argument, NULL, 'o'},
+    {"codec", required_argument, NULL, OPT_CODEC},
+    {"quality", required_argument, NULL, OPT_QUALITY},
+    {"subsampling", required_argument, NULL, OPT_SUBSAMPLING},
+    {"mode", required_argument, NULL, OPT_MODE},
+    {"layer", required_argument, NULL, OPT_LAYER},
+    {"threads", required_argument, NULL, 'j'},
+    {"quiet", no_argument, NULL, 'q'},
+    {"verbose", no_argument, NULL, 'v'},
+    {"help", no_argument, NULL, 'h'},
+    {"version", no_argument, NULL, OPT_VERSION},
+    {NULL, 0, NULL, 0}};
 
 static void usage(void)
 {
-    fputs("usage: vt-convert IN.vts -o OUT.vts --codec CODEC [options]\n"
-          "Re-encode the tiles of a .vts store with another codec. Geometry, empty tiles, shared\n"
-          "payloads and metadata are kept; the conversion is added to the metadata as convert.N.\n"
-          "\n"
-          "  -o, --output FILE     the store to write (replaced only when complete)\n"
-          "      --codec NAME      raw | png | jpeg | bc1 | bc3 (required)\n"
-          "      --quality Q       jpeg quality, integer 1..100 (default 85)\n"
-          "      --subsampling S   jpeg chroma subsampling, 420 | 444 (default 420)\n"
-          "      --mode fast|best  png compression or bc1/bc3 encoder (default fast)\n"
-          "      --layer N         convert only layer N (integer, 0..layers-1) and copy the others\n"
-          "                        byte for byte (default: convert every layer)\n"
-          "  -j, --threads N       worker threads, integer 1..256 (default: all cores)\n"
-          "  -q, --quiet           print errors only\n"
-          "  -v, --verbose         print more (repeatable: info, then debug)\n"
-          "  -h, --help            print this help and exit\n"
-          "      --version         print the version and exit\n"
-          "\n"
-          "Samples: u16 tiles become u8 for jpeg, bc1 and bc3 (rounded, with a warning); f16 and\n"
-          "f32 tiles convert to raw only. jpeg refuses alpha; bc1/bc3 need a tile payload that is\n"
-          "a multiple of 4. Re-encoding lossy tiles (jpeg, bc1, bc3) with a lossy codec warns.\n"
-          "The output is the same for every -j.\n"
-          "Exit status: 0 ok, 1 bad input (unreadable or corrupt store, a tile that does not\n"
-          "decode, a layer the codec cannot store, output not written), 2 bad usage (including a\n"
-          "layer the store does not have).\n",
-          stdout);
+    fputs(
+        "usage: vt-convert IN.vts -o OUT.vts --codec CODEC [options]\n"
+        "Re-encode the tiles of a .vts store with another codec. Geometry, empty tiles, shared\n"
+        "payloads and metadata are kept; the conversion is added to the metadata as convert.N.\n"
+        "\n"
+        "  -o, --output FILE     the store to write (replaced only when complete)\n"
+        "      --codec NAME      raw | png | jpeg | bc1 | bc3 (required)\n"
+        "      --quality Q       jpeg quality, integer 1..100 (default 85)\n"
+        "      --subsampling S   jpeg chroma subsampling, 420 | 444 (default 420)\n"
+        "      --mode fast|best  png compression or bc1/bc3 encoder (default fast)\n"
+        "      --layer N         convert only layer N (integer, 0..layers-1) and copy the others\n"
+        "                        byte for byte (default: convert every layer)\n"
+        "  -j, --threads N       worker threads, integer 1..256 (default: all cores)\n"
+        "  -q, --quiet           print errors only\n"
+        "  -v, --verbose         print more (repeatable: info, then debug)\n"
+        "  -h, --help            print this help and exit\n"
+        "      --version         print the version and exit\n"
+        "\n"
+        "Samples: u16 tiles become u8 for jpeg, bc1 and bc3 (rounded, with a warning); f16 and\n"
+        "f32 tiles convert to raw only. jpeg refuses alpha; bc1/bc3 need a tile payload that is\n"
+        "a multiple of 4. Re-encoding lossy tiles (jpeg, bc1, bc3) with a lossy codec warns.\n"
+        "The output is the same for every -j.\n"
+        "Exit status: 0 ok, 1 bad input (unreadable or corrupt store, a tile that does not\n"
+        "decode, a layer the codec cannot store, output not written), 2 bad usage (including a\n"
+        "layer the store does not have).\n",
+        stdout);
 }
 
 /* Returns an exit code when main should stop now (help, version, usage error), else -1. */
@@ -256,8 +257,8 @@ static int transcode(const struct run *r, uint32_t layer, struct worker *w, size
     const struct layer_plan *p = &r->plans[layer];
     uint32_t px = vts_store_geometry(r->in)->tile_payload_px, ch = p->out.channels;
     uint32_t in_sample = vts_store_layer(r->in, layer)->sample;
-    struct vt_image src = {px, px, ch, in_sample, (size_t)px * ch * vts_sample_bytes(in_sample),
-                           w->decoded};
+    struct vt_image src = {
+        px, px, ch, in_sample, (size_t)px * ch * vts_sample_bytes(in_sample), w->decoded};
     int rc = p->src_codec->decode(w->payload, *len, &src, err);
     if (rc != 0)
         return rc;
@@ -399,8 +400,7 @@ static int convert(struct run *r, struct vt_error *err)
                "(input: %llu bytes)",
                r->o->out_path, (unsigned long long)st.tiles_stored,
                (unsigned long long)st.tiles_shared, (unsigned long long)st.tiles_empty,
-               (unsigned long long)st.unique_bytes,
-               (unsigned long long)vts_store_file_size(r->in));
+               (unsigned long long)st.unique_bytes, (unsigned long long)vts_store_file_size(r->in));
     }
     return rc;
 }
@@ -409,9 +409,9 @@ static int run(const struct options *o, const struct vt_codec *codec)
 {
     struct vt_error err = {0};
     struct run r = {.o = o, .codec = codec};
-    r.params = (struct vt_codec_params){
-        (int)o->quality, o->best ? (codec->fourcc == VTS_CODEC_PNG ? 9 : 1) : 0,
-        (int)o->subsampling};
+    r.params = (struct vt_codec_params){(int)o->quality,
+                                        o->best ? (codec->fourcc == VTS_CODEC_PNG ? 9 : 1) : 0,
+                                        (int)o->subsampling};
     if (!(r.in = vts_open(o->in_path, &err))) {
         vt_log(VT_LOG_ERROR, "%s", err.message);
         return VT_EXIT_BAD_INPUT;

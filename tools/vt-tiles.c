@@ -375,6 +375,8 @@ static int run(struct options *o)
     struct vts_layer layer = {
         r.codec->fourcc, (uint8_t)channels, (uint8_t)out_sample, (uint8_t)colour, 0, 0, {0}};
     layer.codec_param = r.codec->fourcc == VTS_CODEC_JPEG ? o->quality : 0;
+    if (keep_alpha && in->premultiplied)
+        layer.flags |= VTS_LAYER_PREMULTIPLIED;
     snprintf(layer.name, sizeof layer.name, "%s", o->name);
     r.params = (struct vt_codec_params){(int)o->quality,
                                         o->best ? (r.codec->fourcc == VTS_CODEC_PNG ? 9 : 1) : 0,

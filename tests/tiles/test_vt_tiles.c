@@ -299,6 +299,46 @@ static void sixteen_bit_and_float_inputs_keep_their_precision(void)
     }
 }
 
+/* OpenEXR RGBA is premultiplied already: filtered as is (not premultiplied twice) and the layer
+ * says so; level 1 is then the plain box mean of the stored values. */
+static void premultiplied_exr_is_not_premultiplied_again(void)
+{
+    struct vt_synth_image_options o;
+    vt_synth_image_defaults(&o);
+    o.format = VT_SYNTH_EXR;
+    o.width = 64;
+    o.height = 32;
+    o.channels = 4;
+    o.sample = VTS_SAMPLE_F32;
+    o.compression = VT_SYNTH_EXR_NONE;
+    struct vt_error err;
+    VT_CHECK_INT_EQ(vt_synth_image_write(tiles_path("pm.exr"), &o, &err), 0);
+    VT_CHECK_INT_EQ(tiles_run(tiles_path("pm.exr"), tiles_path("pm.vts"),
+                              "--tile-size 16 --border 1 --codec raw --filter box"),
+                    0);
+    struct vts_store *s = vts_open(tiles_path("pm.vts"), NULL);
+    VT_CHECK(s != NULL);
+    if (!s)
+        return;
+    VT_CHECK(vts_store_layer(s, 0)->flags & VTS_LAYER_PREMULTIPLIED);
+    struct vt_image l0, l1;
+    VT_CHECK_INT_EQ(tiles_read_level(s, 0, &l0), 0);
+    VT_CHECK_INT_EQ(tiles_read_level(s, 1, &l1), 0);
+    int off = 0;
+    for (uint32_t y = 0; y < l1.height; y++)
+        for (uint32_t x = 0; x < l1.width; x++)
+            for (int c = 0; c < 4; c++) {
+                double sum = 0;
+                for (int k = 0; k < 4; k++)
+                    sum += ((float *)vt_image_at(&l0, 2 * x + k % 2, 2 * y + k / 2))[c];
+                off += fabs(((float *)vt_image_at(&l1, x, y))[c] - sum / 4) > 1e-6;
+            }
+    VT_CHECK_INT_EQ(off, 0);
+    vt_image_release(&l0);
+    vt_image_release(&l1);
+    vts_close(s);
+}
+
 static void normal_map_mips_stay_unit_length(void)
 {
     struct vt_image img;
@@ -434,6 +474,7 @@ int main(int argc, char **argv)
     VT_RUN(srgb_checkerboard_averages_to_188);
     VT_RUN(transparent_half_leaves_no_dark_fringe);
     VT_RUN(sixteen_bit_and_float_inputs_keep_their_precision);
+    VT_RUN(premultiplied_exr_is_not_premultiplied_again);
     VT_RUN(normal_map_mips_stay_unit_length);
     VT_RUN(output_does_not_depend_on_threads);
     VT_RUN(bad_input_fails_cleanly_without_output);

@@ -1,0 +1,408 @@
+/* vt-merge: joins .vts stores of identical geometry, as shards of one build or as layers, copying
+ * payloads byte for byte one tile at a time. Reference: docs/cli/vt-merge.md. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "tool_common.h"
+#include "vt_atomic_file.h"
+#include "vts.h"
+#include "vts_writer.h"
+
+#define SHARD_KEY "shard" /* shard=I/N: tile set I of N of one build (docs/cli/vt-merge.md) */
+
+struct options {
+    char **inputs;
+    int input_count;
+    const char *out_path;
+};
+
+enum { OPT_VERSION = 256 };
+
+static const struct option long_options[] = {
+    {"output", required_argument, NULL, 'o'},    {"quiet", no_argument, NULL, 'q'},
+    {"verbose", no_argument, NULL, 'v'},         {"help", no_argument, NULL, 'h'},
+    {"version", no_argument, NULL, OPT_VERSION}, {NULL, 0, NULL, 0}};
+
+static void usage(void)
+{
+    fputs("usage: vt-merge A.vts [B.vts...] -o OUT.vts [-q|-v]\n"
+          "Join .vts stores of identical geometry into one, copying payloads byte for byte.\n"
+          "The mode follows from the inputs:\n"
+          "  shards  every input has the same layer table: the output holds each tile that an\n"
+          "          input stores (a tile stored by several inputs must have the same bytes in\n"
+          "          each), the others stay empty\n"
+          "  layers  the layer tables differ: the output has the layers of every input in\n"
+          "          argument order (names must be unique; at most 64 layers)\n"
+          "\n"
+          "  -o, --output FILE   the store to write (replaced only when complete)\n"
+          "  -q, --quiet         print errors only\n"
+          "  -v, --verbose       print more (repeatable: info, then debug)\n"
+          "  -h, --help          print this help and exit\n"
+          "      --version       print the version and exit\n"
+          "\n"
+          "Metadata: the first input's, plus merge.sources=<the inputs, space separated>. When\n"
+          "the inputs are shards 1/N..N/N of one build (metadata shard=I/N, the rest identical),\n"
+          "the output has their common metadata without shard and nothing added: it is the\n"
+          "single build, byte for byte.\n"
+          "Exit status: 0 ok, 1 bad input (unreadable or corrupt store, geometry mismatch,\n"
+          "duplicate layer name, a tile stored with different bytes in two inputs, output not\n"
+          "written), 2 bad usage.\n",
+          stdout);
+}
+
+/* Returns an exit code when main should stop now (help, version, usage error), else -1. */
+static int parse_options(int argc, char **argv, struct options *o)
+{
+    int c, verbosity = VT_LOG_WARN;
+    *o = (struct options){0};
+    opterr = 0;
+    while ((c = vt_getopt_long(argc, argv, ":hqvo:", long_options)) != -1) {
+        if (c == 'h') {
+            usage();
+            return VT_EXIT_OK;
+        } else if (c == OPT_VERSION) {
+            vt_print_version(stdout);
+            return VT_EXIT_OK;
+        } else if (c == 'q' || c == 'v') {
+            verbosity = c == 'q' ? VT_LOG_ERROR : verbosity + 1;
+        } else if (c == 'o') {
+            o->out_path = optarg;
+        } else {
+            return vt_usage_getopt_error(c, argv);
+        }
+    }
+    vt_log_set_level(verbosity);
+    o->inputs = argv + optind;
+    o->input_count = argc - optind;
+    if (o->input_count == 0)
+        return vt_usage_error("missing input stores");
+    if (!o->out_path)
+        return vt_usage_error("missing -o OUT.vts");
+    return -1;
+}
+
+/* ---- checks: geometry, layer tables, mode ---- */
+
+struct merge {
+    const struct options *o;
+    struct vts_store **in;
+    struct vts_writer *out;
+    unsigned char *buf[2]; /* payload of the owner of a tile; another input's copy */
+    size_t buf_cap;
+    struct vt_progress progress;
+};
+
+static int check_geometry(const struct merge *m, int k, struct vt_error *err)
+{
+    const struct vts_geometry *a = vts_store_geometry(m->in[0]), *b = vts_store_geometry(m->in[k]);
+    const char *names[] = {"width",     "height",          "tile_content_px",
+                           "border_px", "tile_payload_px", "level_count",
+                           "flags"};
+    const uint32_t va[] = {a->width,     a->height,          a->tile_content_px,
+                           a->border_px, a->tile_payload_px, a->level_count,
+                           a->flags};
+    const uint32_t vb[] = {b->width,     b->height,          b->tile_content_px,
+                           b->border_px, b->tile_payload_px, b->level_count,
+                           b->flags};
+    for (size_t i = 0; i < sizeof va / sizeof va[0]; i++)
+        if (va[i] != vb[i])
+            return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': %s %u != %u in '%s'", m->o->inputs[k],
+                                names[i], vb[i], va[i], m->o->inputs[0]);
+    return 0;
+}
+
+/* Describes the first field in which two layer entries differ into out ("" when equal). */
+static void layer_difference(const struct vts_layer *a, const struct vts_layer *b, char *out,
+                             size_t cap)
+{
+    char ca[5], cb[5];
+    vts_codec_name(a->codec, ca);
+    vts_codec_name(b->codec, cb);
+    out[0] = '\0';
+    if (a->codec != b->codec)
+        snprintf(out, cap, "codec %s != %s", cb, ca);
+    else if (a->channels != b->channels)
+        snprintf(out, cap, "channels %u != %u", b->channels, a->channels);
+    else if (a->sample != b->sample)
+        snprintf(out, cap, "sample %s != %s", vts_sample_name(b->sample),
+                 vts_sample_name(a->sample));
+    else if (a->colour != b->colour)
+        snprintf(out, cap, "colour %s != %s", vts_colour_name(b->colour),
+                 vts_colour_name(a->colour));
+    else if (a->flags != b->flags || a->codec_param != b->codec_param)
+        snprintf(out, cap, "%s %u != %u", a->flags != b->flags ? "flags" : "codec_param",
+                 a->flags != b->flags ? b->flags : b->codec_param,
+                 a->flags != b->flags ? a->flags : a->codec_param);
+    else if (strncmp(a->name, b->name, VTS_LAYER_NAME_BYTES) != 0)
+        snprintf(out, cap, "name '%s' != '%s'", b->name, a->name);
+}
+
+static bool same_layer_table(const struct vts_store *a, const struct vts_store *b)
+{
+    char diff[128];
+    if (vts_store_geometry(a)->layer_count != vts_store_geometry(b)->layer_count)
+        return false;
+    for (uint32_t i = 0; i < vts_store_geometry(a)->layer_count; i++) {
+        layer_difference(vts_store_layer(a, i), vts_store_layer(b, i), diff, sizeof diff);
+        if (diff[0])
+            return false;
+    }
+    return true;
+}
+
+/* Layers mode: every layer name once, at most VTS_MAX_LAYERS layers in all. */
+static int check_layer_names(const struct merge *m, struct vt_error *err)
+{
+    uint32_t total = 0;
+    char diff[128];
+    for (int k = 0; k < m->o->input_count; k++) {
+        const struct vts_geometry *g = vts_store_geometry(m->in[k]);
+        total += g->layer_count;
+        for (uint32_t i = 0; i < g->layer_count; i++)
+            for (int j = 0; j <= k; j++)
+                for (uint32_t l = 0; l < (j < k ? vts_store_geometry(m->in[j])->layer_count : i);
+                     l++) {
+                    const struct vts_layer *a = vts_store_layer(m->in[j], l);
+                    const struct vts_layer *b = vts_store_layer(m->in[k], i);
+                    if (strncmp(a->name, b->name, VTS_LAYER_NAME_BYTES) != 0)
+                        continue;
+                    layer_difference(a, b, diff, sizeof diff);
+                    return vt_error_set(err, VT_ERR_BAD_INPUT,
+                                        "layer name '%s' is in both '%s' and '%s'%s%s%s", a->name,
+                                        m->o->inputs[j], m->o->inputs[k],
+                                        diff[0] ? " (as shards, their layers differ: " : "", diff,
+                                        diff[0] ? ")" : "");
+                }
+    }
+    if (total > VTS_MAX_LAYERS)
+        return vt_error_set(err, VT_ERR_LIMIT, "the inputs have %u layers in all, more than %u",
+                            total, VTS_MAX_LAYERS);
+    return 0;
+}
+
+/* Index of the first metadata entry at or after i that is not the shard key. */
+static uint32_t skip_shard_key(const struct vts_store *s, uint32_t i)
+{
+    while (i < vts_store_meta_count(s) && strcmp(vts_store_meta_key(s, i), SHARD_KEY) == 0)
+        i++;
+    return i;
+}
+
+/* True when a and b have the same metadata, in the same order, apart from the shard key. */
+static bool same_metadata_but_shard(const struct vts_store *a, const struct vts_store *b)
+{
+    uint32_t i = skip_shard_key(a, 0), j = skip_shard_key(b, 0);
+    for (; i < vts_store_meta_count(a) && j < vts_store_meta_count(b);
+         i = skip_shard_key(a, i + 1), j = skip_shard_key(b, j + 1))
+        if (strcmp(vts_store_meta_key(a, i), vts_store_meta_key(b, j)) != 0 ||
+            strcmp(vts_store_meta_value(a, i), vts_store_meta_value(b, j)) != 0)
+            return false;
+    return i >= vts_store_meta_count(a) && j >= vts_store_meta_count(b);
+}
+
+/* True when the inputs are shards I/N of one build: I = 1..N once each, N = the input count, the
+ * same metadata apart from the shard key. */
+static bool complete_shard_set(const struct merge *m)
+{
+    int n = m->o->input_count;
+    bool *seen = calloc((size_t)n, sizeof *seen);
+    bool ok = seen != NULL;
+    for (int k = 0; ok && k < n; k++) {
+        const char *v = vts_store_meta_find(m->in[k], SHARD_KEY);
+        char tail[2];
+        uint32_t i = 0, count = 0;
+        ok = v && sscanf(v, "%u/%u%1s", &i, &count, tail) == 2 && count == (uint32_t)n && i >= 1 &&
+             i <= count && !seen[i - 1] && same_metadata_but_shard(m->in[0], m->in[k]);
+        if (ok)
+            seen[i - 1] = true;
+    }
+    free(seen);
+    return ok;
+}
+
+static int set_metadata(struct merge *m, bool shards, struct vt_error *err)
+{
+    bool single_build = shards && complete_shard_set(m);
+    size_t len = 0, cap = 1;
+    int rc = 0;
+    for (uint32_t i = 0; rc == 0 && i < vts_store_meta_count(m->in[0]); i++) {
+        const char *key = vts_store_meta_key(m->in[0], i);
+        if (!single_build || strcmp(key, SHARD_KEY) != 0)
+            rc = vts_writer_set_meta(m->out, key, vts_store_meta_value(m->in[0], i), err);
+    }
+    if (rc != 0 || single_build) {
+        if (single_build)
+            vt_log(VT_LOG_INFO, "the inputs are shards 1..%d of one build: metadata of the build",
+                   m->o->input_count);
+        return rc;
+    }
+    for (int k = 0; k < m->o->input_count; k++)
+        cap += strlen(m->o->inputs[k]) + 1;
+    char *sources = malloc(cap);
+    if (!sources)
+        return vt_error_set(err, VT_ERR_NOMEM, "out of memory for metadata");
+    for (int k = 0; k < m->o->input_count; k++)
+        len += (size_t)snprintf(sources + len, cap - len, "%s%s", k ? " " : "", m->o->inputs[k]);
+    rc = vts_writer_set_meta(m->out, "merge.sources", sources, err);
+    free(sources);
+    return rc;
+}
+
+/* ---- copying tiles ---- */
+
+static int read_tile(struct merge *m, int k, int b, uint32_t layer, uint32_t level, uint32_t tx,
+                     uint32_t ty, size_t *len, struct vt_error *err)
+{
+    struct vt_error why = {0};
+    int rc = vts_store_read(m->in[k], layer, level, tx, ty, m->buf[b], m->buf_cap, len, 0, &why);
+    if (rc == 0)
+        return 0;
+    return vt_error_set(err, rc, "'%s': layer %u level %u tile %u,%u: %s", m->o->inputs[k], layer,
+                        level, tx, ty,
+                        rc == VT_ERR_CHECKSUM ? "payload checksum mismatch" : why.message);
+}
+
+/* Shards mode, one tile: the payload of the first input that stores it; any other input that
+ * stores it must hold the same bytes. */
+static int merge_shard_tile(struct merge *m, uint64_t index, uint32_t layer, uint32_t level,
+                            uint32_t tx, uint32_t ty, struct vt_error *err)
+{
+    int owner = -1, rc = 0;
+    size_t len = 0, other_len = 0;
+    for (int k = 0; k < m->o->input_count && rc == 0; k++) {
+        const struct vts_tile_entry *e = vts_store_entry(m->in[k], index);
+        other_len = 0;
+        if (e->length == 0)
+            continue;
+        if (owner < 0) {
+            owner = k;
+            rc = read_tile(m, k, 0, layer, level, tx, ty, &len, err);
+            continue;
+        }
+        if (e->length == len && e->crc32c == vts_store_entry(m->in[owner], index)->crc32c)
+            rc = read_tile(m, k, 1, layer, level, tx, ty, &other_len, err);
+        if (rc == 0 && (other_len != len || memcmp(m->buf[0], m->buf[1], len) != 0))
+            rc = vt_error_set(err, VT_ERR_BAD_INPUT,
+                              "tile %u,%u of level %u, layer %u, is stored in both '%s' and '%s' "
+                              "with different bytes",
+                              tx, ty, level, layer, m->o->inputs[owner], m->o->inputs[k]);
+    }
+    if (rc == 0 && owner >= 0)
+        rc = vts_writer_put(m->out, layer, level, tx, ty, m->buf[0], len, err);
+    return rc;
+}
+
+/* Visits every tile of the first input's geometry: shards mode merges it across the inputs,
+ * layers mode copies it from input k to output layer base + layer. */
+static int copy_tiles(struct merge *m, int k, uint32_t base, uint64_t *done, struct vt_error *err)
+{
+    const struct vts_geometry *g = vts_store_geometry(m->in[k < 0 ? 0 : k]);
+    uint64_t index = 0;
+    size_t len = 0;
+    int rc = 0;
+    for (uint32_t layer = 0; layer < g->layer_count && rc == 0; layer++)
+        for (uint32_t level = 0; level < g->level_count && rc == 0; level++) {
+            struct vts_level L;
+            vts_store_level(m->in[k < 0 ? 0 : k], level, &L);
+            for (uint32_t ty = 0; ty < L.tiles_y && rc == 0; ty++)
+                for (uint32_t tx = 0; tx < L.tiles_x && rc == 0; tx++, index++) {
+                    if (k < 0)
+                        rc = merge_shard_tile(m, index, layer, level, tx, ty, err);
+                    else if (vts_store_entry(m->in[k], index)->length > 0 &&
+                             (rc = read_tile(m, k, 0, layer, level, tx, ty, &len, err)) == 0)
+                        rc = vts_writer_put(m->out, base + layer, level, tx, ty, m->buf[0], len,
+                                            err);
+                    vt_progress_update(&m->progress, ++*done);
+                }
+        }
+    return rc;
+}
+
+static int create_writer(struct merge *m, bool shards, struct vt_error *err)
+{
+    struct vts_geometry g = *vts_store_geometry(m->in[0]);
+    struct vts_layer layers[VTS_MAX_LAYERS];
+    g.layer_count = 0;
+    for (int k = 0; k < (shards ? 1 : m->o->input_count); k++)
+        for (uint32_t i = 0; i < vts_store_geometry(m->in[k])->layer_count; i++)
+            layers[g.layer_count++] = *vts_store_layer(m->in[k], i);
+    m->out = vts_writer_create(m->o->out_path, &g, layers, err);
+    return m->out ? 0 : err->status;
+}
+
+static int merge(struct merge *m, struct vt_error *err)
+{
+    bool shards = true;
+    uint64_t done = 0, total = 0;
+    int rc = 0;
+    for (int k = 0; k < m->o->input_count && rc == 0; k++) {
+        if (!(m->in[k] = vts_open(m->o->inputs[k], err)))
+            return err->status;
+        rc = check_geometry(m, k, err);
+        shards = shards && same_layer_table(m->in[0], m->in[k]);
+        total += vts_store_tile_count(m->in[k]);
+        m->buf_cap = vts_store_max_payload(m->in[k]) > m->buf_cap ? vts_store_max_payload(m->in[k])
+                                                                  : m->buf_cap;
+    }
+    if (rc == 0 && !shards)
+        rc = check_layer_names(m, err);
+    if (rc == 0 && (!(m->buf[0] = malloc(m->buf_cap + 1)) || !(m->buf[1] = malloc(m->buf_cap + 1))))
+        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory for tile buffers");
+    if (rc == 0)
+        rc = create_writer(m, shards, err);
+    if (rc != 0)
+        return rc;
+    if (shards)
+        vt_log(VT_LOG_INFO, "merging %d inputs as shards (same geometry and layers)",
+               m->o->input_count);
+    else
+        vt_log(VT_LOG_INFO, "merging the layers of %d inputs", m->o->input_count);
+    total = shards ? vts_store_tile_count(m->in[0]) : total;
+    vt_progress_start(&m->progress, "merging", "tiles", total);
+    if (shards)
+        rc = copy_tiles(m, -1, 0, &done, err);
+    for (int k = 0, base = 0; !shards && rc == 0 && k < m->o->input_count; k++) {
+        rc = copy_tiles(m, k, (uint32_t)base, &done, err);
+        base += (int)vts_store_geometry(m->in[k])->layer_count;
+    }
+    vt_progress_end(&m->progress);
+    if (rc == 0)
+        rc = set_metadata(m, shards, err);
+    return rc == 0 ? vts_writer_finish(m->out, err) : rc;
+}
+
+static int run(const struct options *o)
+{
+    struct vt_error err = {0};
+    struct merge m = {.o = o, .in = calloc((size_t)o->input_count, sizeof *m.in)};
+    int rc = m.in ? merge(&m, &err) : vt_error_set(&err, VT_ERR_NOMEM, "out of memory");
+    if (rc == 0) {
+        struct vts_writer_stats st;
+        vts_writer_stats(m.out, &st);
+        vt_log(VT_LOG_INFO,
+               "wrote '%s': %llu tiles stored (%llu shared), %llu empty, %llu payload bytes",
+               o->out_path, (unsigned long long)st.tiles_stored,
+               (unsigned long long)st.tiles_shared, (unsigned long long)st.tiles_empty,
+               (unsigned long long)st.unique_bytes);
+    } else {
+        vt_log(VT_LOG_ERROR, "%s", err.message);
+    }
+    vts_writer_destroy(m.out);
+    for (int k = 0; m.in && k < o->input_count; k++)
+        vts_close(m.in[k]);
+    free(m.in);
+    free(m.buf[0]);
+    free(m.buf[1]);
+    return rc == 0 ? VT_EXIT_OK : VT_EXIT_BAD_INPUT;
+}
+
+int main(int argc, char **argv)
+{
+    struct options o;
+    vt_tool_init("vt-merge");
+    vt_atomic_file_cleanup_on_signals();
+    int rc = parse_options(argc, argv, &o);
+    if (rc >= 0)
+        return rc;
+    return run(&o);
+}
