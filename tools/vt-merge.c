@@ -287,7 +287,7 @@ static int merge_shard_tile(struct merge *m, uint64_t index, uint32_t layer, uin
                               "with different bytes",
                               tx, ty, level, layer, m->o->inputs[owner], m->o->inputs[k]);
     }
-    if (rc == 0 && owner >= 0)
+    if (rc == 0) /* empty (len 0) when no input stores it */
         rc = vts_writer_put(m->out, layer, level, tx, ty, m->buf[0], len, err);
     return rc;
 }
@@ -306,10 +306,12 @@ static int copy_tiles(struct merge *m, int k, uint32_t base, uint64_t *done, str
             vts_store_level(m->in[k < 0 ? 0 : k], level, &L);
             for (uint32_t ty = 0; ty < L.tiles_y && rc == 0; ty++)
                 for (uint32_t tx = 0; tx < L.tiles_x && rc == 0; tx++, index++) {
+                    len = 0;
                     if (k < 0)
                         rc = merge_shard_tile(m, index, layer, level, tx, ty, err);
-                    else if (vts_store_entry(m->in[k], index)->length > 0 &&
-                             (rc = read_tile(m, k, 0, layer, level, tx, ty, &len, err)) == 0)
+                    else if (vts_store_entry(m->in[k], index)->length > 0)
+                        rc = read_tile(m, k, 0, layer, level, tx, ty, &len, err);
+                    if (k >= 0 && rc == 0)
                         rc = vts_writer_put(m->out, base + layer, level, tx, ty, m->buf[0], len,
                                             err);
                     vt_progress_update(&m->progress, ++*done);

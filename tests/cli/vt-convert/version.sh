@@ -1,0 +1,3 @@
+# --version names the tool, the project version and the .vts format version.
+set -euo pipefail
+"$VT_CONVERT" --version
