@@ -1,7 +1,8 @@
 /* vt-tiles end to end: runs the tool on generated images and checks the stores it writes texel by
  * texel: level sizes, borders equal to neighbours (clamp and wrap), box levels against a double
  * reference, linear-light sRGB, premultiplied alpha, precision of 16-bit and float inputs, normal
- * lengths, empty tiles, determinism across -j, and bad input. usage: test_vt_tiles VT-TILES */
+ * lengths, empty tiles, determinism across -j, and bad input; vt-info --verify passes on every
+ * store. usage: test_vt_tiles VT-TILES VT-INFO */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -461,9 +462,10 @@ static void interrupted_run_leaves_nothing_behind(void)
 
 int main(int argc, char **argv)
 {
-    if (argc != 2)
+    if (argc != 3)
         return 2;
     tiles_tool = argv[1];
+    tiles_info = argv[2];
     snprintf(tiles_dir, sizeof tiles_dir, "%s/test_vt_tiles.XXXXXX",
              getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
     if (!mkdtemp(tiles_dir))

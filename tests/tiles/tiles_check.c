@@ -9,6 +9,7 @@
 #include "vt_png_file.h"
 
 const char *tiles_tool;
+const char *tiles_info;
 char tiles_dir[256];
 
 const char *tiles_path(const char *name)
@@ -41,7 +42,16 @@ int tiles_run(const char *input, const char *output, const char *args)
     snprintf(cmd, sizeof cmd, "'%s' '%s' -o '%s' -q %s 2>'%s'", tiles_tool, input, output, args,
              tiles_path("stderr"));
     int st = system(cmd);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    int rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    if (rc == 0 && tiles_info) {
+        snprintf(cmd, sizeof cmd, "'%s' --verify -q '%s'", tiles_info, output);
+        st = system(cmd);
+        if (!WIFEXITED(st) || WEXITSTATUS(st) != 0) {
+            fprintf(stderr, "vt-info --verify failed on %s\n", output);
+            return 99;
+        }
+    }
+    return rc;
 }
 
 const char *tiles_stderr(void)

@@ -9,6 +9,7 @@
 #include "vts.h"
 
 extern const char *tiles_tool; /* path of vt-tiles */
+extern const char *tiles_info; /* path of vt-info: every store written is checked with --verify */
 extern char tiles_dir[256];    /* temporary directory of this test run */
 
 /* Path of a file in tiles_dir (static buffer rotated among 8 calls). */
@@ -18,7 +19,8 @@ const char *tiles_path(const char *name);
 int tiles_write_png(const char *path, const struct vt_image *img);
 
 /* Runs "vt-tiles INPUT -o OUT ARGS..." (args: one string, split on spaces) with stderr captured
- * into tiles_path("stderr"); returns the exit status. */
+ * into tiles_path("stderr"); returns the exit status. When it succeeds, also runs
+ * "vt-info --verify OUT" and returns 99 if that fails. */
 int tiles_run(const char *input, const char *output, const char *args);
 
 /* First line of the last run's stderr (static buffer). */
