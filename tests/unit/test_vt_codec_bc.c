@@ -9,111 +9,9 @@
 
 #include "vt_codec.h"
 #include "vt_squish_shim.h"
+#include "vt_synth_photo.h"
 #include "vt_test.h"
 #include "vts.h"
-
-/* ---- a seeded photo-like image: fractal value noise (smooth gradients and texture), hard-edged
- * discs and rectangles (edges), and film grain; identical on every machine ---- */
-
-static uint32_t photo_hash(uint32_t seed, int32_t x, int32_t y)
-{
-    uint32_t h = seed * 0x9e3779b1u ^ (uint32_t)x * 0x85ebca6bu ^ (uint32_t)y * 0xc2b2ae35u;
-    h ^= h >> 15;
-    h *= 0x2c1b3c6du;
-    h ^= h >> 12;
-    h *= 0x297a2d39u;
-    h ^= h >> 15;
-    return h;
-}
-
-/* Value noise in [0, 1] on a lattice of cell_px, smoothstep-interpolated. */
-static double photo_value_noise(uint32_t seed, double x, double y, double cell_px)
-{
-    double fx = x / cell_px, fy = y / cell_px;
-    int32_t ix = (int32_t)floor(fx), iy = (int32_t)floor(fy);
-    double tx = fx - ix, ty = fy - iy;
-    tx = tx * tx * (3 - 2 * tx);
-    ty = ty * ty * (3 - 2 * ty);
-    double v00 = photo_hash(seed, ix, iy) / 4294967295.0;
-    double v10 = photo_hash(seed, ix + 1, iy) / 4294967295.0;
-    double v01 = photo_hash(seed, ix, iy + 1) / 4294967295.0;
-    double v11 = photo_hash(seed, ix + 1, iy + 1) / 4294967295.0;
-    return (v00 + (v10 - v00) * tx) * (1 - ty) + (v01 + (v11 - v01) * tx) * ty;
-}
-
-/* Six octaves of value noise, cells of 96 to 3 texels, in [0, 1]. */
-static double photo_fractal(uint32_t seed, double x, double y)
-{
-    double sum = 0, amp = 1, norm = 0, cell = 96;
-    for (int octave = 0; octave < 6; octave++, amp *= 0.5, cell *= 0.5) {
-        sum += amp * photo_value_noise(seed + (uint32_t)octave * 101u, x, y, cell);
-        norm += amp;
-    }
-    return sum / norm;
-}
-
-static unsigned char photo_clamp(double v)
-{
-    return (unsigned char)(v < 0 ? 0 : v > 255 ? 255 : v + 0.5);
-}
-
-/* Fills a w x h image (1, 3 or 4 channels, u8, tight stride) from seed; chroma scales how
- * colourful it is (0 = grey); alpha (4 channels) is a smooth field with one hard-edged hole. */
-static struct vt_image photo_make(uint32_t w, uint32_t h, uint32_t channels, uint32_t seed,
-                                  double chroma)
-{
-    struct vt_image img = {w, h, channels, VTS_SAMPLE_U8, (size_t)w * channels, NULL};
-    img.pixels = malloc(img.stride * h);
-    double disc[6][6]; /* cx, cy, r, red, green, blue */
-    for (int i = 0; i < 6; i++)
-        for (int k = 0; k < 6; k++)
-            disc[i][k] = (photo_hash(seed + 7u, i, k) % 1000) / 1000.0;
-    for (uint32_t y = 0; y < h; y++) {
-        for (uint32_t x = 0; x < w; x++) {
-            double lum = (photo_fractal(seed, x, y) - 0.5) * 2.2 * 255 + 128;
-            double ca = (photo_fractal(seed + 1000u, x, y) - 0.5) * chroma * 2 * 255;
-            double cb = (photo_fractal(seed + 2000u, x, y) - 0.5) * chroma * 2 * 255;
-            double rgb[3] = {lum + ca, lum - 0.5 * ca + 0.5 * cb, lum - cb};
-            for (int i = 0; i < 6; i++) {
-                double dx = x - disc[i][0] * w, dy = y - disc[i][1] * h;
-                double r = (0.05 + 0.15 * disc[i][2]) * (w < h ? w : h);
-                bool inside = i < 4 ? dx * dx + dy * dy < r * r : fabs(dx) < r && fabs(dy) < r / 2;
-                if (inside)
-                    for (int k = 0; k < 3; k++)
-                        rgb[k] = (0.3 + 0.7 * disc[i][3 + k]) * (0.6 * lum + 90);
-            }
-            unsigned char *t = (unsigned char *)img.pixels + y * img.stride + x * channels;
-            int grain = (int)(photo_hash(seed + 3000u, (int32_t)x, (int32_t)y) % 7) - 3;
-            if (channels == 1) {
-                t[0] = photo_clamp(lum + grain);
-                continue;
-            }
-            for (int k = 0; k < 3; k++)
-                t[k] = photo_clamp(rgb[k] + grain);
-            if (channels == 4) {
-                double dx = x - 0.6 * w, dy = y - 0.4 * h;
-                bool hole = dx * dx + dy * dy < 0.02 * w * h;
-                t[3] = hole ? 0 : photo_clamp(photo_fractal(seed + 4000u, x, y) * 400 - 60);
-            }
-        }
-    }
-    return img;
-}
-
-/* PSNR in dB over every sample of two u8 images of one shape (99 when identical). */
-static double photo_psnr(const struct vt_image *a, const struct vt_image *b)
-{
-    double sum = 0;
-    size_t row = (size_t)a->width * a->channels;
-    for (uint32_t y = 0; y < a->height; y++) {
-        const unsigned char *pa = (const unsigned char *)a->pixels + y * a->stride;
-        const unsigned char *pb = (const unsigned char *)b->pixels + y * b->stride;
-        for (size_t i = 0; i < row; i++)
-            sum += (double)(pa[i] - pb[i]) * (pa[i] - pb[i]);
-    }
-    double mse = sum / ((double)row * a->height);
-    return mse == 0 ? 99 : 10 * log10(255.0 * 255.0 / mse);
-}
 
 /* ---- helpers ---- */
 
@@ -353,7 +251,7 @@ static double round_trip_psnr(const char *codec_name, const struct vt_image *img
     struct vt_error err = {0};
     int rc = decode_into(codec, payload, len, &dst, img->width, img->height, img->channels, &err);
     VT_CHECK_INT_EQ(rc, 0);
-    double psnr = rc ? 0 : photo_psnr(img, &dst);
+    double psnr = rc ? 0 : vt_synth_psnr_u8(img, &dst);
     free(dst.pixels);
     free(payload);
     return psnr;
@@ -361,7 +259,8 @@ static double round_trip_psnr(const char *codec_name, const struct vt_image *img
 
 static void bc_round_trips_a_photo_like_image(void)
 {
-    struct vt_image rgb = photo_make(256, 256, 3, 1, 0.6), rgba = photo_make(256, 256, 4, 1, 0.6);
+    struct vt_image rgb = vt_synth_photo(256, 256, 3, 1, 0.6),
+                    rgba = vt_synth_photo(256, 256, 4, 1, 0.6);
     double bc1_fast = round_trip_psnr("bc1", &rgb, 0), bc1_best = round_trip_psnr("bc1", &rgb, 1);
     double bc3_fast = round_trip_psnr("bc3", &rgba, 0), bc3_best = round_trip_psnr("bc3", &rgba, 1);
     fprintf(stderr, "  bc1 fast %.2f dB, best %.2f dB; bc3 fast %.2f dB, best %.2f dB\n", bc1_fast,
@@ -383,7 +282,7 @@ static void bc_round_trips_odd_shapes_and_strides(void)
     /* 4x4 (one block), 8x12 (not square), 264x264 (a 256 tile with border 4) */
     static const uint32_t sizes[][2] = {{4, 4}, {8, 12}, {264, 264}};
     for (size_t s = 0; s < 3; s++) {
-        struct vt_image tight = photo_make(sizes[s][0], sizes[s][1], 4, 2, 0.6);
+        struct vt_image tight = vt_synth_photo(sizes[s][0], sizes[s][1], 4, 2, 0.6);
         struct vt_image padded = tight; /* the same texels with 7 bytes of padding per row */
         padded.stride = tight.stride + 7;
         padded.pixels = calloc(padded.stride, tight.height);
@@ -407,7 +306,7 @@ static void bc_round_trips_odd_shapes_and_strides(void)
 static void bc1_stores_alpha_as_one_bit(void)
 {
     /* alpha: a cut-out pattern of 0, 127, 128 and 255 over a photo */
-    struct vt_image img = photo_make(64, 64, 4, 3, 0.6);
+    struct vt_image img = vt_synth_photo(64, 64, 4, 3, 0.6);
     static const unsigned char levels[4] = {0, 127, 128, 255};
     for (uint32_t y = 0; y < 64; y++)
         for (uint32_t x = 0; x < 64; x++)
@@ -546,7 +445,7 @@ static void bc_check_refuses_what_it_cannot_store(void)
 static void bc_encode_refuses_bad_effort_shape_and_small_buffer(void)
 {
     const struct vt_codec *bc1 = vt_codec_find("bc1");
-    struct vt_image img = photo_make(8, 8, 3, 4, 0.5);
+    struct vt_image img = vt_synth_photo(8, 8, 3, 4, 0.5);
     unsigned char buf[64];
     size_t len = 99;
     struct vt_error err = {0};
@@ -571,7 +470,7 @@ static void bc_decode_rejects_payloads_of_wrong_length(void)
     static const char *const names[] = {"bc1", "bc3"};
     for (int c = 0; c < 2; c++) {
         const struct vt_codec *codec = vt_codec_find(names[c]);
-        struct vt_image img = photo_make(16, 16, 4, 5, 0.5);
+        struct vt_image img = vt_synth_photo(16, 16, 4, 5, 0.5);
         size_t len = 0;
         unsigned char *payload = encode_alloc(codec, &img, 0, &len);
         VT_CHECK_INT_EQ(len, c ? 256 : 128);
@@ -644,7 +543,7 @@ static int threads_at_start; /* thread_count() before any test ran */
 
 static void bc_encodes_the_same_bytes_on_two_threads_without_openmp(void)
 {
-    struct vt_image img = photo_make(64, 64, 4, 6, 0.6);
+    struct vt_image img = vt_synth_photo(64, 64, 4, 6, 0.6);
     static const char *const names[] = {"bc1", "bc3"};
     for (int c = 0; c < 2; c++) {
         for (int effort = 0; effort <= 1; effort++) {

@@ -7,111 +7,9 @@
 #include <string.h>
 
 #include "vt_codec.h"
+#include "vt_synth_photo.h"
 #include "vt_test.h"
 #include "vts.h"
-
-/* ---- a seeded photo-like image: fractal value noise (smooth gradients and texture), hard-edged
- * discs and rectangles (edges), and film grain; identical on every machine ---- */
-
-static uint32_t photo_hash(uint32_t seed, int32_t x, int32_t y)
-{
-    uint32_t h = seed * 0x9e3779b1u ^ (uint32_t)x * 0x85ebca6bu ^ (uint32_t)y * 0xc2b2ae35u;
-    h ^= h >> 15;
-    h *= 0x2c1b3c6du;
-    h ^= h >> 12;
-    h *= 0x297a2d39u;
-    h ^= h >> 15;
-    return h;
-}
-
-/* Value noise in [0, 1] on a lattice of cell_px, smoothstep-interpolated. */
-static double photo_value_noise(uint32_t seed, double x, double y, double cell_px)
-{
-    double fx = x / cell_px, fy = y / cell_px;
-    int32_t ix = (int32_t)floor(fx), iy = (int32_t)floor(fy);
-    double tx = fx - ix, ty = fy - iy;
-    tx = tx * tx * (3 - 2 * tx);
-    ty = ty * ty * (3 - 2 * ty);
-    double v00 = photo_hash(seed, ix, iy) / 4294967295.0;
-    double v10 = photo_hash(seed, ix + 1, iy) / 4294967295.0;
-    double v01 = photo_hash(seed, ix, iy + 1) / 4294967295.0;
-    double v11 = photo_hash(seed, ix + 1, iy + 1) / 4294967295.0;
-    return (v00 + (v10 - v00) * tx) * (1 - ty) + (v01 + (v11 - v01) * tx) * ty;
-}
-
-/* Six octaves of value noise, cells of 96 to 3 texels, in [0, 1]. */
-static double photo_fractal(uint32_t seed, double x, double y)
-{
-    double sum = 0, amp = 1, norm = 0, cell = 96;
-    for (int octave = 0; octave < 6; octave++, amp *= 0.5, cell *= 0.5) {
-        sum += amp * photo_value_noise(seed + (uint32_t)octave * 101u, x, y, cell);
-        norm += amp;
-    }
-    return sum / norm;
-}
-
-static unsigned char photo_clamp(double v)
-{
-    return (unsigned char)(v < 0 ? 0 : v > 255 ? 255 : v + 0.5);
-}
-
-/* Fills a w x h image (1, 3 or 4 channels, u8, tight stride) from seed; chroma scales how
- * colourful it is (0 = grey); alpha (4 channels) is a smooth field with one hard-edged hole. */
-static struct vt_image photo_make(uint32_t w, uint32_t h, uint32_t channels, uint32_t seed,
-                                  double chroma)
-{
-    struct vt_image img = {w, h, channels, VTS_SAMPLE_U8, (size_t)w * channels, NULL};
-    img.pixels = malloc(img.stride * h);
-    double disc[6][6]; /* cx, cy, r, red, green, blue */
-    for (int i = 0; i < 6; i++)
-        for (int k = 0; k < 6; k++)
-            disc[i][k] = (photo_hash(seed + 7u, i, k) % 1000) / 1000.0;
-    for (uint32_t y = 0; y < h; y++) {
-        for (uint32_t x = 0; x < w; x++) {
-            double lum = (photo_fractal(seed, x, y) - 0.5) * 2.2 * 255 + 128;
-            double ca = (photo_fractal(seed + 1000u, x, y) - 0.5) * chroma * 2 * 255;
-            double cb = (photo_fractal(seed + 2000u, x, y) - 0.5) * chroma * 2 * 255;
-            double rgb[3] = {lum + ca, lum - 0.5 * ca + 0.5 * cb, lum - cb};
-            for (int i = 0; i < 6; i++) {
-                double dx = x - disc[i][0] * w, dy = y - disc[i][1] * h;
-                double r = (0.05 + 0.15 * disc[i][2]) * (w < h ? w : h);
-                bool inside = i < 4 ? dx * dx + dy * dy < r * r : fabs(dx) < r && fabs(dy) < r / 2;
-                if (inside)
-                    for (int k = 0; k < 3; k++)
-                        rgb[k] = (0.3 + 0.7 * disc[i][3 + k]) * (0.6 * lum + 90);
-            }
-            unsigned char *t = (unsigned char *)img.pixels + y * img.stride + x * channels;
-            int grain = (int)(photo_hash(seed + 3000u, (int32_t)x, (int32_t)y) % 7) - 3;
-            if (channels == 1) {
-                t[0] = photo_clamp(lum + grain);
-                continue;
-            }
-            for (int k = 0; k < 3; k++)
-                t[k] = photo_clamp(rgb[k] + grain);
-            if (channels == 4) {
-                double dx = x - 0.6 * w, dy = y - 0.4 * h;
-                bool hole = dx * dx + dy * dy < 0.02 * w * h;
-                t[3] = hole ? 0 : photo_clamp(photo_fractal(seed + 4000u, x, y) * 400 - 60);
-            }
-        }
-    }
-    return img;
-}
-
-/* PSNR in dB over every sample of two u8 images of one shape (99 when identical). */
-static double photo_psnr(const struct vt_image *a, const struct vt_image *b)
-{
-    double sum = 0;
-    size_t row = (size_t)a->width * a->channels;
-    for (uint32_t y = 0; y < a->height; y++) {
-        const unsigned char *pa = (const unsigned char *)a->pixels + y * a->stride;
-        const unsigned char *pb = (const unsigned char *)b->pixels + y * b->stride;
-        for (size_t i = 0; i < row; i++)
-            sum += (double)(pa[i] - pb[i]) * (pa[i] - pb[i]);
-    }
-    double mse = sum / ((double)row * a->height);
-    return mse == 0 ? 99 : 10 * log10(255.0 * 255.0 / mse);
-}
 
 /* ---- helpers ---- */
 
@@ -174,7 +72,7 @@ static double round_trip_psnr(const struct vt_image *img, int quality, int subsa
         padding_kept &=
             ((unsigned char *)dst.pixels)[y * dst.stride + dst.width * dst.channels] == 0xcd;
     VT_CHECK(padding_kept);
-    double psnr = rc ? 0 : photo_psnr(img, &dst);
+    double psnr = rc ? 0 : vt_synth_psnr_u8(img, &dst);
     if (len_out)
         *len_out = len;
     free(dst.pixels);
@@ -197,7 +95,7 @@ static void jpeg_round_trips_grey_and_rgb(void)
     static const uint32_t sizes[] = {256, 264, 1};
     for (size_t s = 0; s < 3; s++) {
         for (uint32_t channels = 1; channels <= 3; channels += 2) {
-            struct vt_image img = photo_make(sizes[s], sizes[s], channels, 1, 0.6);
+            struct vt_image img = vt_synth_photo(sizes[s], sizes[s], channels, 1, 0.6);
             double q95 = round_trip_psnr(&img, 95, 0, NULL);
             double q85 = round_trip_psnr(&img, 85, 0, NULL);
             fprintf(stderr, "  %ux%u x%u: q95 %.2f dB, q85 %.2f dB\n", sizes[s], sizes[s], channels,
@@ -212,7 +110,7 @@ static void jpeg_round_trips_grey_and_rgb(void)
 
 static void jpeg_444_is_at_least_as_good_as_420(void)
 {
-    struct vt_image img = photo_make(256, 256, 3, 2, 1.0); /* colourful */
+    struct vt_image img = vt_synth_photo(256, 256, 3, 2, 1.0); /* colourful */
     size_t len420 = 0, len422 = 0, len444 = 0;
     double p420 = round_trip_psnr(&img, 85, 420, &len420);
     double p422 = round_trip_psnr(&img, 85, 422, &len422);
@@ -234,7 +132,7 @@ static void jpeg_444_is_at_least_as_good_as_420(void)
 
 static void jpeg_size_and_quality_grow_with_quality(void)
 {
-    struct vt_image img = photo_make(256, 256, 3, 3, 0.6);
+    struct vt_image img = vt_synth_photo(256, 256, 3, 3, 0.6);
     size_t len50 = 0, len85 = 0, len95 = 0;
     double p50 = round_trip_psnr(&img, 50, 420, &len50);
     double p85 = round_trip_psnr(&img, 85, 420, &len85);
@@ -253,7 +151,7 @@ static void jpeg_size_and_quality_grow_with_quality(void)
 
 static void jpeg_reads_rows_through_the_stride(void)
 {
-    struct vt_image tight = photo_make(40, 24, 3, 4, 0.6), padded = tight;
+    struct vt_image tight = vt_synth_photo(40, 24, 3, 4, 0.6), padded = tight;
     padded.stride = tight.stride + 9;
     padded.pixels = malloc(padded.stride * tight.height);
     memset(padded.pixels, 0x55, padded.stride * tight.height);
@@ -303,7 +201,7 @@ static void jpeg_check_refuses_alpha_and_deep_samples(void)
 static void jpeg_encode_refuses_bad_params_and_small_buffers(void)
 {
     const struct vt_codec *jpeg = vt_codec_find("jpeg");
-    struct vt_image img = photo_make(16, 16, 3, 5, 0.6);
+    struct vt_image img = vt_synth_photo(16, 16, 3, 5, 0.6);
     size_t bound = jpeg->encoded_bound(16, 16, 3, VTS_SAMPLE_U8), len = 99;
     unsigned char *buf = malloc(bound);
     struct vt_error err = {0};
@@ -349,7 +247,7 @@ static bool prefix_fails_cleanly(const unsigned char *payload, size_t cut, uint3
 static void jpeg_decode_rejects_truncated_payloads(void)
 {
     for (uint32_t channels = 1; channels <= 3; channels += 2) {
-        struct vt_image img = photo_make(64, 64, channels, 6, 0.6);
+        struct vt_image img = vt_synth_photo(64, 64, channels, 6, 0.6);
         size_t len = 0;
         unsigned char *payload = encode_alloc(&img, 90, 420, &len);
         int failures = 0, cuts = 0;
@@ -386,7 +284,7 @@ static void jpeg_decode_rejects_garbage(void)
 
 static void jpeg_decode_survives_bit_flips(void)
 {
-    struct vt_image img = photo_make(32, 32, 3, 8, 0.6);
+    struct vt_image img = vt_synth_photo(32, 32, 3, 8, 0.6);
     size_t len = 0;
     unsigned char *payload = encode_alloc(&img, 80, 420, &len);
     rng_state = 8;
@@ -413,7 +311,7 @@ static void jpeg_decode_survives_bit_flips(void)
 static void check_mismatch(uint32_t w, uint32_t h, uint32_t channels, uint32_t tw, uint32_t th,
                            uint32_t tchannels, const char *expect)
 {
-    struct vt_image img = photo_make(w, h, channels, 9, 0.6);
+    struct vt_image img = vt_synth_photo(w, h, channels, 9, 0.6);
     size_t len = 0;
     unsigned char *payload = encode_alloc(&img, 85, 420, &len);
     struct vt_image dst;
@@ -432,7 +330,7 @@ static void jpeg_decode_rejects_other_shapes(void)
     check_mismatch(16, 16, 1, 16, 16, 3, "jpeg payload: greyscale JPEG for a 3-channel tile");
     check_mismatch(16, 16, 3, 16, 16, 1, "jpeg payload: colour JPEG for a greyscale tile");
     /* a destination jpeg never produces is the caller's error */
-    struct vt_image img = photo_make(16, 16, 3, 9, 0.6);
+    struct vt_image img = vt_synth_photo(16, 16, 3, 9, 0.6);
     size_t len = 0;
     unsigned char *payload = encode_alloc(&img, 85, 420, &len);
     struct vt_image dst;
@@ -447,7 +345,7 @@ static void jpeg_decodes_again_after_a_failed_decode(void)
 {
     /* libjpeg-turbo 2.1.5 leaves a handle mid-header after a failed header read; the codec must
      * not reuse it as it is */
-    struct vt_image img = photo_make(24, 24, 3, 10, 0.6);
+    struct vt_image img = vt_synth_photo(24, 24, 3, 10, 0.6);
     size_t len = 0;
     unsigned char *payload = encode_alloc(&img, 85, 420, &len);
     int failures = 0;
@@ -502,7 +400,7 @@ static void *thread_job_run(void *arg)
             if (jpeg->decode(job->payload[t], job->len[t], &dst, NULL) != 0)
                 job->failures++;
             else if (round == 0)
-                job->psnr_sum += photo_psnr(img, &dst);
+                job->psnr_sum += vt_synth_psnr_u8(img, &dst);
             free(dst.pixels);
         }
     }
@@ -513,7 +411,7 @@ static void jpeg_threads_give_the_same_bytes_as_one_thread(void)
 {
     struct vt_image tiles[THREAD_TILES];
     for (int t = 0; t < THREAD_TILES; t++)
-        tiles[t] = photo_make(128, 128, t % 3 ? 3 : 1, 20u + (uint32_t)t, 0.8);
+        tiles[t] = vt_synth_photo(128, 128, t % 3 ? 3 : 1, 20u + (uint32_t)t, 0.8);
     struct thread_job alone = {tiles, {NULL}, {0}, 0, 0}, jobs[2];
     thread_job_run(&alone);
     VT_CHECK_INT_EQ(alone.failures, 0);
