@@ -677,11 +677,6 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
             }
         }
         rc = run_pass(&p, err);
-        if (cache && getenv("VT_DEBUG_CACHE")) {
-            unsigned long long d, h;
-            vt_tile_cache_counts(cache, &d, &h);
-            fprintf(stderr, "input tiles decoded %llu, cache hits %llu\n", d, h);
-        }
         vt_tile_cache_destroy(cache); /* only pass 0 reads the input */
         cache = NULL;
         vt_source_close(&temp_source);

@@ -167,9 +167,12 @@ void vt_progress_update(struct vt_progress *p, uint64_t done)
     unsigned long eta = 0;
     if (rate > 0 && done < p->total)
         eta = (unsigned long)((double)(p->total - done) / rate + 0.5);
-    fprintf(stderr, "\r\033[K%s: %s %llu/%llu %s (%.0f%%), %.0f %s/s, ETA %lu:%02lu", tool_name,
+    char mp[32] = "";
+    if (p->megapixels_per_unit > 0)
+        snprintf(mp, sizeof mp, " (%.1f MP/s)", rate * p->megapixels_per_unit);
+    fprintf(stderr, "\r\033[K%s: %s %llu/%llu %s (%.0f%%), %.0f %s/s%s, ETA %lu:%02lu", tool_name,
             p->what, (unsigned long long)done, (unsigned long long)p->total, p->unit,
-            p->total ? 100.0 * (double)done / (double)p->total : 100.0, rate, p->unit, eta / 60,
+            p->total ? 100.0 * (double)done / (double)p->total : 100.0, rate, p->unit, mp, eta / 60,
             eta % 60);
     fflush(stderr);
     p->drawn = true;

@@ -74,6 +74,7 @@ struct vt_progress {
     const char *what; /* "verifying" */
     const char *unit; /* "tiles" */
     uint64_t total;
+    double megapixels_per_unit; /* > 0: also show MP/s (set after vt_progress_start) */
     bool enabled;
     bool drawn;         /* a line is on screen and must be cleared */
     double start_s;     /* monotonic clock at start */

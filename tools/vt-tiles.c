@@ -338,6 +338,8 @@ static int build(struct run *r, struct vt_source *src, const struct vt_pyramid_o
         ptrs[i] = src[0].info.sequential ? NULL : &src[i];
     ptrs[0] = &src[0];
     vt_progress_start(&r->progress, "tiling", "tiles", vt_pyramid_tile_count(po));
+    uint32_t pp = po->tile_content_px + 2 * po->border_px;
+    r->progress.megapixels_per_unit = (double)pp * pp / 1e6;
     int rc = vt_pyramid_build(ptrs, po, err);
     vt_progress_end(&r->progress);
     return rc;
