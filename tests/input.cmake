@@ -19,5 +19,5 @@ endif()
 
 # Command-line wrapper of the generator, used by scripts/demo.
 add_executable(vt-synth-image synth/vt_synth_image_main.c)
-target_link_libraries(vt-synth-image PRIVATE vt_synth_images)
+target_link_libraries(vt-synth-image PRIVATE vt_synth_images vt_synth)
 vt_target_warnings(vt-synth-image)
