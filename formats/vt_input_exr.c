@@ -43,13 +43,23 @@ struct exr_input {
     uint32_t cached_w, cached_h; /* its size (edge chunks are smaller) */
 };
 
+/* Copies text from the file (channel and attribute names inside OpenEXR's messages) into dst with
+ * control characters replaced by '?', so that messages stay on one line. */
+static void exr_one_line(char *dst, size_t cap, const char *src)
+{
+    snprintf(dst, cap, "%s", src);
+    for (unsigned char *p = (unsigned char *)dst; *p; p++)
+        if (*p < 0x20 || *p == 0x7f)
+            *p = '?';
+}
+
 static void exr_input_on_error(exr_const_context_t ctxt, exr_result_t code, const char *msg)
 {
     void *user = NULL;
     if (!ctxt || exr_get_user_data(ctxt, &user) != EXR_ERR_SUCCESS || !user)
         return;
     struct exr_input *t = user;
-    snprintf(t->message, sizeof t->message, "%s", msg ? msg : exr_get_default_error_message(code));
+    exr_one_line(t->message, sizeof t->message, msg ? msg : exr_get_default_error_message(code));
 }
 
 static int64_t exr_input_read(exr_const_context_t ctxt, void *user, void *buffer, uint64_t size,
@@ -149,10 +159,13 @@ static int exr_choose_channels(struct exr_input *t, const exr_attr_chlist_t *lis
     for (uint32_t c = 0; c < t->channels; c++) {
         const exr_attr_chlist_entry_t *e = &list->entries[t->file_channel[c]];
         if (e->x_sampling != 1 || e->y_sampling != 1 ||
-            (e->pixel_type != EXR_PIXEL_HALF && e->pixel_type != EXR_PIXEL_FLOAT))
+            (e->pixel_type != EXR_PIXEL_HALF && e->pixel_type != EXR_PIXEL_FLOAT)) {
+            char name[64];
+            exr_one_line(name, sizeof name, e->name.str ? e->name.str : "");
             return vt_error_set(err, VT_ERR_UNSUPPORTED,
                                 "cannot read '%s': channel '%s' is subsampled or not half/float",
-                                t->name, e->name.str ? e->name.str : "");
+                                t->name, name);
+        }
         all_half = all_half && e->pixel_type == EXR_PIXEL_HALF;
     }
     t->sample = all_half ? VTS_SAMPLE_F16 : VTS_SAMPLE_F32;

@@ -54,3 +54,40 @@ vt_add_fuzzer(fuzz_vts_reader
 add_executable(make_vts_seeds fuzz/make_vts_seeds.c)
 target_link_libraries(make_vts_seeds PRIVATE vts_fixture)
 vt_target_warnings(make_vts_seeds)
+
+# Tile payload decoders (formats/vt_codec_*.c): instrumented here; the squish shim (C++) and the
+# libraries come from vtformats.
+set(VT_FUZZ_CODEC_SOURCES
+    ${PROJECT_SOURCE_DIR}/formats/vt_codec.c ${PROJECT_SOURCE_DIR}/formats/vt_codec_raw.c
+    ${PROJECT_SOURCE_DIR}/formats/vt_codec_png.c ${PROJECT_SOURCE_DIR}/formats/vt_codec_jpeg.c
+    ${PROJECT_SOURCE_DIR}/formats/vt_codec_bc.c)
+vt_add_fuzzer(fuzz_codec_decode
+  SOURCES fuzz/fuzz_codec_decode.c ${VT_FUZZ_CODEC_SOURCES}
+  LIBS vtformats Threads::Threads
+  SEED_COMMAND $<TARGET_FILE:make_codec_seeds>
+  SEED_DIRS ${CMAKE_CURRENT_SOURCE_DIR}/data/fuzz/fuzz_codec_decode)
+
+add_executable(make_codec_seeds fuzz/make_codec_seeds.c fuzz/fuzz_codec_decode.c)
+target_compile_definitions(make_codec_seeds PRIVATE VT_FUZZ_NO_ENTRY)
+target_include_directories(make_codec_seeds PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+target_link_libraries(make_codec_seeds PRIVATE vtformats)
+vt_target_warnings(make_codec_seeds)
+
+# Image input (formats/vt_image_input.c and the native readers); the OpenImageIO fallback is
+# compiled without VT_HAVE_OIIO here, and the target skips non-native inputs anyway.
+vt_add_fuzzer(fuzz_image_input
+  SOURCES fuzz/fuzz_image_input.c ${PROJECT_SOURCE_DIR}/formats/vt_image_input.c
+          ${PROJECT_SOURCE_DIR}/formats/vt_input_tiff.c ${PROJECT_SOURCE_DIR}/formats/vt_input_png.c
+          ${PROJECT_SOURCE_DIR}/formats/vt_input_jpeg.c ${PROJECT_SOURCE_DIR}/formats/vt_input_exr.c
+          ${PROJECT_SOURCE_DIR}/formats/vt_input_oiio.c
+  LIBS vtformats VT::OpenEXRCore Threads::Threads
+  SEED_COMMAND $<TARGET_FILE:make_image_seeds>
+  SEED_DIRS ${CMAKE_CURRENT_SOURCE_DIR}/data/fuzz/fuzz_image_input)
+
+add_executable(make_image_seeds fuzz/make_image_seeds.c)
+target_link_libraries(make_image_seeds PRIVATE vt_synth_images)
+vt_target_warnings(make_image_seeds)
+
+# OBJ/MTL reader (lib/vt_obj.c), parsed from memory as an OBJ and as an MTL file.
+vt_add_fuzzer(fuzz_obj
+  SOURCES fuzz/fuzz_obj.c ${PROJECT_SOURCE_DIR}/lib/vt_obj.c ${PROJECT_SOURCE_DIR}/lib/vt_error.c)
