@@ -88,6 +88,7 @@ add_executable(make_image_seeds fuzz/make_image_seeds.c)
 target_link_libraries(make_image_seeds PRIVATE vt_synth_images)
 vt_target_warnings(make_image_seeds)
 
-# OBJ/MTL reader (lib/vt_obj.c), parsed from memory as an OBJ and as an MTL file.
+# OBJ/MTL reader (lib/vt_obj.c, vt_mtl.c, vt_text.c), parsed from memory as an OBJ and as an MTL file.
 vt_add_fuzzer(fuzz_obj
-  SOURCES fuzz/fuzz_obj.c ${PROJECT_SOURCE_DIR}/lib/vt_obj.c ${PROJECT_SOURCE_DIR}/lib/vt_error.c)
+  SOURCES fuzz/fuzz_obj.c ${PROJECT_SOURCE_DIR}/lib/vt_obj.c ${PROJECT_SOURCE_DIR}/lib/vt_text.c
+          ${PROJECT_SOURCE_DIR}/lib/vt_mtl.c ${PROJECT_SOURCE_DIR}/lib/vt_error.c)
