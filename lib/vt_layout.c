@@ -1,0 +1,419 @@
+/* Atlas layout model: validation (sizes, cells inside the atlas, no overlaps), lookup by name,
+ * UV mapping. The JSON side is vt_layout_json.c. */
+#include "vt_layout.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vt_checked.h"
+#include "vts.h"
+
+void vt_layout_limits_default(struct vt_layout_limits *limits)
+{
+    *limits = (struct vt_layout_limits){
+        .max_file_bytes = 1ull << 30, .max_entries = 1u << 20, .max_edge = 1u << 24};
+}
+
+static bool is_pow2(uint64_t v)
+{
+    return v && !(v & (v - 1));
+}
+
+/* ---- validation, shared by the reader and writers ---- */
+
+static bool valid_layer_name(const char *s)
+{
+    size_t n = strlen(s);
+    if (n == 0 || n > 63)
+        return false;
+    for (size_t i = 0; i < n; i++) {
+        char c = s[i];
+        if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+              c == '_' || c == '-'))
+            return false;
+    }
+    return true;
+}
+
+static bool valid_scale(double s)
+{
+    if (!(s > 0) || !isfinite(s))
+        return false;
+    int e;
+    double m = frexp(s, &e);
+    return m == 0.5 && e - 1 >= -16 && e - 1 <= 16;
+}
+
+static int cmp_name(const void *a, const void *b, const struct vt_layout *l)
+{
+    return strcmp(l->entries[*(const uint32_t *)a].name, l->entries[*(const uint32_t *)b].name);
+}
+
+/* Sorting by name with a merge sort (qsort lacks a context argument and thread-safe globals are
+ * not worth it). */
+static void sort_by_name(uint32_t *idx, uint32_t *tmp, uint32_t n, const struct vt_layout *l)
+{
+    if (n < 2)
+        return;
+    uint32_t h = n / 2;
+    sort_by_name(idx, tmp, h, l);
+    sort_by_name(idx + h, tmp, n - h, l);
+    uint32_t i = 0, j = h, k = 0;
+    while (i < h && j < n)
+        tmp[k++] = cmp_name(&idx[j], &idx[i], l) < 0 ? idx[j++] : idx[i++];
+    while (i < h)
+        tmp[k++] = idx[i++];
+    while (j < n)
+        tmp[k++] = idx[j++];
+    memcpy(idx, tmp, (size_t)n * sizeof *idx);
+}
+
+/* Checks one entry against the atlas; the message names the entry. */
+static int check_entry(const struct vt_layout *l, uint32_t i, const char *name,
+                       struct vt_error *err)
+{
+    const struct vt_layout_entry *e = &l->entries[i];
+    const char *what = NULL;
+    uint64_t cw = (uint64_t)e->width * e->repeat_u, ch = (uint64_t)e->height * e->repeat_v;
+    if (!e->name || !e->name[0])
+        what = "has no name";
+    else if (e->width == 0 || e->height == 0)
+        what = "has an empty size";
+    else if (e->repeat_u == 0 || e->repeat_v == 0 || e->repeat_u > 65536 || e->repeat_v > 65536)
+        what = "has a repeat outside 1..65536";
+    else if (cw > e->cell_width || ch > e->cell_height)
+        what = "does not fit in its cell";
+    else if ((uint64_t)e->x + e->cell_width > l->width ||
+             (uint64_t)e->y + e->cell_height > l->height)
+        what = "has a cell outside the atlas";
+    else if (!is_pow2(e->alignment) || e->x % e->alignment || e->y % e->alignment ||
+             e->cell_width % e->alignment || e->cell_height % e->alignment)
+        what = "has an alignment that is not a power of two dividing its cell";
+    else if (!valid_scale(e->scale))
+        what = "has a scale that is not a power of two in 2^-16..2^16";
+    if (what)
+        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': entry %u ('%s') %s", name, i,
+                            e->name ? e->name : "", what);
+    for (uint32_t k = 0; k < l->layer_count; k++) {
+        const struct vt_layout_texture *t = &e->textures[k];
+        if (t->path && (!t->path[0] || t->width == 0 || t->height == 0))
+            return vt_error_set(err, VT_ERR_BAD_INPUT,
+                                "'%s': entry '%s' layer '%s': texture without a path or size", name,
+                                e->name, l->layers[k].name);
+        for (int c = 0; c < 4 && !t->path; c++)
+            if (!(t->fill[c] >= 0 && t->fill[c] <= 1))
+                return vt_error_set(err, VT_ERR_BAD_INPUT,
+                                    "'%s': entry '%s' layer '%s': fill outside 0..1", name, e->name,
+                                    l->layers[k].name);
+    }
+    return 0;
+}
+
+/* ---- cell overlap: a sweep over x with the active cells in a treap keyed by y ---- */
+
+struct treap {
+    uint32_t *left, *right, *prio; /* node i = entry i; 0 = none, nodes are 1-based */
+    const struct vt_layout_entry *e;
+    uint32_t root;
+};
+
+static uint32_t key(const struct treap *t, uint32_t n)
+{
+    return t->e[n - 1].y;
+}
+
+static uint32_t rot_right(struct treap *t, uint32_t n)
+{
+    uint32_t l = t->left[n];
+    t->left[n] = t->right[l];
+    t->right[l] = n;
+    return l;
+}
+
+static uint32_t rot_left(struct treap *t, uint32_t n)
+{
+    uint32_t r = t->right[n];
+    t->right[n] = t->left[r];
+    t->left[r] = n;
+    return r;
+}
+
+static uint32_t treap_insert(struct treap *t, uint32_t root, uint32_t n)
+{
+    if (!root)
+        return n;
+    if (key(t, n) < key(t, root)) {
+        t->left[root] = treap_insert(t, t->left[root], n);
+        if (t->prio[t->left[root]] > t->prio[root])
+            root = rot_right(t, root);
+    } else {
+        t->right[root] = treap_insert(t, t->right[root], n);
+        if (t->prio[t->right[root]] > t->prio[root])
+            root = rot_left(t, root);
+    }
+    return root;
+}
+
+/* Removes the node with n's key (keys of active cells are unique: the cells are disjoint). */
+static uint32_t treap_remove(struct treap *t, uint32_t root, uint32_t n)
+{
+    if (!root)
+        return 0;
+    if (key(t, n) < key(t, root)) {
+        t->left[root] = treap_remove(t, t->left[root], n);
+        return root;
+    }
+    if (key(t, n) > key(t, root)) {
+        t->right[root] = treap_remove(t, t->right[root], n);
+        return root;
+    }
+    if (!t->left[root] || !t->right[root])
+        return t->left[root] ? t->left[root] : t->right[root];
+    if (t->prio[t->left[root]] > t->prio[t->right[root]]) {
+        uint32_t r = rot_right(t, root);
+        t->right[r] = treap_remove(t, t->right[r], n);
+        return r;
+    }
+    uint32_t r = rot_left(t, root);
+    t->left[r] = treap_remove(t, t->left[r], n);
+    return r;
+}
+
+/* The active node with the largest y below limit, or 0. */
+static uint32_t treap_below(const struct treap *t, uint32_t limit)
+{
+    uint32_t n = t->root, best = 0;
+    while (n) {
+        if (key(t, n) < limit) {
+            best = n;
+            n = t->right[n];
+        } else {
+            n = t->left[n];
+        }
+    }
+    return best;
+}
+
+static const struct vt_layout_entry *cmp_entries;
+
+static int cmp_start(const void *a, const void *b)
+{
+    uint32_t xa = cmp_entries[*(const uint32_t *)a].x, xb = cmp_entries[*(const uint32_t *)b].x;
+    return (xa > xb) - (xa < xb);
+}
+
+static int cmp_end(const void *a, const void *b)
+{
+    const struct vt_layout_entry *ea = &cmp_entries[*(const uint32_t *)a],
+                                 *eb = &cmp_entries[*(const uint32_t *)b];
+    uint64_t xa = (uint64_t)ea->x + ea->cell_width, xb = (uint64_t)eb->x + eb->cell_width;
+    return (xa > xb) - (xa < xb);
+}
+
+/* Sorts idx[0..n) by cmp with e as the context (qsort has no user pointer). */
+static void sort_entries(uint32_t *idx, uint32_t n, const struct vt_layout_entry *e,
+                         int (*cmp)(const void *, const void *))
+{
+    static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
+    pthread_mutex_lock(&lock);
+    cmp_entries = e;
+    qsort(idx, n, sizeof *idx, cmp);
+    cmp_entries = NULL;
+    pthread_mutex_unlock(&lock);
+}
+
+static int check_overlaps(const struct vt_layout *l, const char *name, struct vt_error *err)
+{
+    uint32_t n = l->entry_count;
+    if (n < 2)
+        return 0;
+    int rc = VT_ERR_NOMEM;
+    struct treap t = {.e = l->entries};
+    uint32_t *start = malloc((size_t)n * sizeof *start), *end = malloc((size_t)n * sizeof *end);
+    t.left = calloc((size_t)n + 1, sizeof *t.left);
+    t.right = calloc((size_t)n + 1, sizeof *t.right);
+    t.prio = malloc(((size_t)n + 1) * sizeof *t.prio);
+    if (!start || !end || !t.left || !t.right || !t.prio) {
+        vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory checking %u cells", name, n);
+        goto out;
+    }
+    uint32_t seed = 2463534242u;
+    for (uint32_t i = 0; i < n; i++) {
+        start[i] = end[i] = i;
+        seed ^= seed << 13, seed ^= seed >> 17, seed ^= seed << 5;
+        t.prio[i + 1] = seed;
+    }
+    sort_entries(start, n, l->entries, cmp_start);
+    sort_entries(end, n, l->entries, cmp_end);
+    rc = 0;
+    for (uint32_t s = 0, k = 0; s < n; s++) {
+        const struct vt_layout_entry *e = &l->entries[start[s]];
+        for (; k < n && (uint64_t)l->entries[end[k]].x + l->entries[end[k]].cell_width <= e->x; k++)
+            t.root = treap_remove(&t, t.root, end[k] + 1);
+        uint32_t below = treap_below(&t, e->y + e->cell_height);
+        if (below && (uint64_t)key(&t, below) + l->entries[below - 1].cell_height > e->y) {
+            rc = vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': the cells of '%s' and '%s' overlap",
+                              name, l->entries[below - 1].name, e->name);
+            goto out;
+        }
+        t.root = treap_insert(&t, t.root, start[s] + 1);
+    }
+out:
+    free(start);
+    free(end);
+    free(t.left);
+    free(t.right);
+    free(t.prio);
+    return rc;
+}
+
+int vt_layout_check(struct vt_layout *l, const char *name, struct vt_error *err)
+{
+    if (l->width == 0 || l->height == 0)
+        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': the atlas has an empty size", name);
+    if (!is_pow2(l->tile_content) || l->tile_content < 8 || l->tile_content > 16384 ||
+        l->border > 64)
+        return vt_error_set(err, VT_ERR_BAD_INPUT,
+                            "'%s': tile content %u / border %u: content must be a power of two "
+                            "8..16384 and border 0..64",
+                            name, l->tile_content, l->border);
+    if (l->layer_count == 0 || l->layer_count > VT_LAYOUT_MAX_LAYERS)
+        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': %u layers (1..%d)", name, l->layer_count,
+                            VT_LAYOUT_MAX_LAYERS);
+    for (uint32_t i = 0; i < l->layer_count; i++) {
+        const struct vt_layout_layer *a = &l->layers[i];
+        if (!a->name || !valid_layer_name(a->name) || !a->map || !a->map[0] ||
+            a->colour < VTS_COLOUR_SRGB || a->colour > VTS_COLOUR_DATA)
+            return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': layer %u: bad name, map or colour",
+                                name, i);
+        for (uint32_t j = 0; j < i; j++)
+            if (strcmp(a->name, l->layers[j].name) == 0)
+                return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': layer '%s' given twice", name,
+                                    a->name);
+    }
+    for (uint32_t i = 0; i < l->entry_count; i++) {
+        int rc = check_entry(l, i, name, err);
+        if (rc < 0)
+            return rc;
+    }
+    free(l->by_name);
+    l->by_name = NULL;
+    uint32_t n = l->entry_count;
+    uint32_t *idx = malloc(((size_t)n + 1) * sizeof *idx);
+    uint32_t *tmp = malloc(((size_t)n + 1) * sizeof *tmp);
+    if (!idx || !tmp) {
+        free(idx);
+        free(tmp);
+        return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory", name);
+    }
+    for (uint32_t i = 0; i < n; i++)
+        idx[i] = i;
+    sort_by_name(idx, tmp, n, l);
+    free(tmp);
+    for (uint32_t i = 1; i < n; i++)
+        if (strcmp(l->entries[idx[i - 1]].name, l->entries[idx[i]].name) == 0) {
+            int rc = vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': entry '%s' given twice", name,
+                                  l->entries[idx[i]].name);
+            free(idx);
+            return rc;
+        }
+    l->by_name = idx;
+    return check_overlaps(l, name, err);
+}
+
+int vt_layout_index(struct vt_layout *layout, struct vt_error *err)
+{
+    return vt_layout_check(layout, "layout", err);
+}
+
+const struct vt_layout_entry *vt_layout_find(const struct vt_layout *layout, const char *name)
+{
+    if (!layout->by_name)
+        return NULL;
+    uint32_t lo = 0, hi = layout->entry_count;
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        const struct vt_layout_entry *e = &layout->entries[layout->by_name[mid]];
+        int c = strcmp(e->name, name);
+        if (c == 0)
+            return e;
+        if (c < 0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return NULL;
+}
+
+int vt_layout_layer_index(const struct vt_layout *layout, const char *name)
+{
+    for (uint32_t i = 0; i < layout->layer_count; i++)
+        if (strcmp(layout->layers[i].name, name) == 0)
+            return (int)i;
+    return -1;
+}
+
+void vt_layout_map_uv(const struct vt_layout *layout, const struct vt_layout_entry *e, double u,
+                      double v, double *au, double *av)
+{
+    *au = ((double)e->x + (u - e->origin_u) * e->width) / layout->width;
+    *av = 1.0 -
+          ((double)e->y + ((double)e->repeat_v - (v - e->origin_v)) * e->height) / layout->height;
+}
+
+bool vt_layout_uv_covered(const struct vt_layout_entry *e, double u, double v)
+{
+    return u >= e->origin_u && u <= (double)e->origin_u + e->repeat_u && v >= e->origin_v &&
+           v <= (double)e->origin_v + e->repeat_v;
+}
+
+int vt_layout_alloc(struct vt_layout *layout, uint32_t layer_count, uint32_t entry_count,
+                    struct vt_error *err)
+{
+    memset(layout, 0, sizeof *layout);
+    layout->layers = calloc(layer_count ? layer_count : 1, sizeof *layout->layers);
+    layout->entries = calloc(entry_count ? entry_count : 1, sizeof *layout->entries);
+    if (!layout->layers || !layout->entries)
+        goto nomem;
+    layout->layer_count = layer_count;
+    layout->entry_count = entry_count;
+    for (uint32_t i = 0; i < entry_count; i++) {
+        struct vt_layout_entry *e = &layout->entries[i];
+        e->textures = calloc(layer_count ? layer_count : 1, sizeof *e->textures);
+        if (!e->textures)
+            goto nomem;
+        e->repeat_u = e->repeat_v = 1;
+        e->alignment = 1;
+        e->scale = 1;
+    }
+    return 0;
+nomem:
+    vt_layout_release(layout);
+    return vt_error_set(err, VT_ERR_NOMEM, "out of memory for a layout of %u entries", entry_count);
+}
+
+void vt_layout_release(struct vt_layout *layout)
+{
+    if (!layout)
+        return;
+    for (uint32_t i = 0; layout->layers && i < layout->layer_count; i++) {
+        free(layout->layers[i].name);
+        free(layout->layers[i].map);
+    }
+    for (uint32_t i = 0; layout->entries && i < layout->entry_count; i++) {
+        struct vt_layout_entry *e = &layout->entries[i];
+        for (uint32_t k = 0; e->textures && k < layout->layer_count; k++) {
+            free(e->textures[k].path);
+            free(e->textures[k].resolved);
+        }
+        free(e->textures);
+        free(e->name);
+    }
+    free(layout->layers);
+    free(layout->entries);
+    free(layout->by_name);
+    free(layout->generator);
+    memset(layout, 0, sizeof *layout);
+}

@@ -1,0 +1,149 @@
+/* Atlas layout (atlas.json): where every texture of a scene lies in one virtual texture, per layer.
+ * Written by vt-atlas, read by vt-offset (texture coordinates) and vt-tiles --layout (texels).
+ * The schema is documented in docs/atlas-format.md; this reader checks every field and every
+ * rectangle, so a layout that loads is safe to use without further checks.
+ *
+ * Coordinates: level-0 texels of the atlas, x to the right, y DOWN (row 0 is the top row, as in
+ * the store and in image files). OBJ texture coordinates have v UP (v = 0 is the bottom row of an
+ * image). An entry's material coordinate (u, v) maps to the atlas coordinate (U, V), also v up:
+ *
+ *   U = (x + (u - origin_u) * width) / atlas_width
+ *   V = 1 - (y + (repeat_v - (v - origin_v)) * height) / atlas_height
+ *
+ * so texel (i, j) of a texture (j from the top) whose centre is u = (i + 0.5) / width,
+ * v = 1 - (j + 0.5) / height lands on the centre of atlas texel (x + i, y + j) when scale is 1
+ * and there is one copy. With wrap replication the texture is copied repeat_u x repeat_v times
+ * side by side from (x, y), and origin_u/origin_v is the integer part of the smallest u/v the
+ * material uses, so its whole UV range [origin, origin + repeat] lands inside the copies. */
+#ifndef VT_LAYOUT_H
+#define VT_LAYOUT_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vt_error.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define VT_LAYOUT_FORMAT     "vtpipe-atlas"
+#define VT_LAYOUT_VERSION    1
+#define VT_LAYOUT_MAX_LAYERS 16
+
+/* One layer of the atlas (diffuse, normal, specular...): one store layer. */
+struct vt_layout_layer {
+    char *name;      /* unique, 1..63 bytes [A-Za-z0-9_-]: "diffuse", "normal", "specular"... */
+    char *map;       /* the MTL statement it comes from: "map_Kd", "norm", "map_Ks", "map_d"... */
+    uint32_t colour; /* enum vts_colour of the layer: srgb, linear, normal or data */
+};
+
+/* What one entry shows in one layer: a texture file, or a constant colour. */
+struct vt_layout_texture {
+    char *path;             /* as written in the layout; NULL: a constant fill */
+    char *resolved;         /* path resolved against the layout file's directory; NULL with path */
+    uint32_t width, height; /* pixel size of the file (vt-tiles checks it when it opens it) */
+    double fill[4];         /* RGBA in 0..1 when path is NULL (e.g. Kd for diffuse) */
+};
+
+/* One material (or one texture of a --textures/--grid list) and its place in the atlas. All the
+ * layers of an entry share its rectangle. */
+struct vt_layout_entry {
+    char *name;                  /* unique material name */
+    uint32_t x, y;               /* top-left texel of the first copy */
+    uint32_t width, height;      /* one copy of the texture in the atlas, in texels (>= 1) */
+    uint32_t repeat_u, repeat_v; /* copies side by side (wrap replication); 1 when not wrapped */
+    int32_t origin_u, origin_v;  /* integer UV origin of the copies (see the formula above) */
+    uint32_t cell_width;         /* exclusive cell at (x, y): no other entry's cell overlaps it; */
+    uint32_t cell_height;        /* >= width * repeat_u and height * repeat_v */
+    uint32_t alignment;          /* power of two dividing x, y, cell_width and cell_height */
+    double scale;                /* atlas texels per source pixel: a power of two 2^-16..2^16
+                                    (density rescaling; 1 normally). width = ceil(source width *
+                                    scale) for scale < 1 (the source's own mip level), source
+                                    width * scale for scale >= 1 (texels replicated) */
+    uint32_t group;              /* 0: a texture of its own. Entries sharing a non-zero group are
+                                    one continuous surface laid edge to edge (vt-atlas --grid
+                                    terrain pieces): borders and mip filtering cross between them
+                                    and clamp only at the outer edge of the group */
+    struct vt_layout_texture *textures; /* one per layer, in layer order */
+};
+
+/* A whole layout; caller-owned, freed with vt_layout_release(). */
+struct vt_layout {
+    uint32_t width, height; /* atlas level-0 size in texels */
+    uint32_t tile_content;  /* tile content edge vt-tiles must use (a power of two) */
+    uint32_t border;        /* tile border vt-tiles must use */
+    char *generator;        /* "vt-atlas 0.1.0" or NULL */
+    struct vt_layout_layer *layers;
+    uint32_t layer_count; /* 1..VT_LAYOUT_MAX_LAYERS */
+    struct vt_layout_entry *entries;
+    uint32_t entry_count;
+    uint32_t *by_name; /* entry indices sorted by name (filled by the reader and by
+                          vt_layout_index()); used by vt_layout_find() */
+};
+
+/* Limits against hostile files; exceeding one fails with VT_ERR_LIMIT and a message. */
+struct vt_layout_limits {
+    uint64_t max_file_bytes; /* size of atlas.json (default 1 GiB) */
+    uint32_t max_entries;    /* textures/materials (default 2^20) */
+    uint32_t max_edge;       /* atlas width and height (default 2^24) */
+};
+void vt_layout_limits_default(struct vt_layout_limits *limits);
+
+/* Reads and validates the layout at path into *layout (overwritten: release it after success or
+ * failure). limits may be NULL (defaults). Checks: format and version, every field's type and
+ * range, layer names unique, entry names unique, every copy inside its cell, every cell inside the
+ * atlas, alignment a power of two dividing x/y/cell sizes, no two cells overlapping, texture
+ * sizes non-zero. Returns 0, VT_ERR_IO, VT_ERR_BAD_INPUT ("'atlas.json': entries[3].x: ..."),
+ * VT_ERR_LIMIT or VT_ERR_NOMEM. */
+int vt_layout_read(const char *path, const struct vt_layout_limits *limits,
+                   struct vt_layout *layout, struct vt_error *err);
+
+/* As vt_layout_read() on size bytes in memory; name is used in messages and as the base of
+ * relative texture paths. */
+int vt_layout_parse_memory(const void *data, size_t size, const char *name,
+                           const struct vt_layout_limits *limits, struct vt_layout *layout,
+                           struct vt_error *err);
+
+/* Checks a layout built in memory (the same checks as the reader) and builds its name index.
+ * Call before vt_layout_write() or vt_layout_find() on a layout that was not read. */
+int vt_layout_index(struct vt_layout *layout, struct vt_error *err);
+
+/* As vt_layout_index(), with messages naming name ("'atlas.json': the cells of 'a' and 'b'
+ * overlap"). */
+int vt_layout_check(struct vt_layout *layout, const char *name, struct vt_error *err);
+
+/* Writes the layout as JSON to path atomically (temporary file + rename). Texture paths are
+ * written as they are in texture.path (make them relative to the output's directory first if
+ * the layout should move with it). Calls vt_layout_index() first. */
+int vt_layout_write(const char *path, struct vt_layout *layout, struct vt_error *err);
+
+/* Frees everything *layout holds (strings, arrays) and zeroes it. Accepts NULL. */
+void vt_layout_release(struct vt_layout *layout);
+
+/* The entry named name, or NULL. O(log n) after vt_layout_read() or vt_layout_index(). */
+const struct vt_layout_entry *vt_layout_find(const struct vt_layout *layout, const char *name);
+
+/* Index of the layer named name, or -1. */
+int vt_layout_layer_index(const struct vt_layout *layout, const char *name);
+
+/* Maps a material coordinate (u, v) of entry e to atlas coordinates (*au, *av) in double precision
+ * with the formula at the top of this file. Does not check that (u, v) lies in the copies. */
+void vt_layout_map_uv(const struct vt_layout *layout, const struct vt_layout_entry *e, double u,
+                      double v, double *au, double *av);
+
+/* True when (u, v) lies inside the UV range the copies of e cover: origin_u <= u <=
+ * origin_u + repeat_u, and the same for v. */
+bool vt_layout_uv_covered(const struct vt_layout_entry *e, double u, double v);
+
+/* Allocation helpers for writers (vt-atlas, tests): zeroed arrays of count layers/entries, and
+ * per entry layer_count textures. Return 0 or VT_ERR_NOMEM. Strings are strdup()ed by the
+ * caller and freed by vt_layout_release(). */
+int vt_layout_alloc(struct vt_layout *layout, uint32_t layer_count, uint32_t entry_count,
+                    struct vt_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

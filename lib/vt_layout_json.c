@@ -1,0 +1,414 @@
+/* atlas.json reader and writer (jansson); the model and its checks are in vt_layout.c. Schema:
+ * docs/atlas-format.md. */
+#include <errno.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vt_atomic_file.h"
+#include "vt_layout.h"
+#include "vt_obj.h"
+#include "vts.h"
+
+static const char *const colour_names[] = {"srgb", "linear", "normal", "data"};
+
+/* Parsing context: the file name and the JSON path of the value being read, for messages. */
+struct ctx {
+    const char *name;
+    struct vt_error *err;
+};
+
+static int bad(struct ctx *c, const char *where, const char *what)
+{
+    return vt_error_set(c->err, VT_ERR_BAD_INPUT, "'%s': %s: %s", c->name, where, what);
+}
+
+static int get_uint(struct ctx *c, json_t *obj, const char *key, const char *where, uint64_t min,
+                    uint64_t max, bool required, uint64_t dflt, uint64_t *out)
+{
+    char path[160];
+    snprintf(path, sizeof path, "%s%s%s", where, where[0] ? "." : "", key);
+    json_t *v = json_object_get(obj, key);
+    if (!v) {
+        if (required)
+            return bad(c, path, "missing");
+        *out = dflt;
+        return 0;
+    }
+    if (!json_is_integer(v) || json_integer_value(v) < 0 || (uint64_t)json_integer_value(v) < min ||
+        (uint64_t)json_integer_value(v) > max) {
+        char what[96];
+        snprintf(what, sizeof what, "expected an integer %llu..%llu", (unsigned long long)min,
+                 (unsigned long long)max);
+        return bad(c, path, what);
+    }
+    *out = (uint64_t)json_integer_value(v);
+    return 0;
+}
+
+static int get_u32(struct ctx *c, json_t *obj, const char *key, const char *where, uint32_t min,
+                   uint32_t max, uint32_t *out)
+{
+    uint64_t v;
+    int rc = get_uint(c, obj, key, where, min, max, true, 0, &v);
+    *out = (uint32_t)v;
+    return rc;
+}
+
+static int get_string(struct ctx *c, json_t *obj, const char *key, const char *where, bool required,
+                      char **out)
+{
+    char path[160];
+    snprintf(path, sizeof path, "%s%s%s", where, where[0] ? "." : "", key);
+    json_t *v = json_object_get(obj, key);
+    *out = NULL;
+    if (!v)
+        return required ? bad(c, path, "missing") : 0;
+    if (!json_is_string(v) || strlen(json_string_value(v)) != json_string_length(v))
+        return bad(c, path, "expected a string without NUL");
+    *out = strdup(json_string_value(v));
+    return *out ? 0 : vt_error_set(c->err, VT_ERR_NOMEM, "'%s': out of memory", c->name);
+}
+
+/* A pair [a, b] of integers in min..max. */
+static int get_pair(struct ctx *c, json_t *obj, const char *key, const char *where, int64_t min,
+                    int64_t max, int64_t dflt, int64_t out[2])
+{
+    char path[160];
+    snprintf(path, sizeof path, "%s.%s", where, key);
+    json_t *v = json_object_get(obj, key);
+    if (!v) {
+        out[0] = out[1] = dflt;
+        return 0;
+    }
+    for (size_t i = 0; i < 2; i++) {
+        json_t *x = json_is_array(v) && json_array_size(v) == 2 ? json_array_get(v, i) : NULL;
+        if (!x || !json_is_integer(x) || json_integer_value(x) < min || json_integer_value(x) > max)
+            return bad(c, path, "expected two integers in range");
+        out[i] = json_integer_value(x);
+    }
+    return 0;
+}
+
+static int read_layers(struct ctx *c, json_t *root, struct vt_layout *l)
+{
+    json_t *arr = json_object_get(root, "layers");
+    if (!json_is_array(arr) || json_array_size(arr) == 0 ||
+        json_array_size(arr) > VT_LAYOUT_MAX_LAYERS)
+        return bad(c, "layers", "expected an array of 1..16 layers");
+    for (size_t i = 0; i < json_array_size(arr); i++) {
+        json_t *o = json_array_get(arr, i);
+        char where[32], *colour = NULL;
+        snprintf(where, sizeof where, "layers[%zu]", i);
+        if (!json_is_object(o))
+            return bad(c, where, "expected an object");
+        struct vt_layout_layer *a = &l->layers[i];
+        int rc = get_string(c, o, "name", where, true, &a->name);
+        if (!rc)
+            rc = get_string(c, o, "map", where, true, &a->map);
+        if (!rc)
+            rc = get_string(c, o, "colour", where, true, &colour);
+        if (rc)
+            return rc;
+        a->colour = 0;
+        for (uint32_t k = 0; k < 4; k++)
+            if (strcmp(colour, colour_names[k]) == 0)
+                a->colour = VTS_COLOUR_SRGB + k;
+        free(colour);
+        if (!a->colour)
+            return bad(c, where, "colour must be srgb, linear, normal or data");
+    }
+    return 0;
+}
+
+static int read_texture(struct ctx *c, json_t *o, const char *where, struct vt_layout_texture *t)
+{
+    if (!json_is_object(o))
+        return bad(c, where, "expected an object");
+    json_t *fill = json_object_get(o, "fill");
+    if (fill) {
+        if (!json_is_array(fill) || json_array_size(fill) != 4)
+            return bad(c, where, "fill must be [r, g, b, a]");
+        for (size_t k = 0; k < 4; k++) {
+            json_t *x = json_array_get(fill, k);
+            if (!json_is_number(x) || !(json_number_value(x) >= 0 && json_number_value(x) <= 1))
+                return bad(c, where, "fill values must be numbers in 0..1");
+            t->fill[k] = json_number_value(x);
+        }
+        return 0;
+    }
+    int rc = get_string(c, o, "path", where, true, &t->path);
+    uint64_t w, h;
+    if (!rc)
+        rc = get_uint(c, o, "width", where, 1, 1u << 24, true, 0, &w);
+    if (!rc)
+        rc = get_uint(c, o, "height", where, 1, 1u << 24, true, 0, &h);
+    if (rc)
+        return rc;
+    if (!t->path[0])
+        return bad(c, where, "empty path");
+    t->width = (uint32_t)w;
+    t->height = (uint32_t)h;
+    t->resolved = vt_obj_resolve_path(c->name, t->path);
+    return t->resolved ? 0 : vt_error_set(c->err, VT_ERR_NOMEM, "'%s': out of memory", c->name);
+}
+
+static int read_entry(struct ctx *c, json_t *o, size_t i, const struct vt_layout *l,
+                      struct vt_layout_entry *e)
+{
+    char where[48];
+    snprintf(where, sizeof where, "entries[%zu]", i);
+    if (!json_is_object(o))
+        return bad(c, where, "expected an object");
+    int64_t rep[2], org[2];
+    uint64_t group;
+    int rc = get_string(c, o, "name", where, true, &e->name);
+    if (!rc)
+        rc = get_u32(c, o, "x", where, 0, UINT32_MAX, &e->x);
+    if (!rc)
+        rc = get_u32(c, o, "y", where, 0, UINT32_MAX, &e->y);
+    if (!rc)
+        rc = get_u32(c, o, "width", where, 1, UINT32_MAX, &e->width);
+    if (!rc)
+        rc = get_u32(c, o, "height", where, 1, UINT32_MAX, &e->height);
+    if (!rc)
+        rc = get_u32(c, o, "cell_width", where, 1, UINT32_MAX, &e->cell_width);
+    if (!rc)
+        rc = get_u32(c, o, "cell_height", where, 1, UINT32_MAX, &e->cell_height);
+    if (!rc)
+        rc = get_u32(c, o, "alignment", where, 1, 1u << 30, &e->alignment);
+    if (!rc)
+        rc = get_pair(c, o, "repeat", where, 1, 65536, 1, rep);
+    if (!rc)
+        rc = get_pair(c, o, "origin", where, -(1 << 30), 1 << 30, 0, org);
+    if (!rc)
+        rc = get_uint(c, o, "group", where, 0, UINT32_MAX, false, 0, &group);
+    if (rc)
+        return rc;
+    e->repeat_u = (uint32_t)rep[0], e->repeat_v = (uint32_t)rep[1];
+    e->origin_u = (int32_t)org[0], e->origin_v = (int32_t)org[1];
+    e->group = (uint32_t)group;
+    json_t *scale = json_object_get(o, "scale");
+    e->scale = 1;
+    if (scale) {
+        if (!json_is_number(scale))
+            return bad(c, where, "scale must be a number");
+        e->scale = json_number_value(scale);
+    }
+    json_t *tex = json_object_get(o, "textures");
+    if (!json_is_array(tex) || json_array_size(tex) != l->layer_count)
+        return bad(c, where, "textures must be an array with one item per layer");
+    for (uint32_t k = 0; k < l->layer_count; k++) {
+        char twhere[96];
+        snprintf(twhere, sizeof twhere, "%s.textures[%u]", where, k);
+        rc = read_texture(c, json_array_get(tex, k), twhere, &e->textures[k]);
+        if (rc)
+            return rc;
+    }
+    return 0;
+}
+
+static int read_root(struct ctx *c, json_t *root, const struct vt_layout_limits *lim,
+                     struct vt_layout *l)
+{
+    if (!json_is_object(root))
+        return bad(c, "top level", "expected an object");
+    json_t *fmt = json_object_get(root, "format");
+    if (!json_is_string(fmt) || strcmp(json_string_value(fmt), VT_LAYOUT_FORMAT) != 0)
+        return bad(c, "format", "not \"" VT_LAYOUT_FORMAT "\": not an atlas layout");
+    uint64_t version;
+    int rc = get_uint(c, root, "version", "", 1, UINT32_MAX, true, 0, &version);
+    if (rc)
+        return rc;
+    if (version != VT_LAYOUT_VERSION)
+        return vt_error_set(c->err, VT_ERR_BAD_INPUT,
+                            "'%s': layout version %llu; this build reads version %d", c->name,
+                            (unsigned long long)version, VT_LAYOUT_VERSION);
+    json_t *layers = json_object_get(root, "layers"), *entries = json_object_get(root, "entries");
+    if (!json_is_array(entries))
+        return bad(c, "entries", "expected an array");
+    if (json_array_size(entries) > lim->max_entries)
+        return vt_error_set(c->err, VT_ERR_LIMIT, "'%s': %zu entries, more than the limit %u",
+                            c->name, json_array_size(entries), lim->max_entries);
+    size_t layer_count = json_is_array(layers) ? json_array_size(layers) : 0;
+    if (layer_count == 0 || layer_count > VT_LAYOUT_MAX_LAYERS)
+        return bad(c, "layers", "expected an array of 1..16 layers");
+    rc = vt_layout_alloc(l, (uint32_t)layer_count, (uint32_t)json_array_size(entries), c->err);
+    if (!rc)
+        rc = get_u32(c, root, "width", "", 1, lim->max_edge, &l->width);
+    if (!rc)
+        rc = get_u32(c, root, "height", "", 1, lim->max_edge, &l->height);
+    if (!rc)
+        rc = get_u32(c, root, "tile_content", "", 8, 16384, &l->tile_content);
+    if (!rc)
+        rc = get_u32(c, root, "border", "", 0, 64, &l->border);
+    if (!rc)
+        rc = get_string(c, root, "generator", "", false, &l->generator);
+    if (!rc)
+        rc = read_layers(c, root, l);
+    for (size_t i = 0; !rc && i < l->entry_count; i++)
+        rc = read_entry(c, json_array_get(entries, i), i, l, &l->entries[i]);
+    return rc ? rc : vt_layout_check(l, c->name, c->err);
+}
+
+int vt_layout_parse_memory(const void *data, size_t size, const char *name,
+                           const struct vt_layout_limits *limits, struct vt_layout *layout,
+                           struct vt_error *err)
+{
+    struct vt_layout_limits lim;
+    if (limits)
+        lim = *limits;
+    else
+        vt_layout_limits_default(&lim);
+    memset(layout, 0, sizeof *layout);
+    if (size > lim.max_file_bytes)
+        return vt_error_set(err, VT_ERR_LIMIT, "'%s': %zu bytes, more than the limit %llu", name,
+                            size, (unsigned long long)lim.max_file_bytes);
+    json_error_t jerr;
+    json_t *root = json_loadb(data, size, JSON_REJECT_DUPLICATES, &jerr);
+    if (!root)
+        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%d: %s", name, jerr.line, jerr.text);
+    struct ctx c = {.name = name, .err = err};
+    int rc = read_root(&c, root, &lim, layout);
+    json_decref(root);
+    return rc;
+}
+
+int vt_layout_read(const char *path, const struct vt_layout_limits *limits,
+                   struct vt_layout *layout, struct vt_error *err)
+{
+    struct vt_layout_limits lim;
+    if (limits)
+        lim = *limits;
+    else
+        vt_layout_limits_default(&lim);
+    memset(layout, 0, sizeof *layout);
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return vt_error_set(err, VT_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
+    char *buf = NULL;
+    size_t len = 0, cap = 0;
+    int rc = 0;
+    for (;;) {
+        if (len == cap) {
+            size_t ncap = cap ? cap * 2 : 65536;
+            char *nbuf = len > lim.max_file_bytes ? NULL : realloc(buf, ncap);
+            if (!nbuf) {
+                rc = len > lim.max_file_bytes
+                         ? vt_error_set(err, VT_ERR_LIMIT, "'%s': more than %llu bytes", path,
+                                        (unsigned long long)lim.max_file_bytes)
+                         : vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory", path);
+                break;
+            }
+            buf = nbuf, cap = ncap;
+        }
+        size_t n = fread(buf + len, 1, cap - len, f);
+        len += n;
+        if (n == 0) {
+            if (ferror(f))
+                rc = vt_error_set(err, VT_ERR_IO, "cannot read '%s': %s", path, strerror(errno));
+            break;
+        }
+    }
+    fclose(f);
+    if (!rc)
+        rc = vt_layout_parse_memory(buf, len, path, &lim, layout, err);
+    free(buf);
+    return rc;
+}
+
+/* ---- writer ---- */
+
+static json_t *pair(int64_t a, int64_t b)
+{
+    return json_pack("[II]", (json_int_t)a, (json_int_t)b);
+}
+
+static json_t *texture_json(const struct vt_layout_texture *t)
+{
+    if (!t->path)
+        return json_pack("{s:[ffff]}", "fill", t->fill[0], t->fill[1], t->fill[2], t->fill[3]);
+    return json_pack("{s:s, s:I, s:I}", "path", t->path, "width", (json_int_t)t->width, "height",
+                     (json_int_t)t->height);
+}
+
+static json_t *entry_json(const struct vt_layout *l, const struct vt_layout_entry *e)
+{
+    json_t *tex = json_array();
+    for (uint32_t k = 0; tex && k < l->layer_count; k++)
+        if (json_array_append_new(tex, texture_json(&e->textures[k]))) {
+            json_decref(tex);
+            return NULL;
+        }
+    json_t *o =
+        json_pack("{s:s, s:I, s:I, s:I, s:I, s:o, s:o, s:I, s:I, s:I, s:f, s:o}", "name", e->name,
+                  "x", (json_int_t)e->x, "y", (json_int_t)e->y, "width", (json_int_t)e->width,
+                  "height", (json_int_t)e->height, "repeat", pair(e->repeat_u, e->repeat_v),
+                  "origin", pair(e->origin_u, e->origin_v), "cell_width", (json_int_t)e->cell_width,
+                  "cell_height", (json_int_t)e->cell_height, "alignment", (json_int_t)e->alignment,
+                  "scale", e->scale, "textures", tex);
+    if (o && e->group && json_object_set_new(o, "group", json_integer(e->group))) {
+        json_decref(o);
+        return NULL;
+    }
+    return o;
+}
+
+static json_t *layout_json(const struct vt_layout *l)
+{
+    json_t *layers = json_array(), *entries = json_array();
+    for (uint32_t i = 0; layers && i < l->layer_count; i++)
+        if (json_array_append_new(layers,
+                                  json_pack("{s:s, s:s, s:s}", "name", l->layers[i].name, "map",
+                                            l->layers[i].map, "colour",
+                                            colour_names[l->layers[i].colour - VTS_COLOUR_SRGB])))
+            goto fail;
+    for (uint32_t i = 0; entries && i < l->entry_count; i++)
+        if (json_array_append_new(entries, entry_json(l, &l->entries[i])))
+            goto fail;
+    if (!layers || !entries)
+        goto fail;
+    return json_pack("{s:s, s:i, s:s, s:I, s:I, s:I, s:I, s:o, s:o}", "format", VT_LAYOUT_FORMAT,
+                     "version", VT_LAYOUT_VERSION, "generator",
+                     l->generator ? l->generator : "vtpipe", "width", (json_int_t)l->width,
+                     "height", (json_int_t)l->height, "tile_content", (json_int_t)l->tile_content,
+                     "border", (json_int_t)l->border, "layers", layers, "entries", entries);
+fail:
+    json_decref(layers);
+    json_decref(entries);
+    return NULL;
+}
+
+int vt_layout_write(const char *path, struct vt_layout *layout, struct vt_error *err)
+{
+    int rc = vt_layout_check(layout, path, err);
+    if (rc)
+        return rc;
+    for (uint32_t i = 0; i < layout->layer_count; i++)
+        if (layout->layers[i].colour < VTS_COLOUR_SRGB ||
+            layout->layers[i].colour > VTS_COLOUR_DATA)
+            return vt_error_set(err, VT_ERR_ARG, "'%s': layer %u has no colour", path, i);
+    json_t *root = layout_json(layout);
+    char *text =
+        root ? json_dumps(root, JSON_INDENT(1) | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(17))
+             : NULL;
+    json_decref(root);
+    if (!text)
+        return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory writing the layout", path);
+    struct vt_atomic_file f;
+    rc = vt_atomic_file_create(&f, path, "tmp", err);
+    if (!rc) {
+        size_t n = strlen(text);
+        rc = vt_atomic_file_pwrite(&f, text, n, 0, err);
+        if (!rc)
+            rc = vt_atomic_file_pwrite(&f, "\n", 1, n, err);
+        if (!rc)
+            rc = vt_atomic_file_commit(&f, err);
+        else
+            vt_atomic_file_abort(&f);
+    }
+    free(text);
+    return rc;
+}

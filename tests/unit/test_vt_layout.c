@@ -1,0 +1,305 @@
+/* Atlas layout: JSON round trip, every validation rule, lookup by name, and the UV mapping with
+ * its V-axis convention. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vt_layout.h"
+#include "vt_test.h"
+#include "vts.h"
+
+static char *xstrdup(const char *s)
+{
+    char *d = malloc(strlen(s) + 1);
+    strcpy(d, s);
+    return d;
+}
+
+/* Two layers, three entries: a 300x200 texture in a 512x256 cell, a 100x60 sub-tile texture with
+ * a fill for its normal layer, and a 64x64 texture replicated 3x2 from origin (-1, 0). */
+static void make_layout(struct vt_layout *l)
+{
+    VT_CHECK_INT_EQ(vt_layout_alloc(l, 2, 3, NULL), 0);
+    l->width = 1024, l->height = 512, l->tile_content = 256, l->border = 4;
+    l->generator = xstrdup("test");
+    l->layers[0] = (struct vt_layout_layer){xstrdup("diffuse"), xstrdup("map_Kd"), VTS_COLOUR_SRGB};
+    l->layers[1] = (struct vt_layout_layer){xstrdup("normal"), xstrdup("norm"), VTS_COLOUR_NORMAL};
+    struct vt_layout_entry *e = l->entries;
+    e[0].name = xstrdup("brick");
+    e[0].width = 300, e[0].height = 200, e[0].cell_width = 512, e[0].cell_height = 256;
+    e[0].alignment = 256;
+    e[1].name = xstrdup("small");
+    e[1].x = 512, e[1].width = 100, e[1].height = 60, e[1].cell_width = 128, e[1].cell_height = 64,
+    e[1].alignment = 64, e[1].scale = 0.5;
+    e[2].name = xstrdup("ground");
+    e[2].y = 256, e[2].width = 64, e[2].height = 64, e[2].repeat_u = 3, e[2].repeat_v = 2;
+    e[2].origin_u = -1, e[2].cell_width = 256, e[2].cell_height = 128, e[2].alignment = 128;
+    e[2].group = 7;
+    for (int i = 0; i < 3; i++) {
+        char p[32];
+        snprintf(p, sizeof p, "tex/%s.png", e[i].name);
+        e[i].textures[0].path = xstrdup(p);
+        e[i].textures[0].width = e[i].width, e[i].textures[0].height = e[i].height;
+    }
+    e[0].textures[1].path = xstrdup("tex/brick n.png");
+    e[0].textures[1].width = 300, e[0].textures[1].height = 200;
+    e[1].textures[1].fill[0] = 0.5, e[1].textures[1].fill[1] = 0.5;
+    e[1].textures[1].fill[2] = 1, e[1].textures[1].fill[3] = 1;
+    e[2].textures[1].fill[3] = 0.25;
+}
+
+static void test_round_trip(void)
+{
+    struct vt_layout l, r;
+    struct vt_error err;
+    make_layout(&l);
+    VT_CHECK_INT_EQ(vt_layout_write("layout_rt.json", &l, &err), 0);
+    VT_CHECK_INT_EQ(vt_layout_read("layout_rt.json", NULL, &r, &err), 0);
+    VT_CHECK_INT_EQ(r.width, 1024);
+    VT_CHECK_INT_EQ(r.height, 512);
+    VT_CHECK_INT_EQ(r.tile_content, 256);
+    VT_CHECK_INT_EQ(r.border, 4);
+    VT_CHECK_INT_EQ(r.layer_count, 2);
+    VT_CHECK_INT_EQ(r.entry_count, 3);
+    VT_CHECK(strcmp(r.layers[1].name, "normal") == 0 && r.layers[1].colour == VTS_COLOUR_NORMAL);
+    VT_CHECK(strcmp(r.generator, "test") == 0);
+    for (uint32_t i = 0; i < 3; i++) {
+        const struct vt_layout_entry *a = &l.entries[i], *b = &r.entries[i];
+        VT_CHECK(strcmp(a->name, b->name) == 0);
+        VT_CHECK(a->x == b->x && a->y == b->y && a->width == b->width && a->height == b->height);
+        VT_CHECK(a->repeat_u == b->repeat_u && a->repeat_v == b->repeat_v);
+        VT_CHECK(a->origin_u == b->origin_u && a->origin_v == b->origin_v);
+        VT_CHECK(a->cell_width == b->cell_width && a->cell_height == b->cell_height);
+        VT_CHECK(a->alignment == b->alignment && a->scale == b->scale && a->group == b->group);
+        for (uint32_t k = 0; k < 2; k++) {
+            const struct vt_layout_texture *ta = &a->textures[k], *tb = &b->textures[k];
+            VT_CHECK(!ta->path == !tb->path);
+            if (ta->path) {
+                VT_CHECK(strcmp(ta->path, tb->path) == 0);
+                VT_CHECK(ta->width == tb->width && ta->height == tb->height);
+            } else {
+                for (int c = 0; c < 4; c++)
+                    VT_CHECK(ta->fill[c] == tb->fill[c]);
+            }
+        }
+    }
+    /* Relative paths resolve against the layout's directory. */
+    VT_CHECK(strcmp(r.entries[0].textures[1].resolved, "tex/brick n.png") == 0);
+    VT_CHECK(vt_layout_find(&r, "ground") == &r.entries[2]);
+    VT_CHECK(vt_layout_find(&r, "brick") == &r.entries[0]);
+    VT_CHECK(vt_layout_find(&r, "nope") == NULL);
+    VT_CHECK_INT_EQ(vt_layout_layer_index(&r, "normal"), 1);
+    VT_CHECK_INT_EQ(vt_layout_layer_index(&r, "specular"), -1);
+    vt_layout_release(&r);
+    vt_layout_release(&l);
+    vt_layout_release(&l); /* twice is harmless */
+    remove("layout_rt.json");
+}
+
+static void test_resolve_against_directory(void)
+{
+    const char *text =
+        "{\"format\":\"vtpipe-atlas\",\"version\":1,\"width\":256,\"height\":256,"
+        "\"tile_content\":256,\"border\":2,\"layers\":[{\"name\":\"diffuse\",\"map\":\"map_Kd\","
+        "\"colour\":\"srgb\"}],\"entries\":[{\"name\":\"a\",\"x\":0,\"y\":0,\"width\":10,"
+        "\"height\":10,\"cell_width\":16,\"cell_height\":16,\"alignment\":16,"
+        "\"textures\":[{\"path\":\"t/a.png\",\"width\":10,\"height\":10}]}]}";
+    struct vt_layout l;
+    VT_CHECK_INT_EQ(
+        vt_layout_parse_memory(text, strlen(text), "out/dir/atlas.json", NULL, &l, NULL), 0);
+    VT_CHECK(strcmp(l.entries[0].textures[0].resolved, "out/dir/t/a.png") == 0);
+    /* Defaults of the optional fields. */
+    VT_CHECK(l.entries[0].repeat_u == 1 && l.entries[0].origin_v == 0 && l.entries[0].scale == 1);
+    vt_layout_release(&l);
+}
+
+/* Applies edit to a valid layout and expects vt_layout_index() to refuse it with message part. */
+static void expect_invalid(void (*edit)(struct vt_layout *), const char *part)
+{
+    struct vt_layout l;
+    struct vt_error err;
+    make_layout(&l);
+    edit(&l);
+    int rc = vt_layout_check(&l, "x.json", &err);
+    VT_CHECK_INT_EQ(rc, VT_ERR_BAD_INPUT);
+    VT_CHECK_STR_CONTAINS(err.message, part);
+    vt_layout_release(&l);
+}
+
+static void overlap(struct vt_layout *l)
+{
+    l->entries[1].x = 256; /* inside brick's 512-wide cell */
+}
+static void outside(struct vt_layout *l)
+{
+    l->entries[2].y = 512 - 64; /* cell 128 high ends past 512 */
+    l->entries[2].alignment = 64;
+}
+static void misaligned(struct vt_layout *l)
+{
+    l->entries[1].x = 512 + 32;
+}
+static void too_big(struct vt_layout *l)
+{
+    l->entries[2].repeat_u = 5; /* 5 * 64 > 256 */
+}
+static void bad_scale(struct vt_layout *l)
+{
+    l->entries[0].scale = 0.75;
+}
+static void dup_name(struct vt_layout *l)
+{
+    free(l->entries[2].name);
+    l->entries[2].name = xstrdup("brick");
+}
+static void dup_layer(struct vt_layout *l)
+{
+    free(l->layers[1].name);
+    l->layers[1].name = xstrdup("diffuse");
+}
+static void bad_tile(struct vt_layout *l)
+{
+    l->tile_content = 248;
+}
+static void bad_fill(struct vt_layout *l)
+{
+    l->entries[1].textures[1].fill[0] = NAN;
+}
+
+static void test_validation(void)
+{
+    expect_invalid(overlap, "the cells of 'brick' and 'small' overlap");
+    expect_invalid(outside, "entry 2 ('ground') has a cell outside the atlas");
+    expect_invalid(misaligned, "('small') has an alignment that is not a power of two dividing");
+    expect_invalid(too_big, "('ground') does not fit in its cell");
+    expect_invalid(bad_scale, "('brick') has a scale that is not a power of two");
+    expect_invalid(dup_name, "entry 'brick' given twice");
+    expect_invalid(dup_layer, "layer 'diffuse' given twice");
+    expect_invalid(bad_tile, "content must be a power of two");
+    expect_invalid(bad_fill, "fill outside 0..1");
+}
+
+/* Many touching cells (a 64x64 grid of 16x16 cells) are not overlaps; one more that overlaps the
+ * last row is. Exercises the sweep with many active cells. */
+static void test_overlap_sweep(void)
+{
+    struct vt_layout l;
+    struct vt_error err;
+    VT_CHECK_INT_EQ(vt_layout_alloc(&l, 1, 64 * 64 + 1, NULL), 0);
+    l.width = l.height = 1024, l.tile_content = 256;
+    l.layers[0] = (struct vt_layout_layer){xstrdup("diffuse"), xstrdup("map_Kd"), VTS_COLOUR_SRGB};
+    for (uint32_t i = 0; i <= 64 * 64; i++) {
+        struct vt_layout_entry *e = &l.entries[i];
+        char name[32];
+        snprintf(name, sizeof name, "e%u", i);
+        e->name = xstrdup(name);
+        e->x = (i % 64) * 16, e->y = (i / 64) * 16;
+        e->width = e->height = e->cell_width = e->cell_height = e->alignment = 16;
+        e->textures[0].fill[3] = 1;
+    }
+    l.entry_count = 64 * 64;
+    VT_CHECK_INT_EQ(vt_layout_check(&l, "grid", &err), 0);
+    l.entry_count = 64 * 64 + 1;
+    l.entries[4096].x = 1024 - 32, l.entries[4096].y = 1024 - 32;
+    l.entries[4096].cell_width = l.entries[4096].cell_height = 32;
+    l.entries[4096].alignment = 32;
+    VT_CHECK_INT_EQ(vt_layout_check(&l, "grid", &err), VT_ERR_BAD_INPUT);
+    VT_CHECK_STR_CONTAINS(err.message, "overlap");
+    vt_layout_release(&l);
+}
+
+static void expect_parse_error(const char *text, const char *part)
+{
+    struct vt_layout l;
+    struct vt_error err;
+    int rc = vt_layout_parse_memory(text, strlen(text), "bad.json", NULL, &l, &err);
+    VT_CHECK(rc < 0);
+    VT_CHECK_STR_CONTAINS(err.message, part);
+    VT_CHECK(strchr(err.message, '\n') == NULL);
+    vt_layout_release(&l);
+}
+
+static void test_parse_errors(void)
+{
+    expect_parse_error("{", "'bad.json':1:");
+    expect_parse_error("[]", "top level: expected an object");
+    expect_parse_error("{\"format\":\"other\"}", "format: not \"vtpipe-atlas\"");
+    expect_parse_error("{\"format\":\"vtpipe-atlas\",\"version\":2}", "layout version 2");
+    expect_parse_error("{\"format\":\"vtpipe-atlas\",\"version\":1,\"entries\":[]}",
+                       "layers: expected an array");
+    const char *head = "{\"format\":\"vtpipe-atlas\",\"version\":1,\"width\":256,\"height\":256,"
+                       "\"tile_content\":256,\"border\":2,\"layers\":[{\"name\":\"diffuse\","
+                       "\"map\":\"map_Kd\",\"colour\":\"srgb\"}],\"entries\":[";
+    char buf[1024];
+    snprintf(buf, sizeof buf, "%s{\"name\":\"a\",\"x\":-1}]}", head);
+    expect_parse_error(buf, "entries[0].x: expected an integer 0..4294967295");
+    snprintf(buf, sizeof buf,
+             "%s{\"name\":\"a\",\"x\":0,\"y\":0,\"width\":4,\"height\":4,\"cell_width\":4,"
+             "\"cell_height\":4,\"alignment\":4,\"textures\":[]}]}",
+             head);
+    expect_parse_error(buf, "entries[0]: textures must be an array with one item per layer");
+    snprintf(buf, sizeof buf,
+             "%s{\"name\":\"a\",\"x\":0,\"y\":0,\"width\":4,\"height\":4,\"cell_width\":4,"
+             "\"cell_height\":4,\"alignment\":4,\"textures\":[{\"fill\":[0,0,0,2]}]}]}",
+             head);
+    expect_parse_error(buf, "entries[0].textures[0]: fill values must be numbers in 0..1");
+    snprintf(buf, sizeof buf,
+             "{\"format\":\"vtpipe-atlas\",\"version\":1,\"width\":1,"
+             "\"width\":2}");
+    expect_parse_error(buf, "duplicate object key");
+    struct vt_layout_limits lim;
+    vt_layout_limits_default(&lim);
+    lim.max_entries = 0;
+    struct vt_layout l;
+    struct vt_error err;
+    snprintf(buf, sizeof buf, "%s{}]}", head);
+    VT_CHECK_INT_EQ(vt_layout_parse_memory(buf, strlen(buf), "lim.json", &lim, &l, &err),
+                    VT_ERR_LIMIT);
+    VT_CHECK_STR_CONTAINS(err.message, "1 entries, more than the limit 0");
+    vt_layout_release(&l);
+    VT_CHECK_INT_EQ(vt_layout_read("does/not/exist.json", NULL, &l, &err), VT_ERR_IO);
+    VT_CHECK_STR_CONTAINS(err.message, "cannot open 'does/not/exist.json'");
+}
+
+/* Texel (i, j) of a texture (j from the top) at its centre UV lands on the centre of atlas texel
+ * (x + i, y + j); u = 0 / v = 1 is the rect's top-left corner; wrapped copies start at origin. */
+static void test_map_uv(void)
+{
+    struct vt_layout l;
+    make_layout(&l);
+    VT_CHECK_INT_EQ(vt_layout_index(&l, NULL), 0);
+    const struct vt_layout_entry *e = &l.entries[0]; /* 300x200 at (0, 0) */
+    double au, av;
+    vt_layout_map_uv(&l, e, (7 + 0.5) / 300, 1 - (3 + 0.5) / 200, &au, &av);
+    VT_CHECK(fabs(au * 1024 - 7.5) < 1e-9);
+    VT_CHECK(fabs((1 - av) * 512 - 3.5) < 1e-9); /* row 3 from the top of the atlas */
+    vt_layout_map_uv(&l, e, 0, 1, &au, &av);
+    VT_CHECK(au == 0 && av == 1);
+    vt_layout_map_uv(&l, e, 1, 0, &au, &av);
+    VT_CHECK(fabs(au * 1024 - 300) < 1e-9 && fabs((1 - av) * 512 - 200) < 1e-9);
+    /* ground: 64x64 copies, 3x2 from (0, 256), origin u -1: u in [-1, 2], v in [0, 2]. */
+    e = &l.entries[2];
+    vt_layout_map_uv(&l, e, -1, 2, &au, &av);
+    VT_CHECK(fabs(au * 1024 - 0) < 1e-9 && fabs((1 - av) * 512 - 256) < 1e-9);
+    vt_layout_map_uv(&l, e, 2, 0, &au, &av);
+    VT_CHECK(fabs(au * 1024 - 192) < 1e-9 && fabs((1 - av) * 512 - 384) < 1e-9);
+    /* u = 0.25, v = 0.75 in the second copy along u and the lower copy along v. */
+    vt_layout_map_uv(&l, e, 0.25, 0.75, &au, &av);
+    VT_CHECK(fabs(au * 1024 - (64 + 16)) < 1e-9);
+    VT_CHECK(fabs((1 - av) * 512 - (256 + 64 + 16)) < 1e-9);
+    VT_CHECK(vt_layout_uv_covered(e, -1, 0) && vt_layout_uv_covered(e, 2, 2));
+    VT_CHECK(!vt_layout_uv_covered(e, 2.001, 1) && !vt_layout_uv_covered(e, 0, -0.001));
+    vt_layout_release(&l);
+}
+
+int main(void)
+{
+    VT_RUN(test_round_trip);
+    VT_RUN(test_resolve_against_directory);
+    VT_RUN(test_validation);
+    VT_RUN(test_overlap_sweep);
+    VT_RUN(test_parse_errors);
+    VT_RUN(test_map_uv);
+    return vt_test_main_result();
+}
