@@ -92,3 +92,12 @@ vt_target_warnings(make_image_seeds)
 vt_add_fuzzer(fuzz_obj
   SOURCES fuzz/fuzz_obj.c ${PROJECT_SOURCE_DIR}/lib/vt_obj.c ${PROJECT_SOURCE_DIR}/lib/vt_text.c
           ${PROJECT_SOURCE_DIR}/lib/vt_mtl.c ${PROJECT_SOURCE_DIR}/lib/vt_error.c)
+
+# atlas.json reader (lib/vt_layout.c, vt_layout_json.c), seeded with small layouts.
+vt_add_fuzzer(fuzz_layout
+  SOURCES fuzz/fuzz_layout.c ${PROJECT_SOURCE_DIR}/lib/vt_layout.c
+          ${PROJECT_SOURCE_DIR}/lib/vt_layout_json.c ${PROJECT_SOURCE_DIR}/lib/vt_obj.c
+          ${PROJECT_SOURCE_DIR}/lib/vt_text.c ${PROJECT_SOURCE_DIR}/lib/vt_mtl.c
+          ${PROJECT_SOURCE_DIR}/lib/vt_error.c ${PROJECT_SOURCE_DIR}/lib/vt_atomic_file.c
+  LIBS PkgConfig::JANSSON Threads::Threads m
+  SEED_DIRS ${CMAKE_CURRENT_SOURCE_DIR}/data/fuzz/fuzz_layout)
