@@ -17,3 +17,15 @@ vt_add_unit_test(test_kill_writer robust/test_kill_writer.c LIBS vts_fixture)
 vt_add_unit_test(test_vts_open_alloc robust/test_vts_open_alloc.c LIBS vts_fixture)
 target_link_options(test_vts_open_alloc PRIVATE
                     "LINKER:--wrap=malloc,--wrap=calloc,--wrap=realloc")
+
+# Faults against the tools that write outputs: SIGINT/SIGTERM/SIGKILL at several points, a full
+# disk (file size limit), a directory as input (tests/robust/tool_faults.sh).
+foreach(tool vt-tiles vt-convert vt-merge)
+  if(TARGET ${tool})
+    add_test(NAME faults_${tool}
+             COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/robust/tool_faults.sh
+                     ${CMAKE_CURRENT_BINARY_DIR}/faults/${tool} ${tool}
+                     $<TARGET_FILE_DIR:vt-tiles> $<TARGET_FILE:vt-synth> $<TARGET_FILE:vt-synth-image>)
+    set_tests_properties(faults_${tool} PROPERTIES LABELS long TIMEOUT 600)
+  endif()
+endforeach()

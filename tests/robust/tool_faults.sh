@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# Fault injection against the tools that write outputs (docs/robustness.md, "Faults"): SIGINT and
+# SIGTERM at several points, SIGKILL at several points, a full disk (file size limit with SIGXFSZ
+# ignored, so writes fail with EFBIG like ENOSPC), and a read error (a directory as input).
+# After each: the output name holds either the previous output, intact, or a complete new one that
+# verifies; no hidden temporary file is left after SIGINT/SIGTERM or a failure; failures exit 1
+# with one line naming the file.
+# usage: tool_faults.sh WORKDIR TOOL_NAME BIN_DIR SYNTH SYNTH_IMAGE
+set -uo pipefail
+work=$1 name=$2 bin=$3 synth=$4 synth_image=$5
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+info="$bin/vt-info"
+fail=0
+err() { echo "FAIL ($name): $*" >&2; fail=1; }
+
+# Inputs and the command under test, one per tool; slow enough (about 1-3 s) to be interrupted.
+case $name in
+vt-tiles)
+  "$synth_image" in.png --format png --size 3000x3000 --photo >/dev/null || exit 1
+  cmd=("$bin/vt-tiles" in.png -o out.vts -q -j 1 --codec png --mode best)
+  dir_cmd=("$bin/vt-tiles" indir -o out.vts -q) ;;
+vt-convert)
+  "$synth" in.vts --size 3000x3000 --tile 256 --codec raw --channels 3 >/dev/null || exit 1
+  cmd=("$bin/vt-convert" in.vts -o out.vts -q -j 1 --codec png --mode best)
+  dir_cmd=("$bin/vt-convert" indir -o out.vts -q --codec png) ;;
+vt-merge)
+  # Two identical stores merge as shards (every tile the same bytes in both).
+  "$synth" a.vts --size 3000x3000 --tile 256 --codec raw --channels 3 --seed 1 >/dev/null || exit 1
+  cp a.vts b.vts
+  cmd=("$bin/vt-merge" a.vts b.vts -o out.vts -q)
+  dir_cmd=("$bin/vt-merge" indir b.vts -o out.vts -q) ;;
+*)
+  echo "tool_faults.sh: unknown tool $name" >&2; exit 2 ;;
+esac
+mkdir -p indir
+
+printf 'previous output\n' > previous.ref
+previous() { cp previous.ref out.vts; }
+intact() { cmp -s previous.ref out.vts; }
+leftovers() { find . -maxdepth 1 -name '.out.vts.*' | wc -l; }
+
+# A reference run must succeed (else the tool or the test is broken).
+previous
+"${cmd[@]}" 2>ref.err || { err "reference run failed: $(cat ref.err)"; exit 1; }
+"$info" --verify out.vts >/dev/null 2>&1 || err "reference output does not verify"
+[ "$(leftovers)" -eq 0 ] || err "temporary files left after a successful run"
+
+# outcome STATUS: the output name holds the old file (interrupted) or a complete new one that
+# verifies (finished; a signal that lands after the rename still kills the process).
+outcome() {
+  local status=$1 what=$2
+  if intact; then
+    [ "$status" -ne 0 ] || err "$what: exit 0 but the old output is still there"
+  else
+    "$info" --verify out.vts >/dev/null 2>&1 ||
+      err "$what: exit $status and the output was replaced by one that does not verify"
+  fi
+}
+
+for sig in INT TERM; do
+  for delay in 0.05 0.3 0.8; do
+    previous
+    "${cmd[@]}" 2>/dev/null & pid=$!
+    sleep "$delay"; kill -"$sig" "$pid" 2>/dev/null; wait "$pid"; status=$?
+    outcome "$status" "SIG$sig after ${delay}s"
+    [ "$status" -eq 0 ] || [ "$status" -eq $((128 + $(kill -l "$sig"))) ] ||
+      err "SIG$sig after ${delay}s: exit $status, not death by the signal"
+    [ "$(leftovers)" -eq 0 ] || err "SIG$sig after ${delay}s: temporary files left: $(ls -a)"
+  done
+done
+
+for delay in 0.05 0.3 0.8 1.5; do
+  previous
+  "${cmd[@]}" 2>/dev/null & pid=$!
+  sleep "$delay"; kill -KILL "$pid" 2>/dev/null; wait "$pid" 2>/dev/null; status=$?
+  outcome "$status" "SIGKILL after ${delay}s"
+  # A killed process cannot clean up: remove what it left before the next round.
+  find . -maxdepth 1 -name '.out.vts.*' -delete
+done
+
+# Full disk: a 256 KiB file size limit; SIGXFSZ ignored so the write fails with EFBIG.
+previous
+(trap '' XFSZ; ulimit -f 256; exec "${cmd[@]}") 2>full.err; status=$?
+[ "$status" -eq 1 ] || err "full disk: exit $status, expected 1 ($(cat full.err))"
+intact || err "full disk: the old output was replaced"
+[ "$(wc -l < full.err)" -eq 1 ] || err "full disk: expected one line, got: $(cat full.err)"
+grep -q "out.vts" full.err || err "full disk: the message does not name the output: $(cat full.err)"
+[ "$(leftovers)" -eq 0 ] || err "full disk: temporary files left"
+
+# Read error: a directory where an input file should be.
+previous
+"${dir_cmd[@]}" 2>dir.err; status=$?
+[ "$status" -eq 1 ] || err "directory input: exit $status, expected 1 ($(cat dir.err))"
+grep -q "indir" dir.err || err "directory input: the message does not name it: $(cat dir.err)"
+[ "$(wc -l < dir.err)" -eq 1 ] || err "directory input: expected one line: $(cat dir.err)"
+intact || err "directory input: the old output was replaced"
+
+[ $fail -eq 0 ] && echo "tool_faults $name: ok"
+exit $fail
