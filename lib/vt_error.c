@@ -10,6 +10,10 @@ int vt_error_set(struct vt_error *err, int status, const char *fmt, ...)
         va_start(ap, fmt);
         vsnprintf(err->message, sizeof err->message, fmt, ap);
         va_end(ap);
+        /* Messages are one line whatever a file name or a quoted input holds. */
+        for (char *p = err->message; *p; p++)
+            if ((unsigned char)*p < 0x20 || *p == 0x7f)
+                *p = '?';
         err->status = status;
     }
     return status;

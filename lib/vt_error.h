@@ -31,8 +31,10 @@ struct vt_error {
     char message[VT_ERROR_MESSAGE_MAX]; /* one line, no trailing newline */
 };
 
-/* Fills err (if not NULL) with status and a printf-style message; returns status so that callers
- * can write `return vt_error_set(err, VT_ERR_IO, ...)`. Truncates long messages. Thread-safe. */
+/* Fills err (if not NULL) with status and a printf-style message (control characters such as a
+ * newline in a quoted file name become '?', so a message is always one line); returns status so
+ * that callers can write `return vt_error_set(err, VT_ERR_IO, ...)`. Truncates long messages.
+ * Thread-safe. */
 int vt_error_set(struct vt_error *err, int status, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
