@@ -53,7 +53,8 @@ struct vts_writer {
     struct vt_atomic_file spool;
     uint64_t spool_end;
     struct vts_writer_stats stats;
-    int failed; /* sticky status of a failed put */
+    uint64_t max_payload_bytes; /* limit on unique payload bytes (vts_writer_set_max_bytes) */
+    int failed;                 /* sticky status of a failed put */
 
     struct meta_pair *meta;
     uint32_t meta_count;
@@ -184,6 +185,10 @@ static int store_payload(struct vts_writer *w, const void *payload, uint32_t len
         w->recs = recs;
         w->rec_cap = cap;
     }
+    if (w->max_payload_bytes && w->stats.unique_bytes + length > w->max_payload_bytes)
+        return vt_error_set(err, VT_ERR_LIMIT,
+                            "'%s' would hold more than %llu bytes of tiles (the store size limit)",
+                            w->spool.final_path, (unsigned long long)w->max_payload_bytes);
     int rc = vt_atomic_file_pwrite(&w->spool, payload, length, w->spool_end, err);
     if (rc)
         return rc;
@@ -198,6 +203,13 @@ static int store_payload(struct vts_writer *w, const void *payload, uint32_t len
     if (w->rec_count > (w->bucket_mask + 1) / 4 * 3 && grow_buckets(w) != 0)
         return vt_error_set(err, VT_ERR_NOMEM, "out of memory for the tile hash table");
     return 0;
+}
+
+void vts_writer_set_max_bytes(struct vts_writer *w, uint64_t max_bytes)
+{
+    pthread_mutex_lock(&w->lock);
+    w->max_payload_bytes = max_bytes;
+    pthread_mutex_unlock(&w->lock);
 }
 
 int vts_writer_put(struct vts_writer *w, uint32_t layer, uint32_t level, uint32_t tx, uint32_t ty,
@@ -232,7 +244,7 @@ int vts_writer_put(struct vts_writer *w, uint32_t layer, uint32_t level, uint32_
             w->slots[idx] = SLOT_FIRST + rec;
             w->stats.tiles_stored++;
             w->stats.tiles_shared += shared;
-        } else if (rc == VT_ERR_IO || rc == VT_ERR_NOMEM) {
+        } else if (rc == VT_ERR_IO || rc == VT_ERR_NOMEM || rc == VT_ERR_LIMIT) {
             w->failed = rc;
         }
     }

@@ -20,6 +20,11 @@ struct vts_writer;
 struct vts_writer *vts_writer_create(const char *path, const struct vts_geometry *g,
                                      const struct vts_layer *layers, struct vt_error *err);
 
+/* Limits the tile payload bytes the store may hold after deduplication (0: no limit, the
+ * default). A put that would exceed it fails with VT_ERR_LIMIT naming the store, and so does
+ * every later put. Tools expose it as --max-store-size. */
+void vts_writer_set_max_bytes(struct vts_writer *w, uint64_t max_bytes);
+
 /* Stores the payload of one tile (payload_len 0 = empty tile). Identical payloads are stored
  * once. Any order; safe to call from many threads at once; each tile at most once (VT_ERR_ARG).
  * Tiles never put are empty. Returns 0, VT_ERR_RANGE, VT_ERR_ARG, VT_ERR_LIMIT or VT_ERR_IO. */

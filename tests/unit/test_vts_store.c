@@ -319,6 +319,31 @@ static void writer_rejects_bad_puts(void)
     VT_CHECK(vts_writer_create("/nonexistent-dir/x.vts", &geo3x2, layers, &err) == NULL);
 }
 
+/* The store size limit counts unique payload bytes: shared copies are free, the put that would
+ * pass the limit fails with LIMIT, later puts and finish fail too, and nothing is written. */
+static void size_limit_stops_the_store(void)
+{
+    char path[300];
+    path_in_tmp(path, sizeof path, "limit.vts");
+    struct vts_layer layers[2];
+    make_layers(layers);
+    struct vt_error err;
+    struct vts_writer *w = vts_writer_create(path, &geo3x2, layers, &err);
+    VT_CHECK(w != NULL);
+    if (!w)
+        return;
+    vts_writer_set_max_bytes(w, 10);
+    unsigned char a[6] = {1, 2, 3, 4, 5, 6}, b[6] = {6, 5, 4, 3, 2, 1};
+    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 0, 0, a, 6, &err), 0);
+    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 1, 0, a, 6, &err), 0); /* shared: no new bytes */
+    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 2, 0, b, 6, &err), VT_ERR_LIMIT);
+    VT_CHECK_STR_CONTAINS(err.message, "limit.vts' would hold more than 10 bytes of tiles");
+    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 0, 1, a, 6, &err), VT_ERR_LIMIT);
+    VT_CHECK_INT_EQ(vts_writer_finish(w, &err), VT_ERR_LIMIT);
+    vts_writer_destroy(w);
+    VT_CHECK(access(path, F_OK) != 0);
+}
+
 static void finish_replaces_an_old_file_and_leaves_no_temporaries(void)
 {
     char path[300];
@@ -387,6 +412,7 @@ int main(void)
     VT_RUN(coarse_levels_come_first_on_disk);
     VT_RUN(threads_and_order_do_not_change_the_bytes);
     VT_RUN(writer_rejects_bad_puts);
+    VT_RUN(size_limit_stops_the_store);
     VT_RUN(finish_replaces_an_old_file_and_leaves_no_temporaries);
     VT_RUN(store_without_payloads_opens);
     char cmd[300];
