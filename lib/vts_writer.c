@@ -55,6 +55,7 @@ struct vts_writer {
     struct vts_writer_stats stats;
     uint64_t max_payload_bytes; /* limit on unique payload bytes (vts_writer_set_max_bytes) */
     int failed;                 /* sticky status of a failed put */
+    char fail_message[VT_ERROR_MESSAGE_MAX]; /* its message, repeated by later puts */
 
     struct meta_pair *meta;
     uint32_t meta_count;
@@ -229,7 +230,7 @@ int vts_writer_put(struct vts_writer *w, uint32_t layer, uint32_t level, uint32_
     pthread_mutex_lock(&w->lock);
     int rc = w->failed;
     if (rc) {
-        vt_error_set(err, rc, "'%s': an earlier tile failed", w->spool.final_path);
+        vt_error_set(err, rc, "%s", w->fail_message);
     } else if (w->slots[idx] != SLOT_UNSET) {
         rc = vt_error_set(err, VT_ERR_ARG, "tile %u,%u of layer %u level %u was put twice", tx, ty,
                           layer, level);
@@ -246,6 +247,8 @@ int vts_writer_put(struct vts_writer *w, uint32_t layer, uint32_t level, uint32_
             w->stats.tiles_shared += shared;
         } else if (rc == VT_ERR_IO || rc == VT_ERR_NOMEM || rc == VT_ERR_LIMIT) {
             w->failed = rc;
+            snprintf(w->fail_message, sizeof w->fail_message, "%s",
+                     err ? err->message : "a tile failed to write");
         }
     }
     pthread_mutex_unlock(&w->lock);
@@ -536,8 +539,7 @@ int vts_writer_finish(struct vts_writer *w, struct vt_error *err)
         return vt_error_set(err, VT_ERR_ARG, "'%s' is already finished", w->spool.final_path);
     w->finished = 1;
     if (w->failed)
-        return vt_error_set(err, w->failed, "cannot finish '%s': a tile failed to write",
-                            w->spool.final_path);
+        return vt_error_set(err, w->failed, "%s", w->fail_message);
     struct layout lay = {0};
     lay.meta_size = meta_bytes(w);
     if (lay.meta_size == 0)

@@ -11,7 +11,7 @@ vt_target_warnings(vt-store-check)
 set(VT_CLI_CONVERT_CASES
     help version bad_usage missing_file
     png_jpeg_png raw_png_exact jpeg_psnr one_layer threads
-    jpeg_alpha_refused float_refused u16_to_u8 lossy_twice corrupt_tile)
+    jpeg_alpha_refused float_refused u16_to_u8 lossy_twice corrupt_tile store_size_limit)
 set(VT_CLI_MERGE_CASES
     help version bad_usage missing_file
     shards shards_plain shards_overlap shards_conflict

@@ -64,6 +64,13 @@ int vt_parse_u32(const char *s, uint32_t min, uint32_t max, uint32_t *out);
 int vt_parse_u32_pair(const char *s, char sep, uint32_t min, uint32_t max, uint32_t *a,
                       uint32_t *b);
 
+/* Default of --max-store-size: tile bytes a store may hold (2 TiB). */
+#define VT_DEFAULT_MAX_STORE (2ull << 40)
+
+/* Parses a byte size: a decimal integer with an optional binary suffix K, M, G or T (KiB...,
+ * upper or lower case), e.g. "512M", "2T", "4096". Returns 0, or -1 on junk or overflow of 2^64. */
+int vt_parse_size(const char *s, uint64_t *out);
+
 /* Prints "<tool> (vtpipe) <version>" and the .vts format line to f. */
 void vt_print_version(FILE *f);
 

@@ -13,10 +13,19 @@
 struct options {
     const char *in_path, *out_path, *codec_name;
     uint32_t quality, subsampling, layer, threads;
+    uint64_t max_store;
     bool has_quality, has_subsampling, has_mode, has_layer, best;
 };
 
-enum { OPT_CODEC = 256, OPT_QUALITY, OPT_SUBSAMPLING, OPT_MODE, OPT_LAYER, OPT_VERSION };
+enum {
+    OPT_CODEC = 256,
+    OPT_QUALITY,
+    OPT_SUBSAMPLING,
+    OPT_MODE,
+    OPT_LAYER,
+    OPT_MAX_STORE,
+    OPT_VERSION
+};
 
 static const struct option long_options[] = {
     {"output", required_argument, NULL, 'o'},
@@ -25,6 +34,7 @@ static const struct option long_options[] = {
     {"subsampling", required_argument, NULL, OPT_SUBSAMPLING},
     {"mode", required_argument, NULL, OPT_MODE},
     {"layer", required_argument, NULL, OPT_LAYER},
+    {"max-store-size", required_argument, NULL, OPT_MAX_STORE},
     {"threads", required_argument, NULL, 'j'},
     {"quiet", no_argument, NULL, 'q'},
     {"verbose", no_argument, NULL, 'v'},
@@ -46,6 +56,8 @@ static void usage(void)
         "      --mode fast|best  png compression or bc1/bc3 encoder (default fast)\n"
         "      --layer N         convert only layer N (integer, 0..layers-1) and copy the others\n"
         "                        byte for byte (default: convert every layer)\n"
+        "      --max-store-size S  refuse to write more tile bytes than S (suffix K, M, G, T;\n"
+        "                        default 2T)\n"
         "  -j, --threads N       worker threads, integer 1..256 (default: all cores)\n"
         "  -q, --quiet           print errors only\n"
         "  -v, --verbose         print more (repeatable: info, then debug)\n"
@@ -66,7 +78,10 @@ static void usage(void)
 static int parse_options(int argc, char **argv, struct options *o)
 {
     int c, verbosity = VT_LOG_WARN;
-    *o = (struct options){.quality = 85, .subsampling = 420, .threads = vt_pool_cpu_count()};
+    *o = (struct options){.quality = 85,
+                          .subsampling = 420,
+                          .threads = vt_pool_cpu_count(),
+                          .max_store = VT_DEFAULT_MAX_STORE};
     opterr = 0;
     while ((c = vt_getopt_long(argc, argv, ":hqvo:j:", long_options)) != -1) {
         if (c == 'h') {
@@ -99,6 +114,9 @@ static int parse_options(int argc, char **argv, struct options *o)
             o->has_layer = true;
             if (vt_parse_u32(optarg, 0, UINT32_MAX, &o->layer) != 0)
                 return vt_usage_error("--layer: '%s' is not a layer number", optarg);
+        } else if (c == OPT_MAX_STORE) {
+            if (vt_parse_size(optarg, &o->max_store) != 0 || o->max_store == 0)
+                return vt_usage_error("--max-store-size: '%s' is not a size like 500G", optarg);
         } else if (c == 'j') {
             if (vt_parse_u32(optarg, 1, 256, &o->threads) != 0)
                 return vt_usage_error("-j must be 1..256, not '%s'", optarg);
@@ -384,6 +402,7 @@ static int convert(struct run *r, struct vt_error *err)
         layers[layer] = r->plans[layer].out;
     if (!(r->out = vts_writer_create(r->o->out_path, g, layers, err)))
         return err->status;
+    vts_writer_set_max_bytes(r->out, r->o->max_store);
     struct vt_pool_fns fns = {next_job, do_job, on_progress};
     vt_progress_start(&r->progress, "converting", "tiles", r->job_count);
     rc = vt_pool_run(r->o->threads, &fns, r, err);
