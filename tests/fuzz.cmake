@@ -91,7 +91,8 @@ vt_target_warnings(make_image_seeds)
 # OBJ/MTL reader (lib/vt_obj.c, vt_mtl.c, vt_text.c), parsed from memory as an OBJ and as an MTL file.
 vt_add_fuzzer(fuzz_obj
   SOURCES fuzz/fuzz_obj.c ${PROJECT_SOURCE_DIR}/lib/vt_obj.c ${PROJECT_SOURCE_DIR}/lib/vt_text.c
-          ${PROJECT_SOURCE_DIR}/lib/vt_mtl.c ${PROJECT_SOURCE_DIR}/lib/vt_error.c)
+          ${PROJECT_SOURCE_DIR}/lib/vt_mtl.c ${PROJECT_SOURCE_DIR}/lib/vt_error.c
+  SEED_DIRS ${CMAKE_CURRENT_SOURCE_DIR}/data/fuzz/fuzz_obj)
 
 # atlas.json reader (lib/vt_layout.c, vt_layout_json.c), seeded with small layouts.
 vt_add_fuzzer(fuzz_layout
