@@ -19,8 +19,9 @@ target_link_options(test_vts_open_alloc PRIVATE
                     "LINKER:--wrap=malloc,--wrap=calloc,--wrap=realloc")
 
 # Faults against the tools that write outputs: SIGINT/SIGTERM/SIGKILL at several points, a full
-# disk (file size limit), a directory as input (tests/robust/tool_faults.sh).
-foreach(tool vt-tiles vt-convert vt-merge)
+# disk (file size limit), a directory as input (tests/robust/tool_faults.sh). vt-offset uses
+# vt-offset-gen (tests/offset.cmake) for its 60 MB input.
+foreach(tool vt-tiles vt-convert vt-merge vt-offset)
   if(TARGET ${tool})
     add_test(NAME faults_${tool}
              COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/robust/tool_faults.sh

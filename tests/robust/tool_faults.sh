@@ -10,6 +10,7 @@ set -uo pipefail
 work=$1 name=$2 bin=$3 synth=$4 synth_image=$5
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 info="$bin/vt-info"
+out=out.vts
 fail=0
 err() { echo "FAIL ($name): $*" >&2; fail=1; }
 
@@ -29,20 +30,34 @@ vt-merge)
   cp a.vts b.vts
   cmd=("$bin/vt-merge" a.vts b.vts -o out.vts -q)
   dir_cmd=("$bin/vt-merge" indir b.vts -o out.vts -q) ;;
+vt-offset)
+  # A 60 MB scene (vt-offset-gen: v, vt, vn, faces of 8 materials, shared vt) and its atlas.
+  "$(dirname "$synth")/vt-offset-gen" bench . 60 >/dev/null || exit 1
+  out=out.obj
+  cmd=("$bin/vt-offset" scene.obj atlas.json -o out.obj -q)
+  dir_cmd=("$bin/vt-offset" indir atlas.json -o out.obj -q) ;;
 *)
   echo "tool_faults.sh: unknown tool $name" >&2; exit 2 ;;
 esac
 mkdir -p indir
 
 printf 'previous output\n' > previous.ref
-previous() { cp previous.ref out.vts; }
-intact() { cmp -s previous.ref out.vts; }
-leftovers() { find . -maxdepth 1 -name '.out.vts.*' | wc -l; }
+previous() { cp previous.ref "$out"; }
+intact() { cmp -s previous.ref "$out"; }
+leftovers() { find . -maxdepth 1 -name '.out.*' | wc -l; }
+# A complete output: a store that verifies, or the reference run's bytes for other outputs.
+complete() {
+  case $out in
+  *.vts) "$info" --verify "$out" >/dev/null 2>&1 ;;
+  *) cmp -s "$out" reference.out ;;
+  esac
+}
 
 # A reference run must succeed (else the tool or the test is broken).
 previous
 "${cmd[@]}" 2>ref.err || { err "reference run failed: $(cat ref.err)"; exit 1; }
-"$info" --verify out.vts >/dev/null 2>&1 || err "reference output does not verify"
+cp "$out" reference.out
+complete || err "reference output does not verify"
 [ "$(leftovers)" -eq 0 ] || err "temporary files left after a successful run"
 
 # outcome STATUS: the output name holds the old file (interrupted) or a complete new one that
@@ -52,8 +67,7 @@ outcome() {
   if intact; then
     [ "$status" -ne 0 ] || err "$what: exit 0 but the old output is still there"
   else
-    "$info" --verify out.vts >/dev/null 2>&1 ||
-      err "$what: exit $status and the output was replaced by one that does not verify"
+    complete || err "$what: exit $status and the output was replaced by an incomplete one"
   fi
 }
 
@@ -75,7 +89,7 @@ for delay in 0.05 0.3 0.8 1.5; do
   sleep "$delay"; kill -KILL "$pid" 2>/dev/null; wait "$pid" 2>/dev/null; status=$?
   outcome "$status" "SIGKILL after ${delay}s"
   # A killed process cannot clean up: remove what it left before the next round.
-  find . -maxdepth 1 -name '.out.vts.*' -delete
+  find . -maxdepth 1 -name '.out.*' -delete
 done
 
 # Full disk: a 256 KiB file size limit; SIGXFSZ ignored so the write fails with EFBIG.
@@ -84,7 +98,7 @@ previous
 [ "$status" -eq 1 ] || err "full disk: exit $status, expected 1 ($(cat full.err))"
 intact || err "full disk: the old output was replaced"
 [ "$(wc -l < full.err)" -eq 1 ] || err "full disk: expected one line, got: $(cat full.err)"
-grep -q "out.vts" full.err || err "full disk: the message does not name the output: $(cat full.err)"
+grep -q "$out" full.err || err "full disk: the message does not name the output: $(cat full.err)"
 [ "$(leftovers)" -eq 0 ] || err "full disk: temporary files left"
 
 # Read error: a directory where an input file should be.
