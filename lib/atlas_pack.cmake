@@ -1,0 +1,2 @@
+# Tile-aware rectangle packing for vt-atlas (pure computation).
+target_sources(vtlib PRIVATE ${CMAKE_CURRENT_LIST_DIR}/vt_atlas_pack.c)

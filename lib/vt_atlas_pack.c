@@ -1,0 +1,494 @@
+/* Tile-aware rectangle packing: sub-tile power-of-two cells inside shared tiles (guillotine split
+ * of aligned power-of-two blocks), larger cells in whole tiles by a skyline over tile columns. */
+#include "vt_atlas_pack.h"
+
+#include <math.h>
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vt_checked.h"
+
+#define LOG2_MAX 17 /* tile content up to 2^16: block edges 2^0..2^16 */
+
+uint32_t vt_atlas_next_pow2(uint32_t v)
+{
+    uint32_t p = 1;
+    while (p < v)
+        p <<= 1;
+    return p;
+}
+
+static unsigned log2_u32(uint32_t v)
+{
+    unsigned l = 0;
+    while ((1u << l) < v)
+        l++;
+    return l;
+}
+
+/* ---- sub-tile cells: free blocks bucketed by (log2 width, log2 height) ---- */
+
+struct block {
+    uint32_t tile; /* index of the sub-tile tile */
+    uint32_t x, y; /* inside the tile */
+};
+
+struct bucket {
+    struct block *items;
+    size_t count, capacity;
+};
+
+struct buddy {
+    struct bucket buckets[LOG2_MAX][LOG2_MAX];
+    unsigned tile_log2;
+    uint32_t tile_count;
+};
+
+static int bucket_push(struct bucket *b, struct block blk)
+{
+    if (b->count == b->capacity) {
+        size_t cap = b->capacity ? b->capacity * 2 : 16;
+        struct block *n = realloc(b->items, cap * sizeof *n);
+        if (!n)
+            return VT_ERR_NOMEM;
+        b->items = n;
+        b->capacity = cap;
+    }
+    b->items[b->count++] = blk;
+    return 0;
+}
+
+static void buddy_release(struct buddy *bd)
+{
+    for (unsigned i = 0; i < LOG2_MAX; i++)
+        for (unsigned j = 0; j < LOG2_MAX; j++)
+            free(bd->buckets[i][j].items);
+}
+
+/* Takes a free block of at least 2^lw x 2^lh (the smallest such one; a new tile when none is
+ * left), places the cell at its corner and returns the rest as aligned power-of-two blocks. */
+static int buddy_alloc(struct buddy *bd, unsigned lw, unsigned lh, struct block *out)
+{
+    unsigned best_w = 0, best_h = 0;
+    bool found = false;
+    for (unsigned w = lw; w <= bd->tile_log2; w++)
+        for (unsigned h = lh; h <= bd->tile_log2; h++)
+            if (bd->buckets[w][h].count &&
+                (!found || w + h < best_w + best_h || (w + h == best_w + best_h && h < best_h))) {
+                best_w = w;
+                best_h = h;
+                found = true;
+            }
+    struct block blk;
+    if (found) {
+        struct bucket *b = &bd->buckets[best_w][best_h];
+        blk = b->items[--b->count];
+    } else {
+        blk = (struct block){.tile = bd->tile_count++, .x = 0, .y = 0};
+        best_w = best_h = bd->tile_log2;
+    }
+    *out = blk;
+    /* Right of the cell, the cell's height: widths 2^lw .. 2^(best_w-1) at x + 2^k. */
+    for (unsigned k = lw; k < best_w; k++) {
+        struct block r = {blk.tile, blk.x + (1u << k), blk.y};
+        if (bucket_push(&bd->buckets[k][lh], r))
+            return VT_ERR_NOMEM;
+    }
+    /* Below the cell, the block's full width: heights 2^lh .. 2^(best_h-1) at y + 2^k. */
+    for (unsigned k = lh; k < best_h; k++) {
+        struct block r = {blk.tile, blk.x, blk.y + (1u << k)};
+        if (bucket_push(&bd->buckets[best_w][k], r))
+            return VT_ERR_NOMEM;
+    }
+    return 0;
+}
+
+/* ---- whole-tile packing: skyline over tile columns ---- */
+
+struct tile_item {
+    uint32_t w, h;  /* in tiles */
+    uint32_t index; /* rect index, or sub-tile tile number when subtile */
+    bool subtile;
+    uint32_t x, y; /* out, in tiles */
+};
+
+static int cmp_tile_item(const void *a, const void *b)
+{
+    const struct tile_item *p = a, *q = b;
+    if (p->h != q->h)
+        return p->h > q->h ? -1 : 1;
+    if (p->w != q->w)
+        return p->w > q->w ? -1 : 1;
+    if (p->subtile != q->subtile)
+        return p->subtile ? 1 : -1;
+    return p->index < q->index ? -1 : p->index > q->index;
+}
+
+/* Skyline bottom-left at width W tiles; returns the height in tiles, or UINT32_MAX when an item
+ * is wider than W or the height passes max_h. heights and window are scratch of W entries. */
+static uint32_t skyline(struct tile_item *items, size_t n, uint32_t W, uint32_t max_h,
+                        uint32_t *heights, uint32_t *deque, uint64_t *prefix)
+{
+    uint32_t top = 0;
+    memset(heights, 0, W * sizeof *heights);
+    for (size_t i = 0; i < n; i++) {
+        struct tile_item *it = &items[i];
+        if (it->w > W)
+            return UINT32_MAX;
+        prefix[0] = 0;
+        for (uint32_t c = 0; c < W; c++)
+            prefix[c + 1] = prefix[c] + heights[c];
+        /* Sliding-window maximum over windows of it->w columns (monotonic deque). */
+        size_t head = 0, tail = 0;
+        uint32_t best_x = 0, best_y = UINT32_MAX;
+        uint64_t best_waste = UINT64_MAX;
+        for (uint32_t c = 0; c < W; c++) {
+            while (tail > head && heights[deque[tail - 1]] <= heights[c])
+                tail--;
+            deque[tail++] = c;
+            if (c + 1 < it->w)
+                continue;
+            uint32_t x = c + 1 - it->w;
+            while (deque[head] < x)
+                head++;
+            uint32_t y = heights[deque[head]];
+            uint64_t waste = (uint64_t)y * it->w - (prefix[x + it->w] - prefix[x]);
+            if (y < best_y || (y == best_y && waste < best_waste)) {
+                best_y = y;
+                best_x = x;
+                best_waste = waste;
+            }
+        }
+        if ((uint64_t)best_y + it->h > max_h)
+            return UINT32_MAX;
+        it->x = best_x;
+        it->y = best_y;
+        for (uint32_t c = best_x; c < best_x + it->w; c++)
+            heights[c] = best_y + it->h;
+        if (best_y + it->h > top)
+            top = best_y + it->h;
+    }
+    return top;
+}
+
+static int cmp_tile_item_wide(const void *a, const void *b)
+{
+    const struct tile_item *p = a, *q = b;
+    if (p->w != q->w)
+        return p->w > q->w ? -1 : 1;
+    return cmp_tile_item(a, b);
+}
+
+/* One trial: an atlas width in tiles and an item order (0: tallest first, 1: widest first). */
+struct trial {
+    uint32_t w, h;
+    int order;
+};
+
+static void sort_items(struct tile_item *items, size_t n, int order)
+{
+    qsort(items, n, sizeof *items, order ? cmp_tile_item_wide : cmp_tile_item);
+}
+
+/* The trial widths: every width from the widest item to twice the square root of the area when
+ * that is a short range (small atlases), else near-square factors of the square root. */
+static size_t trial_widths(double side, uint32_t min_w, uint32_t max_tiles, uint32_t *w, size_t cap)
+{
+    static const double factors[] = {0.85, 0.90, 0.95, 1.00, 1.05, 1.10, 1.15, 1.20};
+    size_t k = 0;
+    double top = ceil(2 * side) + 1;
+    if (top - min_w < 32) {
+        for (double x = min_w; x <= top && x <= max_tiles && k < cap; x++)
+            w[k++] = (uint32_t)x;
+        return k;
+    }
+    w[k++] = min_w;
+    for (size_t f = 0; f < sizeof factors / sizeof factors[0] && k < cap; f++) {
+        double x = ceil(side * factors[f]);
+        uint32_t W = x > max_tiles ? max_tiles : (uint32_t)x;
+        W = W < min_w ? min_w : W;
+        if (W != w[k - 1])
+            w[k++] = W;
+    }
+    return k;
+}
+
+/* Keeps the smallest area, and among areas within 1% of it the squarest. */
+static struct trial pick_trial(const struct trial *t, size_t n)
+{
+    uint64_t min_a = UINT64_MAX;
+    for (size_t i = 0; i < n; i++)
+        if (t[i].h != UINT32_MAX && (uint64_t)t[i].w * t[i].h < min_a)
+            min_a = (uint64_t)t[i].w * t[i].h;
+    struct trial best = {0, 0, 0};
+    uint32_t best_d = UINT32_MAX;
+    for (size_t i = 0; i < n; i++) {
+        uint64_t a = (uint64_t)t[i].w * t[i].h;
+        uint32_t d = t[i].w > t[i].h ? t[i].w - t[i].h : t[i].h - t[i].w;
+        if (t[i].h != UINT32_MAX && (double)a <= (double)min_a * 1.01 && d < best_d) {
+            best = t[i];
+            best_d = d;
+        }
+    }
+    return best;
+}
+
+/* Packs the tile items at several widths and two orders, keeps the best (see pick_trial) and
+ * leaves its placement in items. */
+static int pack_tiles(struct tile_item *items, size_t n, uint32_t max_tiles, uint32_t max_edge,
+                      uint32_t *out_w, uint32_t *out_h, struct vt_error *err)
+{
+    uint64_t area = 0;
+    uint32_t min_w = 1, min_h = 1;
+    for (size_t i = 0; i < n; i++) {
+        area += (uint64_t)items[i].w * items[i].h;
+        min_w = items[i].w > min_w ? items[i].w : min_w;
+        min_h = items[i].h > min_h ? items[i].h : min_h;
+    }
+    if (min_w > max_tiles || min_h > max_tiles)
+        return vt_error_set(
+            err, VT_ERR_LIMIT, "a texture is %u tiles %s, more than the atlas size limit %u allows",
+            min_w > max_tiles ? min_w : min_h, min_w > max_tiles ? "wide" : "tall", max_edge);
+    uint32_t *heights = malloc(max_tiles * sizeof *heights);
+    uint32_t *deque = malloc(max_tiles * sizeof *deque);
+    uint64_t *prefix = malloc(((size_t)max_tiles + 1) * sizeof *prefix);
+    int rc = 0;
+    if (!heights || !deque || !prefix) {
+        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory packing %zu cells", n);
+        goto out;
+    }
+    double side = sqrt((double)area);
+    uint32_t widths[40];
+    size_t nw = trial_widths(side, min_w, max_tiles, widths, 40);
+    struct trial trials[80];
+    size_t nt = 0;
+    /* Widest-first only helps small atlases (holes under wide items); it doubles the time. */
+    int orders = n <= 4096 ? 2 : 1;
+    for (int order = 0; order < orders; order++) {
+        sort_items(items, n, order);
+        for (size_t i = 0; i < nw; i++) {
+            uint32_t h = skyline(items, n, widths[i], max_tiles, heights, deque, prefix);
+            trials[nt++] = (struct trial){widths[i], h, order};
+        }
+    }
+    struct trial best = pick_trial(trials, nt);
+    /* Nothing fits under the height limit: wider atlases, doubling up to the limit. */
+    sort_items(items, n, 0);
+    for (double w = ceil(side * 1.4); !best.w; w *= 2) {
+        uint32_t W = w > max_tiles ? max_tiles : (uint32_t)w;
+        uint32_t H = skyline(items, n, W, max_tiles, heights, deque, prefix);
+        if (H != UINT32_MAX)
+            best = (struct trial){W, H, 0};
+        if (W == max_tiles)
+            break;
+    }
+    if (!best.w) {
+        rc = vt_error_set(err, VT_ERR_LIMIT,
+                          "the textures (%llu tiles) do not fit in the atlas size limit %u "
+                          "(%u x %u tiles)",
+                          (unsigned long long)area, max_edge, max_tiles, max_tiles);
+        goto out;
+    }
+    sort_items(items, n, best.order);
+    skyline(items, n, best.w, max_tiles, heights, deque, prefix); /* redo the best */
+    *out_w = best.w;
+    *out_h = best.h;
+out:
+    free(heights);
+    free(deque);
+    free(prefix);
+    return rc;
+}
+
+struct small_ref {
+    uint32_t index;
+    uint8_t lw, lh;
+};
+
+static int cmp_small_ref(const void *a, const void *b)
+{
+    const struct small_ref *p = a, *q = b;
+    if (p->lh != q->lh)
+        return p->lh > q->lh ? -1 : 1;
+    if (p->lw != q->lw)
+        return p->lw > q->lw ? -1 : 1;
+    return p->index < q->index ? -1 : p->index > q->index;
+}
+
+static int check_args(const struct vt_atlas_rect *rects, uint32_t count,
+                      const struct vt_atlas_pack_options *o, struct vt_error *err)
+{
+    uint32_t T = o->tile_content;
+    if (T == 0 || T > (1u << (LOG2_MAX - 1)) || (T & (T - 1)))
+        return vt_error_set(err, VT_ERR_ARG, "tile content %u is not a power of two 1..65536", T);
+    if (o->max_edge < T)
+        return vt_error_set(err, VT_ERR_ARG, "atlas size limit %u is below the tile content %u",
+                            o->max_edge, T);
+    if (count == 0)
+        return vt_error_set(err, VT_ERR_ARG, "no texture to pack");
+    for (uint32_t i = 0; i < count; i++)
+        if (rects[i].width == 0 || rects[i].height == 0)
+            return vt_error_set(err, VT_ERR_ARG, "texture %u has a zero size", i);
+    return 0;
+}
+
+/* Places the sub-tile cells inside numbered tiles (x, y relative to the tile; tile number kept
+ * in alignment until the tiles are placed). */
+static int pack_small(struct vt_atlas_rect *rects, uint32_t count, uint32_t T,
+                      uint32_t *small_tiles, uint32_t *tile_of, struct vt_error *err)
+{
+    size_t n = 0;
+    for (uint32_t i = 0; i < count; i++)
+        n += rects[i].width <= T && rects[i].height <= T;
+    struct small_ref *refs = malloc((n ? n : 1) * sizeof *refs);
+    struct buddy *bd = calloc(1, sizeof *bd);
+    int rc = 0;
+    if (!refs || !bd) {
+        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory packing %zu cells", n);
+        goto out;
+    }
+    n = 0;
+    for (uint32_t i = 0; i < count; i++)
+        if (rects[i].width <= T && rects[i].height <= T)
+            refs[n++] = (struct small_ref){i, (uint8_t)log2_u32(rects[i].width),
+                                           (uint8_t)log2_u32(rects[i].height)};
+    qsort(refs, n, sizeof *refs, cmp_small_ref);
+    bd->tile_log2 = log2_u32(T);
+    for (size_t k = 0; k < n; k++) {
+        struct block blk;
+        if (buddy_alloc(bd, refs[k].lw, refs[k].lh, &blk)) {
+            rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory packing %zu cells", n);
+            goto out;
+        }
+        struct vt_atlas_rect *r = &rects[refs[k].index];
+        r->x = blk.x;
+        r->y = blk.y;
+        r->cell_width = 1u << refs[k].lw;
+        r->cell_height = 1u << refs[k].lh;
+        r->alignment = r->cell_width < r->cell_height ? r->cell_width : r->cell_height;
+        tile_of[refs[k].index] = blk.tile;
+    }
+    *small_tiles = bd->tile_count;
+out:
+    if (bd)
+        buddy_release(bd);
+    free(bd);
+    free(refs);
+    return rc;
+}
+
+static void fill_stats(const struct vt_atlas_rect *rects, uint32_t count, uint32_t T,
+                       struct vt_atlas_pack_stats *s)
+{
+    s->content_area = 0;
+    s->cell_area = 0;
+    for (uint32_t i = 0; i < count; i++) {
+        s->content_area += (uint64_t)rects[i].width * rects[i].height;
+        s->cell_area += (uint64_t)rects[i].cell_width * rects[i].cell_height;
+    }
+    s->tiles_x = (s->width + T - 1) / T;
+    s->tiles_y = (s->height + T - 1) / T;
+    s->tiles_empty = (uint64_t)s->tiles_x * s->tiles_y - s->tiles_used;
+    double atlas = (double)s->width * s->height;
+    s->fill_ratio = (double)s->content_area / atlas;
+    s->area_over_cells = atlas / (double)s->cell_area;
+}
+
+int vt_atlas_pack(struct vt_atlas_rect *rects, uint32_t count,
+                  const struct vt_atlas_pack_options *options, struct vt_atlas_pack_stats *stats,
+                  struct vt_error *err)
+{
+    int rc = check_args(rects, count, options, err);
+    if (rc)
+        return rc;
+    const uint32_t T = options->tile_content;
+    const uint32_t max_tiles = options->max_edge / T;
+    uint32_t *tile_of = malloc((size_t)count * sizeof *tile_of);
+    struct tile_item *items = NULL;
+    uint32_t small_tiles = 0;
+    if (!tile_of) {
+        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory packing %u cells", count);
+        goto out;
+    }
+    rc = pack_small(rects, count, T, &small_tiles, tile_of, err);
+    if (rc)
+        goto out;
+    size_t n = 0;
+    for (uint32_t i = 0; i < count; i++)
+        n += !(rects[i].width <= T && rects[i].height <= T);
+    size_t total = n + small_tiles;
+    items = malloc(total * sizeof *items);
+    if (!items) {
+        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory packing %u cells", count);
+        goto out;
+    }
+    n = 0;
+    uint64_t used = 0;
+    for (uint32_t i = 0; i < count; i++)
+        if (!(rects[i].width <= T && rects[i].height <= T)) {
+            uint32_t tw = (uint32_t)(((uint64_t)rects[i].width + T - 1) / T);
+            uint32_t th = (uint32_t)(((uint64_t)rects[i].height + T - 1) / T);
+            items[n++] = (struct tile_item){.w = tw, .h = th, .index = i};
+            used += (uint64_t)tw * th;
+        }
+    for (uint32_t t = 0; t < small_tiles; t++)
+        items[n++] = (struct tile_item){.w = 1, .h = 1, .index = t, .subtile = true};
+    used += small_tiles;
+    uint32_t W = 0, H = 0;
+    rc = pack_tiles(items, total, max_tiles, options->max_edge, &W, &H, err);
+    if (rc)
+        goto out;
+    /* Sub-tile tile t sits at tile (small_pos[2t], small_pos[2t + 1]). */
+    uint32_t *small_pos = calloc((size_t)small_tiles * 2 + 1, sizeof *small_pos);
+    if (!small_pos) {
+        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory packing %u cells", count);
+        goto out;
+    }
+    for (size_t k = 0; k < total; k++) {
+        const struct tile_item *it = &items[k];
+        if (it->subtile) {
+            small_pos[2 * it->index] = it->x;
+            small_pos[2 * it->index + 1] = it->y;
+        } else {
+            struct vt_atlas_rect *r = &rects[it->index];
+            r->x = it->x * T;
+            r->y = it->y * T;
+            r->cell_width = it->w * T;
+            r->cell_height = it->h * T;
+            r->alignment = T;
+        }
+    }
+    uint32_t width = W * T, height = H * T;
+    if (W == 1 && H == 1)
+        width = height = 0; /* one tile: shrink to the used corner */
+    for (uint32_t i = 0; i < count; i++)
+        if (rects[i].width <= T && rects[i].height <= T) {
+            rects[i].x += small_pos[2 * tile_of[i]] * T;
+            rects[i].y += small_pos[2 * tile_of[i] + 1] * T;
+        }
+    if (W == 1 && H == 1)
+        for (uint32_t i = 0; i < count; i++) {
+            if (rects[i].x + rects[i].cell_width > width)
+                width = rects[i].x + rects[i].cell_width;
+            if (rects[i].y + rects[i].cell_height > height)
+                height = rects[i].y + rects[i].cell_height;
+        }
+    if (W == 1 && H == 1) {
+        width = vt_atlas_next_pow2(width);
+        height = vt_atlas_next_pow2(height);
+    }
+    free(small_pos);
+    if (stats) {
+        memset(stats, 0, sizeof *stats);
+        stats->width = width;
+        stats->height = height;
+        stats->tiles_used = used;
+        stats->subtile_tiles = small_tiles;
+        fill_stats(rects, count, T, stats);
+    }
+out:
+    free(items);
+    free(tile_of);
+    return rc;
+}

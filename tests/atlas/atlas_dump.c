@@ -1,0 +1,42 @@
+/* vt-atlas-dump: reads an atlas.json through vt_layout_read() (so every check of the reader
+ * runs) and prints it one line per entry and texture, for the golden vt-atlas CLI cases.
+ * usage: vt-atlas-dump atlas.json */
+#include <stdio.h>
+
+#include "vt_layout.h"
+
+int main(int argc, char **argv)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: vt-atlas-dump atlas.json\n");
+        return 2;
+    }
+    struct vt_layout l;
+    struct vt_error err;
+    if (vt_layout_read(argv[1], NULL, &l, &err)) {
+        fprintf(stderr, "vt-atlas-dump: %s\n", err.message);
+        vt_layout_release(&l);
+        return 1;
+    }
+    printf("atlas %ux%u tile %u border %u\n", l.width, l.height, l.tile_content, l.border);
+    for (uint32_t k = 0; k < l.layer_count; k++)
+        printf("layer %s map %s colour %u\n", l.layers[k].name, l.layers[k].map,
+               l.layers[k].colour);
+    for (uint32_t i = 0; i < l.entry_count; i++) {
+        const struct vt_layout_entry *e = &l.entries[i];
+        printf("entry '%s' at %u,%u size %ux%u repeat %ux%u origin %d,%d cell %ux%u align %u "
+               "scale %g group %u\n",
+               e->name, e->x, e->y, e->width, e->height, e->repeat_u, e->repeat_v, e->origin_u,
+               e->origin_v, e->cell_width, e->cell_height, e->alignment, e->scale, e->group);
+        for (uint32_t k = 0; k < l.layer_count; k++) {
+            const struct vt_layout_texture *t = &e->textures[k];
+            if (t->path)
+                printf("  %s: '%s' %ux%u\n", l.layers[k].name, t->path, t->width, t->height);
+            else
+                printf("  %s: fill %g %g %g %g\n", l.layers[k].name, t->fill[0], t->fill[1],
+                       t->fill[2], t->fill[3]);
+        }
+    }
+    vt_layout_release(&l);
+    return 0;
+}

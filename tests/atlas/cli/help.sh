@@ -1,0 +1,3 @@
+# --help prints the usage on stdout and exits 0.
+set -euo pipefail
+"$VT_ATLAS" --help

@@ -1,0 +1,350 @@
+/* vt-atlas placement: sizes, copies and scales per entry, then vt_atlas_pack(), then the layout. */
+#include "vt_atlas_place.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "vt_version.h"
+
+#define UV_EPS        1e-6
+#define CONSTANT_CELL 4 /* texels of an entry without any texture */
+
+/* ---- paths ---- */
+
+/* Appends the components of path to the stack parts (".." pops, "." and "" are dropped). */
+static size_t push_components(char *path, char **parts, size_t n)
+{
+    for (char *save = NULL, *c = strtok_r(path, "/", &save); c; c = strtok_r(NULL, "/", &save)) {
+        if (strcmp(c, ".") == 0)
+            continue;
+        if (strcmp(c, "..") == 0) {
+            if (n)
+                n--;
+            continue;
+        }
+        parts[n++] = c;
+    }
+    return n;
+}
+
+char *vt_atlas_relative_path(const char *output, const char *path)
+{
+    if (path[0] == '/')
+        return strdup(path);
+    char cwd[4096];
+    if (!getcwd(cwd, sizeof cwd))
+        return NULL;
+    size_t max = strlen(cwd) + strlen(output) + strlen(path) + 4;
+    char *a = malloc(max), *b = malloc(max), *out = malloc(3 * max);
+    char **pa = malloc(max * sizeof *pa), **pb = malloc(max * sizeof *pb);
+    char *result = NULL;
+    if (!a || !b || !out || !pa || !pb)
+        goto done;
+    snprintf(a, max, "%s/%s", output[0] == '/' ? "" : cwd, output);
+    snprintf(b, max, "%s/%s", cwd, path);
+    size_t na = push_components(a, pa, 0), nb = push_components(b, pb, 0);
+    if (na)
+        na--; /* the output's directory */
+    size_t common = 0;
+    while (common < na && common < nb && strcmp(pa[common], pb[common]) == 0)
+        common++;
+    out[0] = 0;
+    for (size_t i = common; i < na; i++)
+        strcat(out, "../");
+    for (size_t i = common; i < nb; i++) {
+        strcat(out, pb[i]);
+        if (i + 1 < nb)
+            strcat(out, "/");
+    }
+    result = strdup(out);
+done:
+    free(a);
+    free(b);
+    free(out);
+    free(pa);
+    free(pb);
+    return result;
+}
+
+/* ---- per-entry sizes ---- */
+
+struct sizing {
+    uint32_t src_w, src_h; /* largest texture of the entry (CONSTANT_CELL without) */
+    bool textured;
+    double density;
+    double scale;
+    uint32_t w, h;               /* one copy in the atlas */
+    uint32_t repeat_u, repeat_v; /* copies */
+    int32_t origin_u, origin_v;
+};
+
+static int wrap_range(double lo, double hi, uint32_t max_repeat, int32_t *origin, uint32_t *repeat)
+{
+    double o = floor(lo + UV_EPS), top = ceil(hi - UV_EPS);
+    double r = top - o < 1 ? 1 : top - o;
+    if (o < INT32_MIN || o > INT32_MAX || r > max_repeat)
+        return -1;
+    *origin = (int32_t)o;
+    *repeat = (uint32_t)r;
+    return 0;
+}
+
+static int check_wrap(const struct vt_atlas_material *m, const struct vt_atlas_place_options *o,
+                      struct sizing *z, struct vt_error *err)
+{
+    z->repeat_u = z->repeat_v = 1;
+    z->origin_u = z->origin_v = 0;
+    if (!z->textured || !m->has_uv)
+        return 0;
+    bool outside =
+        m->umin < -UV_EPS || m->umax > 1 + UV_EPS || m->vmin < -UV_EPS || m->vmax > 1 + UV_EPS;
+    if (!outside)
+        return 0;
+    if (!o->wrap_replicate)
+        return vt_error_set(err, VT_ERR_BAD_INPUT,
+                            "'%s': material '%s' uses u %g..%g, v %g..%g outside [0,1]: use "
+                            "--wrap replicate",
+                            m->obj, m->name, m->umin, m->umax, m->vmin, m->vmax);
+    if (wrap_range(m->umin, m->umax, o->max_repeat, &z->origin_u, &z->repeat_u) ||
+        wrap_range(m->vmin, m->vmax, o->max_repeat, &z->origin_v, &z->repeat_v))
+        return vt_error_set(err, VT_ERR_LIMIT,
+                            "'%s': material '%s' uses u %g..%g, v %g..%g: more than --max-repeat "
+                            "%u copies",
+                            m->obj, m->name, m->umin, m->umax, m->vmin, m->vmax, o->max_repeat);
+    return 0;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Target = the lower median of the textured materials' densities; each scale is the power of two
+ * nearest (in log2) to sqrt(target / density), clamped to 1/max_scale..max_scale. */
+static int density_scales(struct sizing *z, uint32_t n, uint32_t max_scale, double *target)
+{
+    double *d = malloc((n ? n : 1) * sizeof *d);
+    if (!d)
+        return VT_ERR_NOMEM;
+    uint32_t k = 0;
+    for (uint32_t i = 0; i < n; i++)
+        if (z[i].density > 0 && isfinite(z[i].density))
+            d[k++] = z[i].density;
+    *target = 0;
+    if (k) {
+        qsort(d, k, sizeof *d, cmp_double);
+        *target = d[(k - 1) / 2];
+        double lim = log2((double)max_scale);
+        for (uint32_t i = 0; i < n; i++) {
+            if (!(z[i].density > 0 && isfinite(z[i].density)))
+                continue;
+            double e = round(0.5 * log2(*target / z[i].density));
+            e = e < -lim ? -lim : e > lim ? lim : e;
+            z[i].scale = ldexp(1.0, (int)e);
+        }
+    }
+    free(d);
+    return 0;
+}
+
+static int size_entry(struct sizing *z, const char *name, struct vt_error *err)
+{
+    double w = (double)z->src_w * z->scale, h = (double)z->src_h * z->scale;
+    if (z->scale < 1) {
+        w = ceil(w);
+        h = ceil(h);
+    }
+    if (w * z->repeat_u > UINT32_MAX || h * z->repeat_v > UINT32_MAX)
+        return vt_error_set(err, VT_ERR_LIMIT, "material '%s' needs more than 2^32 texels", name);
+    z->w = (uint32_t)w;
+    z->h = (uint32_t)h;
+    return 0;
+}
+
+/* ---- the layout ---- */
+
+static int fill_texture(struct vt_layout_texture *t, const struct vt_atlas_scene *scene,
+                        const struct vt_atlas_material *m, unsigned kind, const char *output)
+{
+    int32_t ti = m->texture[kind];
+    if (ti < 0) {
+        memcpy(t->fill, m->fill[kind], sizeof t->fill);
+        return 0;
+    }
+    const struct vt_atlas_texture *tx = &scene->textures[ti];
+    t->path = vt_atlas_relative_path(output, tx->path);
+    t->width = tx->width;
+    t->height = tx->height;
+    return t->path ? 0 : VT_ERR_NOMEM;
+}
+
+static int fill_layout(const struct vt_atlas_scene *scene, const struct vt_atlas_place_options *o,
+                       const unsigned *kinds, uint32_t layer_count, const struct sizing *z,
+                       const struct vt_atlas_rect *rects, struct vt_layout *l, struct vt_error *err)
+{
+    int rc = vt_layout_alloc(l, layer_count, scene->material_count, err);
+    if (rc)
+        return rc;
+    l->tile_content = o->tile_content;
+    l->border = o->border;
+    l->generator = strdup("vt-atlas " VT_VERSION_STRING);
+    bool nomem = !l->generator;
+    for (uint32_t k = 0; k < layer_count; k++) {
+        l->layers[k].name = strdup(vt_atlas_kind_name(kinds[k]));
+        l->layers[k].map = strdup(vt_atlas_kind_map(kinds[k]));
+        l->layers[k].colour = vt_atlas_kind_colour(kinds[k]);
+        nomem |= !l->layers[k].name || !l->layers[k].map;
+    }
+    bool grid = o->grid_rows && o->grid_cols;
+    for (uint32_t i = 0; i < scene->material_count && !nomem; i++) {
+        const struct vt_atlas_material *m = &scene->materials[i];
+        struct vt_layout_entry *e = &l->entries[i];
+        const struct vt_atlas_rect *r = &rects[grid ? 0 : i];
+        e->name = strdup(m->name);
+        e->width = z[i].w;
+        e->height = z[i].h;
+        e->repeat_u = z[i].repeat_u;
+        e->repeat_v = z[i].repeat_v;
+        e->origin_u = z[i].origin_u;
+        e->origin_v = z[i].origin_v;
+        e->scale = z[i].scale;
+        e->x = r->x;
+        e->y = r->y;
+        e->cell_width = r->cell_width;
+        e->cell_height = r->cell_height;
+        e->alignment = r->alignment;
+        if (grid) { /* piece (row, col) of the group, edge to edge */
+            uint32_t row = i / o->grid_cols, col = i % o->grid_cols;
+            e->x += col * z[i].w;
+            e->y += row * z[i].h;
+            e->cell_width = z[i].w;
+            e->cell_height = z[i].h;
+            uint32_t a = r->alignment;
+            while (a > 1 && (z[i].w % a || z[i].h % a))
+                a >>= 1;
+            e->alignment = a;
+            e->group = 1;
+        }
+        nomem |= !e->name;
+        for (uint32_t k = 0; k < layer_count && !nomem; k++)
+            nomem |= fill_texture(&e->textures[k], scene, m, kinds[k], o->output) != 0;
+    }
+    if (nomem)
+        return vt_error_set(err, VT_ERR_NOMEM, "out of memory building the layout");
+    return 0;
+}
+
+static int check_grid(const struct vt_atlas_scene *scene, const struct vt_atlas_place_options *o,
+                      struct vt_error *err)
+{
+    if ((uint64_t)o->grid_rows * o->grid_cols != scene->material_count)
+        return vt_error_set(err, VT_ERR_ARG, "--grid %ux%u needs %llu files, not %u", o->grid_rows,
+                            o->grid_cols, (unsigned long long)o->grid_rows * o->grid_cols,
+                            scene->material_count);
+    const struct vt_atlas_texture *t0 = &scene->textures[scene->materials[0].texture[0]];
+    for (uint32_t i = 1; i < scene->material_count; i++) {
+        const struct vt_atlas_texture *t = &scene->textures[scene->materials[i].texture[0]];
+        if (t->width != t0->width || t->height != t0->height)
+            return vt_error_set(err, VT_ERR_BAD_INPUT,
+                                "'%s' is %ux%u, not %ux%u like '%s': --grid pieces must have "
+                                "one size",
+                                t->path, t->width, t->height, t0->width, t0->height, t0->path);
+    }
+    if ((uint64_t)t0->width * o->grid_cols > UINT32_MAX ||
+        (uint64_t)t0->height * o->grid_rows > UINT32_MAX)
+        return vt_error_set(err, VT_ERR_LIMIT, "the --grid is larger than 2^32 texels");
+    return 0;
+}
+
+static void prepare_sizes(const struct vt_atlas_scene *scene, struct sizing *z)
+{
+    for (uint32_t i = 0; i < scene->material_count; i++) {
+        const struct vt_atlas_material *m = &scene->materials[i];
+        z[i] = (struct sizing){.src_w = CONSTANT_CELL, .src_h = CONSTANT_CELL, .scale = 1};
+        uint64_t best = 0;
+        for (unsigned k = 0; k < VT_ATLAS_KIND_COUNT; k++) {
+            if (m->texture[k] < 0)
+                continue;
+            const struct vt_atlas_texture *t = &scene->textures[m->texture[k]];
+            if ((uint64_t)t->width * t->height > best) {
+                best = (uint64_t)t->width * t->height;
+                z[i].src_w = t->width;
+                z[i].src_h = t->height;
+                z[i].textured = true;
+            }
+        }
+        if (z[i].textured && m->world_area > 0 && m->uv_area > 0)
+            z[i].density = m->uv_area * (double)z[i].src_w * z[i].src_h / m->world_area;
+    }
+}
+
+int vt_atlas_place(const struct vt_atlas_scene *scene, const struct vt_atlas_place_options *o,
+                   struct vt_layout *layout, struct vt_atlas_place_report *report,
+                   struct vt_error *err)
+{
+    memset(layout, 0, sizeof *layout);
+    memset(report, 0, sizeof *report);
+    uint32_t n = scene->material_count;
+    if (n == 0)
+        return vt_error_set(err, VT_ERR_BAD_INPUT,
+                            "nothing to place: no face uses a material and no texture is listed");
+    bool grid = o->grid_rows && o->grid_cols;
+    /* Only the layers some entry has a texture for; diffuse alone when none has any. */
+    unsigned kinds[VT_ATLAS_KIND_COUNT];
+    uint32_t layer_count = 0;
+    for (unsigned k = 0; k < VT_ATLAS_KIND_COUNT; k++) {
+        bool used = false;
+        for (uint32_t i = 0; i < n && !used; i++)
+            used = scene->materials[i].texture[k] >= 0;
+        if (used)
+            kinds[layer_count++] = k;
+    }
+    if (!layer_count)
+        kinds[layer_count++] = VT_ATLAS_DIFFUSE;
+    struct sizing *z = calloc(n, sizeof *z);
+    struct vt_atlas_rect *rects = calloc(n, sizeof *rects);
+    int rc = 0;
+    if (!z || !rects) {
+        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory for %u entries", n);
+        goto out;
+    }
+    if (grid && (rc = check_grid(scene, o, err)))
+        goto out;
+    prepare_sizes(scene, z);
+    for (uint32_t i = 0; i < n && !rc; i++)
+        rc = check_wrap(&scene->materials[i], o, &z[i], err);
+    if (!rc && o->density && !grid &&
+        (rc = density_scales(z, n, o->max_scale, &report->target_density)))
+        vt_error_set(err, rc, "out of memory");
+    for (uint32_t i = 0; i < n && !rc; i++)
+        rc = size_entry(&z[i], scene->materials[i].name, err);
+    if (rc)
+        goto out;
+    for (uint32_t i = 0; i < n; i++) {
+        rects[i].width = z[i].w * z[i].repeat_u;
+        rects[i].height = z[i].h * z[i].repeat_v;
+        report->scaled += z[i].scale != 1;
+        report->replicated += z[i].repeat_u * z[i].repeat_v > 1;
+        report->constant += !z[i].textured;
+    }
+    if (grid) {
+        rects[0].width = z[0].w * o->grid_cols;
+        rects[0].height = z[0].h * o->grid_rows;
+    }
+    struct vt_atlas_pack_options po = {.tile_content = o->tile_content, .max_edge = o->max_edge};
+    rc = vt_atlas_pack(rects, grid ? 1 : n, &po, &report->pack, err);
+    if (!rc)
+        rc = fill_layout(scene, o, kinds, layer_count, z, rects, layout, err);
+    if (!rc) {
+        layout->width = report->pack.width;
+        layout->height = report->pack.height;
+    }
+out:
+    free(z);
+    free(rects);
+    return rc;
+}

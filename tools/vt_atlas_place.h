@@ -1,0 +1,44 @@
+/* vt-atlas placement: from a scanned scene to a packed struct vt_layout (layers, wrap
+ * replication, texel-density scales, --grid groups, paths relative to the output). */
+#ifndef VT_ATLAS_PLACE_H
+#define VT_ATLAS_PLACE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "vt_atlas_pack.h"
+#include "vt_atlas_scene.h"
+#include "vt_error.h"
+#include "vt_layout.h"
+
+struct vt_atlas_place_options {
+    uint32_t tile_content, border, max_edge;
+    bool density;       /* even out texel density (scene mode) */
+    uint32_t max_scale; /* density scales within 1/max_scale..max_scale (a power of two) */
+    bool wrap_replicate;
+    uint32_t max_repeat;
+    uint32_t grid_rows, grid_cols; /* both non-zero: --grid (materials are the pieces) */
+    const char *output;            /* atlas.json path: texture paths are made relative to it */
+};
+
+struct vt_atlas_place_report {
+    struct vt_atlas_pack_stats pack;
+    double target_density; /* texels per world unit^2 (0 without --density) */
+    uint32_t scaled;       /* entries with scale != 1 */
+    uint32_t replicated;   /* entries with more than one copy */
+    uint32_t constant;     /* entries without any texture */
+};
+
+/* Builds *layout (overwritten; release it after success or failure). Returns 0, VT_ERR_BAD_INPUT
+ * ("'scene.obj': material 'ground' uses u 0..8, v 0..8 outside [0,1]: use --wrap replicate"),
+ * VT_ERR_LIMIT (the atlas does not fit --max-size, too many copies) or VT_ERR_NOMEM. */
+int vt_atlas_place(const struct vt_atlas_scene *scene, const struct vt_atlas_place_options *o,
+                   struct vt_layout *layout, struct vt_atlas_place_report *report,
+                   struct vt_error *err);
+
+/* path as seen from the directory of output: absolute paths are kept, relative ones (to the
+ * working directory) are rewritten relative to output's directory. malloc'ed; NULL when out of
+ * memory or the working directory is unknown. */
+char *vt_atlas_relative_path(const char *output, const char *path);
+
+#endif
