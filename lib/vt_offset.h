@@ -1,0 +1,93 @@
+/* The texture coordinate rewriter of vt-offset: puts the `vt` of an OBJ scene onto an atlas
+ * (struct vt_layout) in double precision, streaming. Behaviour and reasons: docs/cli/vt-offset.md.
+ *
+ * Two passes over the OBJ text. Pass 1 counts v/vn, parses every `vt` and every face, checks each
+ * index, the material of each face that has texture coordinates (it must be in the layout) and
+ * that each coordinate lies in the UV range its material covers, and records for every `vt` the
+ * materials of the faces that use it. Pass 2 copies the text line by line:
+ *   - a `vt` used by faces is replaced by its atlas coordinate for the first material that uses
+ *     it, and one more `vt` line follows it for each other material (so indices stay backward);
+ *     a `vt` no face uses is copied unchanged;
+ *   - `f` (and `l`) lines whose texture indices change are rewritten with the new indices, in the
+ *     same style (positive or negative), the position and normal parts untouched;
+ *   - `usemtl X` becomes `usemtl <material>`; the first `mtllib` names the new MTL, later ones are
+ *     turned into comments ("# " before them); without any, an mtllib line is written first;
+ *   - every other line is copied byte for byte, CRLF and '\' continuations included.
+ * Memory: about 28 bytes per `vt` plus 8 per extra material of a shared one; never the text. */
+#ifndef VT_OFFSET_H
+#define VT_OFFSET_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vt_error.h"
+#include "vt_layout.h"
+#include "vt_obj.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define VT_OFFSET_MATERIAL "vt_atlas"
+/* vt-offset warns when the float32 round-off of a written coordinate exceeds this, in texels. */
+#define VT_OFFSET_F32_WARN_TEXELS 0.125
+
+struct vt_offset_options {
+    const char *layout_name;     /* the layout file, for messages ("atlas.json") */
+    const char *mtllib;          /* written on the mtllib line (relative to the output OBJ) */
+    const char *material;        /* written on usemtl lines (VT_OFFSET_MATERIAL) */
+    unsigned digits;             /* decimal places of the written coordinates, 1..17; 0: default */
+    struct vt_obj_limits limits; /* line length and vertex counts (vt_obj_limits_default) */
+};
+
+/* Defaults: layout_name "atlas.json", mtllib "out.mtl", material VT_OFFSET_MATERIAL, digits 0. */
+void vt_offset_options_default(struct vt_offset_options *opt);
+
+/* Decimal places that keep the rounding of written coordinates within 1e-4 level-0 texel of the
+ * larger atlas edge (at least 6): 8 for 4096, 10 for 2^20, 11 for 2^24. */
+unsigned vt_offset_default_digits(const struct vt_layout *layout);
+
+/* Where the rewritten OBJ goes: write() gets the text in order, in pieces of up to 1 MiB. It
+ * returns 0 or a negative status with err filled. */
+struct vt_offset_sink {
+    int (*write)(void *user, const void *data, size_t size, struct vt_error *err);
+    void *user;
+};
+
+struct vt_offset_stats {
+    uint64_t lines;            /* physical lines read */
+    uint64_t vt_lines;         /* vt statements in the input */
+    uint64_t vt_rewritten;     /* vt statements replaced by atlas coordinates */
+    uint64_t vt_duplicated;    /* extra vt lines written for faces of other materials */
+    uint64_t vt_unused;        /* vt statements no face uses (copied unchanged) */
+    uint64_t faces;            /* f statements */
+    uint64_t faces_rewritten;  /* f and l statements whose texture indices changed */
+    uint64_t faces_without_vt; /* f statements without any texture index (copied unchanged) */
+    unsigned digits;           /* decimal places used */
+    double max_error;     /* worst |written text read back as double - exact double|, in level-0
+                             texels of the atlas (u errors times width, v errors times height) */
+    double max_error_f32; /* the same for the text read back as float32 */
+    uint64_t max_error_f32_line; /* input line of the vt with the worst float32 error (0: none) */
+};
+
+/* Rewrites the OBJ file at obj_path onto layout (read or indexed) into out. Returns 0, or
+ * VT_ERR_IO, VT_ERR_BAD_INPUT ("'scene.obj':12: ..."), VT_ERR_LIMIT, VT_ERR_NOMEM or a status of
+ * out->write; stats (may be NULL) is filled on success. */
+int vt_offset_rewrite(const char *obj_path, const struct vt_layout *layout,
+                      const struct vt_offset_options *opt, const struct vt_offset_sink *out,
+                      struct vt_offset_stats *stats, struct vt_error *err);
+
+/* As vt_offset_rewrite() on size bytes in memory; name is used in messages. */
+int vt_offset_rewrite_memory(const void *data, size_t size, const char *name,
+                             const struct vt_layout *layout, const struct vt_offset_options *opt,
+                             const struct vt_offset_sink *out, struct vt_offset_stats *stats,
+                             struct vt_error *err);
+
+/* True when the float32 round-off of stats exceeds VT_OFFSET_F32_WARN_TEXELS. */
+bool vt_offset_f32_warning(const struct vt_offset_stats *stats);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

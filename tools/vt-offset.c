@@ -1,0 +1,281 @@
+/* vt-offset: rewrites the texture coordinates of an OBJ scene onto the atlas of a layout
+ * (atlas.json), writing OUT.obj and OUT.mtl with one material that names the store. Reference:
+ * docs/cli/vt-offset.md; the engine is lib/vt_offset.c. */
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <unistd.h>
+
+#include "tool_common.h"
+#include "vt_atomic_file.h"
+#include "vt_layout.h"
+#include "vt_offset.h"
+#include "vt_uv_text.h"
+#include "vt_version.h"
+
+struct options {
+    const char *obj_path;
+    const char *layout_path;
+    const char *out_path;
+    const char *mtl_path; /* --mtl, or NULL */
+    const char *store;    /* --store, or NULL */
+    uint32_t digits;      /* --precision, 0: from the atlas size */
+};
+
+enum { OPT_VERSION = 256, OPT_STORE, OPT_MTL, OPT_PRECISION };
+
+static const struct option long_options[] = {{"output", required_argument, NULL, 'o'},
+                                             {"store", required_argument, NULL, OPT_STORE},
+                                             {"mtl", required_argument, NULL, OPT_MTL},
+                                             {"precision", required_argument, NULL, OPT_PRECISION},
+                                             {"quiet", no_argument, NULL, 'q'},
+                                             {"verbose", no_argument, NULL, 'v'},
+                                             {"help", no_argument, NULL, 'h'},
+                                             {"version", no_argument, NULL, OPT_VERSION},
+                                             {NULL, 0, NULL, 0}};
+
+static void usage(void)
+{
+    fputs("usage: vt-offset SCENE.obj atlas.json -o OUT.obj [options]\n"
+          "Put the texture coordinates (vt) of an OBJ scene onto the atlas of atlas.json (written\n"
+          "by vt-atlas), in double precision. Every other line is copied unchanged.\n"
+          "\n"
+          "  -o, --output FILE   the OBJ to write (replaced only when complete)\n"
+          "      --mtl FILE      the MTL to write, named by OUT's mtllib line\n"
+          "                      (default: OUT with .mtl instead of .obj)\n"
+          "      --store NAME    the store map_Kd names in the MTL, as written\n"
+          "                      (default: OUT's file name with .vts instead of .obj)\n"
+          "      --precision N   decimal places of the written coordinates, 1..17 (default: the\n"
+          "                      fewest keeping the round-off under 1e-4 texel of the atlas)\n"
+          "  -q, --quiet         print errors only\n"
+          "  -v, --verbose       print more\n"
+          "  -h, --help          print this help and exit\n"
+          "      --version       print the version and exit\n"
+          "\n"
+          "A vt shared by faces of different materials is written once per material (faces\n"
+          "renumbered); usemtl lines name the one material vt_atlas. Prints the worst round-off\n"
+          "of the written coordinates in level-0 texels, as double and as float32, and warns when\n"
+          "float32 loses more than 1/8 texel. V is up, as in OBJ (docs/cli/vt-offset.md).\n"
+          "Exit status: 0 ok, 1 bad input (unreadable scene or atlas, bad index or number, a\n"
+          "material the atlas lacks, UVs outside what it covers) or output not written, 2 bad\n"
+          "usage.\n",
+          stdout);
+}
+
+/* Returns an exit code when main should stop now (help, version, usage error), else -1. */
+static int parse_options(int argc, char **argv, struct options *o)
+{
+    int c, verbosity = VT_LOG_WARN;
+    *o = (struct options){0};
+    opterr = 0;
+    while ((c = vt_getopt_long(argc, argv, ":hqvo:", long_options)) != -1) {
+        if (c == 'h') {
+            usage();
+            return VT_EXIT_OK;
+        } else if (c == OPT_VERSION) {
+            vt_print_version(stdout);
+            return VT_EXIT_OK;
+        } else if (c == 'q' || c == 'v') {
+            verbosity = c == 'q' ? VT_LOG_ERROR : verbosity + 1;
+        } else if (c == 'o') {
+            o->out_path = optarg;
+        } else if (c == OPT_MTL) {
+            o->mtl_path = optarg;
+        } else if (c == OPT_STORE) {
+            o->store = optarg;
+        } else if (c == OPT_PRECISION) {
+            if (vt_parse_u32(optarg, 1, VT_UV_MAX_DIGITS, &o->digits) < 0)
+                return vt_usage_error("--precision: '%s' is not a number in 1..%d", optarg,
+                                      VT_UV_MAX_DIGITS);
+        } else {
+            return vt_usage_getopt_error(c, argv);
+        }
+    }
+    vt_log_set_level(verbosity);
+    if (argc - optind < 2)
+        return vt_usage_error(argc == optind ? "missing SCENE.obj and atlas.json"
+                                             : "missing atlas.json");
+    if (argc - optind > 2)
+        return vt_usage_error("unexpected argument '%s'", argv[optind + 2]);
+    o->obj_path = argv[optind];
+    o->layout_path = argv[optind + 1];
+    if (!o->out_path)
+        return vt_usage_error("missing -o OUT.obj");
+    return -1;
+}
+
+/* ---- file names ---- */
+
+static const char *base_name(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    return slash ? slash + 1 : path;
+}
+
+/* path with its ".obj" (any case) replaced by ext, or ext appended; malloc'ed. */
+static char *with_extension(const char *path, const char *ext)
+{
+    size_t n = strlen(path);
+    if (n > 4 && strcasecmp(path + n - 4, ".obj") == 0 && path[n - 5] != '/')
+        n -= 4;
+    char *out = malloc(n + strlen(ext) + 1);
+    if (out) {
+        memcpy(out, path, n);
+        strcpy(out + n, ext);
+    }
+    return out;
+}
+
+static bool same_directory(const char *a, const char *b)
+{
+    size_t da = (size_t)(base_name(a) - a), db = (size_t)(base_name(b) - b);
+    return da == db && strncmp(a, b, da) == 0;
+}
+
+/* What OUT.obj's mtllib line says: the MTL's name when both lie in one directory, else its
+ * absolute path. malloc'ed, or NULL with a message logged. */
+static char *mtllib_text(const char *out_path, const char *mtl_path)
+{
+    if (same_directory(out_path, mtl_path) || mtl_path[0] == '/')
+        return strdup(same_directory(out_path, mtl_path) ? base_name(mtl_path) : mtl_path);
+    char cwd[PATH_MAX];
+    if (!getcwd(cwd, sizeof cwd)) {
+        vt_log(VT_LOG_ERROR, "cannot name '%s' from '%s': current directory unknown", mtl_path,
+               out_path);
+        return NULL;
+    }
+    size_t n = strlen(cwd) + strlen(mtl_path) + 2;
+    char *out = malloc(n);
+    if (out)
+        snprintf(out, n, "%s/%s", cwd, mtl_path);
+    return out;
+}
+
+/* ---- output ---- */
+
+struct file_sink {
+    struct vt_atomic_file file;
+    unsigned long long offset;
+};
+
+static int sink_write(void *user, const void *data, size_t size, struct vt_error *err)
+{
+    struct file_sink *s = user;
+    int rc = vt_atomic_file_pwrite(&s->file, data, size, s->offset, err);
+    s->offset += size;
+    return rc;
+}
+
+static int write_mtl(struct file_sink *mtl, const struct options *o, const struct vt_layout *layout,
+                     const char *store, struct vt_error *err)
+{
+    char text[4096];
+    size_t n = (size_t)snprintf(text, sizeof text,
+                                "# written by vt-offset (vtpipe %s) from '%s' and '%s'\n"
+                                "# the store holds the %ux%u atlas; its layers:",
+                                VT_VERSION_STRING, base_name(o->obj_path),
+                                base_name(o->layout_path), layout->width, layout->height);
+    for (uint32_t i = 0; i < layout->layer_count && n < sizeof text; i++)
+        n += (size_t)snprintf(text + n, sizeof text - n, " %s (%s)", layout->layers[i].name,
+                              layout->layers[i].map);
+    if (n < sizeof text)
+        n +=
+            (size_t)snprintf(text + n, sizeof text - n,
+                             "\nnewmtl %s\nKa 1 1 1\nKd 1 1 1\nKs 0 0 0\nd 1\nillum 1\nmap_Kd %s\n",
+                             VT_OFFSET_MATERIAL, store);
+    if (n >= sizeof text)
+        return vt_error_set(err, VT_ERR_ARG, "store name '%s' too long", store);
+    return sink_write(mtl, text, n, err);
+}
+
+static void report(const struct options *o, const char *mtl_path, const struct vt_layout *layout,
+                   const struct vt_offset_stats *s)
+{
+    vt_log(VT_LOG_WARN,
+           "wrote '%s' and '%s': %llu vt on the atlas (%llu duplicated for faces of other "
+           "materials, %llu unused kept), %llu of %llu faces renumbered",
+           o->out_path, mtl_path, (unsigned long long)s->vt_rewritten,
+           (unsigned long long)s->vt_duplicated, (unsigned long long)s->vt_unused,
+           (unsigned long long)s->faces_rewritten, (unsigned long long)s->faces);
+    vt_log(VT_LOG_WARN,
+           "worst round-off on the %ux%u atlas: %.2g texel as written (%u decimals), %.2g texel "
+           "as float32",
+           layout->width, layout->height, s->max_error, s->digits, s->max_error_f32);
+    vt_log(VT_LOG_INFO,
+           "'%s': %llu lines, %llu vt statements, %llu faces (%llu without texture coordinates); "
+           "coordinates written with %u decimals",
+           o->obj_path, (unsigned long long)s->lines, (unsigned long long)s->vt_lines,
+           (unsigned long long)s->faces, (unsigned long long)s->faces_without_vt, s->digits);
+    if (vt_offset_f32_warning(s))
+        vt_log(VT_LOG_WARN,
+               "warning: float32 texture coordinates lose up to %.2g texel on this %ux%u atlas "
+               "(vt on line %llu): read them as double",
+               s->max_error_f32, layout->width, layout->height,
+               (unsigned long long)s->max_error_f32_line);
+}
+
+static int run(const struct options *o)
+{
+    struct vt_error err = {0};
+    struct vt_layout layout = {0};
+    struct file_sink obj = {.file.fd = -1}, mtl = {.file.fd = -1};
+    char *mtl_path = o->mtl_path ? strdup(o->mtl_path) : with_extension(o->out_path, ".mtl");
+    char *store = o->store ? strdup(o->store) : with_extension(base_name(o->out_path), ".vts");
+    char *mtllib = mtl_path ? mtllib_text(o->out_path, mtl_path) : NULL;
+    int status = VT_EXIT_BAD_INPUT, rc;
+    if (!mtl_path || !store || !mtllib) {
+        vt_log(VT_LOG_ERROR, "out of memory");
+        goto out;
+    }
+    if (strcmp(mtl_path, o->out_path) == 0) {
+        status = vt_usage_error("--mtl names the output OBJ '%s'", o->out_path);
+        goto out;
+    }
+    rc = vt_layout_read(o->layout_path, NULL, &layout, &err);
+    if (rc == 0)
+        rc = vt_atomic_file_create(&obj.file, o->out_path, "tmp", &err);
+    if (rc == 0)
+        rc = vt_atomic_file_create(&mtl.file, mtl_path, "tmp", &err);
+    struct vt_offset_options opt;
+    vt_offset_options_default(&opt);
+    opt.layout_name = o->layout_path;
+    opt.mtllib = mtllib;
+    opt.digits = o->digits;
+    struct vt_offset_stats stats;
+    struct vt_offset_sink sink = {sink_write, &obj};
+    if (rc == 0)
+        rc = vt_offset_rewrite(o->obj_path, &layout, &opt, &sink, &stats, &err);
+    if (rc == 0)
+        rc = write_mtl(&mtl, o, &layout, store, &err);
+    if (rc == 0)
+        rc = vt_atomic_file_commit(&mtl.file, &err);
+    if (rc == 0) {
+        rc = vt_atomic_file_commit(&obj.file, &err);
+        if (rc < 0)
+            unlink(mtl_path); /* no half output */
+    }
+    if (rc < 0) {
+        vt_log(VT_LOG_ERROR, "%s", err.message);
+        goto out;
+    }
+    report(o, mtl_path, &layout, &stats);
+    status = VT_EXIT_OK;
+out:
+    vt_atomic_file_abort(&obj.file); /* no-ops once committed */
+    vt_atomic_file_abort(&mtl.file);
+    vt_layout_release(&layout);
+    free(mtl_path);
+    free(store);
+    free(mtllib);
+    return status;
+}
+
+int main(int argc, char **argv)
+{
+    struct options o;
+    vt_tool_init("vt-offset");
+    vt_atomic_file_cleanup_on_signals();
+    int rc = parse_options(argc, argv, &o);
+    return rc >= 0 ? rc : run(&o);
+}
