@@ -48,11 +48,13 @@ struct pass {
     bool sequential;
     bool source_is_working;
     bool emit_base;
+    bool carry;              /* a shard: the last level goes to o->carry instead of a next pass */
     uint32_t base, depth, k; /* base level, levels reduced here, levels per pass */
     uint32_t w, h, channels, sample;
     uint64_t block; /* S = content << k */
     uint32_t margin[MAX_LEVELS_PER_PASS + 1];
     uint32_t blocks_x, blocks_y, row, next_bx;
+    uint32_t bx0, bx1, by0, by1; /* the blocks this pass runs */
     struct vt_kernel kernel;
     struct vt_pixel_mode mode;
     struct vt_float_file *next;
@@ -66,12 +68,72 @@ static uint32_t level_extent(uint32_t size, uint32_t level)
     return (uint32_t)(((uint64_t)size + (1ull << level) - 1) >> level);
 }
 
+static uint32_t resolved_levels_per_pass(const struct vt_pyramid_options *o)
+{
+    uint32_t k = o->levels_per_pass ? o->levels_per_pass : DEFAULT_LEVELS_PER_PASS;
+    return k > MAX_LEVELS_PER_PASS ? MAX_LEVELS_PER_PASS : k;
+}
+
+void vt_pyramid_plan(const struct vt_pyramid_options *o, struct vt_pyramid_plan *out)
+{
+    uint32_t k = resolved_levels_per_pass(o);
+    uint64_t block = (uint64_t)o->tile_content_px << k;
+    *out = (struct vt_pyramid_plan){.levels_per_pass = k,
+                                    .has_next = o->level_count > k + 1,
+                                    .block = block,
+                                    .blocks_x = (uint32_t)((o->width + block - 1) / block),
+                                    .blocks_y = (uint32_t)((o->height + block - 1) / block)};
+    if (out->has_next) {
+        out->carry_width = level_extent(o->width, k);
+        out->carry_height = level_extent(o->height, k);
+    }
+}
+
+bool vt_pyramid_part(const struct vt_pyramid_plan *plan, uint32_t index, uint32_t count,
+                     uint32_t *x0, uint32_t *y0, uint32_t *x1, uint32_t *y1)
+{
+    if (count == 0 || (count & (count - 1)) != 0 || index >= count)
+        return false;
+    uint32_t m = 0;
+    while ((1u << m) < count)
+        m++;
+    uint32_t gx = 1u << ((m + 1) / 2), gy = 1u << (m / 2);
+    uint32_t px = (plan->blocks_x + gx - 1) / gx, py = (plan->blocks_y + gy - 1) / gy;
+    uint32_t col = index % gx, row = index / gx;
+    uint64_t a = (uint64_t)col * px, b = (uint64_t)(col + 1) * px;
+    *x0 = (uint32_t)(a < plan->blocks_x ? a : plan->blocks_x);
+    *x1 = (uint32_t)(b < plan->blocks_x ? b : plan->blocks_x);
+    a = (uint64_t)row * py, b = (uint64_t)(row + 1) * py;
+    *y0 = (uint32_t)(a < plan->blocks_y ? a : plan->blocks_y);
+    *y1 = (uint32_t)(b < plan->blocks_y ? b : plan->blocks_y);
+    return true;
+}
+
+/* Tiles of a level-r axis that blocks [b0, b1) own (the whole axis: 0 .. blocks). */
+static uint64_t part_tiles(uint32_t size, uint32_t r, uint64_t block, uint32_t c, uint32_t b0,
+                           uint32_t b1)
+{
+    uint64_t s = block >> r, extent = level_extent(size, r);
+    uint64_t tiles_end = (extent + c - 1) / c * c, c0 = (uint64_t)b0 * s, c1 = (uint64_t)b1 * s;
+    c1 = c1 < tiles_end ? c1 : tiles_end;
+    return c0 < c1 ? (c1 - c0 + c - 1) / c : 0;
+}
+
 uint64_t vt_pyramid_tile_count(const struct vt_pyramid_options *o)
 {
+    struct vt_pyramid_plan plan;
+    vt_pyramid_plan(o, &plan);
+    uint32_t k = plan.levels_per_pass, first = o->resume_input ? k + 1 : 0;
     uint64_t n = 0;
-    for (uint32_t l = 0; l < o->level_count; l++) {
+    for (uint32_t l = first; l < o->level_count; l++) {
         uint64_t tx = (level_extent(o->width, l) + o->tile_content_px - 1) / o->tile_content_px;
         uint64_t ty = (level_extent(o->height, l) + o->tile_content_px - 1) / o->tile_content_px;
+        if (o->part) {
+            if (l > k)
+                break;
+            tx = part_tiles(o->width, l, plan.block, o->tile_content_px, o->part_x0, o->part_x1);
+            ty = part_tiles(o->height, l, plan.block, o->tile_content_px, o->part_y0, o->part_y1);
+        }
         n += tx * ty;
     }
     return n;
@@ -336,11 +398,20 @@ static int emit_level_tiles(struct pass *p, unsigned worker, struct scratch *s, 
     return rc;
 }
 
-static int store_next_pass(struct pass *p, struct scratch *s, uint32_t bx, uint32_t by,
-                           struct vt_error *err)
+static int store_next_pass(struct pass *p, unsigned worker, struct scratch *s, uint32_t bx,
+                           uint32_t by, struct vt_error *err)
 {
     const struct vt_fregion *w = &s->w[p->depth];
     struct span sx = block_span(p, bx, p->depth, p->w), sy = block_span(p, by, p->depth, p->h);
+    if (p->carry) {
+        if (sx.inner <= sx.c0 || sy.inner <= sy.c0)
+            return 0;
+        const float *first =
+            w->px + ((size_t)(sy.c0 - w->y0) * w->width + (size_t)(sx.c0 - w->x0)) * w->channels;
+        return p->o->carry(p->o->user, worker, (uint32_t)sx.c0, (uint32_t)sy.c0,
+                           (uint32_t)(sx.inner - sx.c0), (uint32_t)(sy.inner - sy.c0), w->channels,
+                           first, (size_t)w->width * w->channels, err);
+    }
     for (int64_t y = sy.c0; y < sy.inner; y++) {
         const float *row =
             w->px + ((size_t)(y - w->y0) * w->width + (size_t)(sx.c0 - w->x0)) * w->channels;
@@ -432,7 +503,7 @@ static int do_block(struct pass *p, unsigned worker, uint32_t bx, uint32_t by, s
     int rc = read_region(p, s, src, r0.x0, r0.y0, in, err);
     if (rc == 0 && p->emit_base)
         rc = emit_level_tiles(p, worker, s, 0, bx, by, r0.x0, r0.y0, err);
-    if (rc || (p->depth == 0 && !p->next))
+    if (rc || (p->depth == 0 && !p->next && !p->carry))
         return rc;
     if (p->source_is_working) /* pass images are already in the working space */
         s->w[0] = (struct vt_fregion){r0.x0, r0.y0, r0.width, r0.height, p->channels, in->pixels};
@@ -452,8 +523,8 @@ static int do_block(struct pass *p, unsigned worker, uint32_t bx, uint32_t by, s
         if (rc == 0)
             rc = emit_level_tiles(p, worker, s, r, bx, by, 0, 0, err);
     }
-    if (rc == 0 && p->next)
-        rc = store_next_pass(p, s, bx, by, err);
+    if (rc == 0 && (p->next || p->carry))
+        rc = store_next_pass(p, worker, s, bx, by, err);
     return rc;
 }
 
@@ -541,7 +612,7 @@ static int scratch_alloc(struct pass *p, struct vt_error *err)
 static bool next_block(void *ctx, uint64_t *job)
 {
     struct pass *p = ctx;
-    if (p->next_bx >= p->blocks_x)
+    if (p->next_bx >= p->bx1)
         return false;
     *job = p->next_bx++;
     return true;
@@ -572,9 +643,16 @@ static int run_pass(struct pass *p, struct vt_error *err)
     }
     p->blocks_x = (uint32_t)((p->w + p->block - 1) / p->block);
     p->blocks_y = (uint32_t)((p->h + p->block - 1) / p->block);
+    bool part = o->part && p->base == 0 && !o->resume_input;
+    p->bx0 = part ? o->part_x0 : 0;
+    p->bx1 = part ? (o->part_x1 < p->blocks_x ? o->part_x1 : p->blocks_x) : p->blocks_x;
+    p->by0 = part ? o->part_y0 : 0;
+    p->by1 = part ? (o->part_y1 < p->blocks_y ? o->part_y1 : p->blocks_y) : p->blocks_y;
+    if (p->bx0 >= p->bx1 || p->by0 >= p->by1) /* an empty part */
+        return 0;
     int rc = scratch_alloc(p, err);
     static const struct vt_pool_fns fns = {next_block, run_block, report_progress};
-    for (uint32_t by = 0; rc == 0 && by < p->blocks_y; by++) {
+    for (uint32_t by = p->by0; rc == 0 && by < p->by1; by++) {
         if (p->sequential) {
             struct vt_fregion r0;
             region_at(p, 0, by, 0, &r0);
@@ -586,7 +664,7 @@ static int run_pass(struct pass *p, struct vt_error *err)
             rc = band_move(p, a, b, err);
         }
         p->row = by;
-        p->next_bx = 0;
+        p->next_bx = p->bx0;
         if (rc == 0)
             rc = vt_pool_run(p->threads, &fns, p, err);
     }
@@ -599,12 +677,31 @@ static int run_pass(struct pass *p, struct vt_error *err)
 static int check_options(struct vt_source *const *sources, const struct vt_pyramid_options *o,
                          struct vt_error *err)
 {
-    const struct vt_source_info *in = &sources[0]->info;
+    const struct vt_source_info *in = o->resume_input ? o->resume_input : &sources[0]->info;
     uint32_t full = vts_full_level_count(o->width, o->height, o->tile_content_px);
     if (!o->emit || o->threads < 1 || o->tile_content_px == 0 || o->level_count == 0 ||
-        o->level_count > full || in->width != o->width || in->height != o->height ||
-        vts_sample_bytes(o->out_sample) == 0 || in->channels < 1 || in->channels > 4)
+        o->level_count > full ||
+        (!o->resume_input && (in->width != o->width || in->height != o->height)) ||
+        vts_sample_bytes(o->out_sample) == 0 || in->channels < 1 || in->channels > 4 ||
+        (o->part && o->resume_input) ||
+        (o->part && o->level_count > resolved_levels_per_pass(o) + 1 && !o->carry))
         return vt_error_set(err, VT_ERR_ARG, "invalid pyramid options");
+    if (o->resume_input) {
+        struct vt_pyramid_plan plan;
+        vt_pyramid_plan(o, &plan);
+        const struct vt_source_info *r = &sources[0]->info;
+        if (!plan.has_next || r->width != plan.carry_width || r->height != plan.carry_height ||
+            r->channels != in->channels || r->sample != VTS_SAMPLE_F32)
+            return vt_error_set(err, VT_ERR_ARG,
+                                "'%s': %ux%u texels of %u channels, %s, cannot resume a "
+                                "%ux%u build of %u channels at level %u",
+                                sources[0]->name, r->width, r->height, r->channels,
+                                vts_sample_name(r->sample), o->width, o->height, in->channels,
+                                plan.levels_per_pass);
+        for (unsigned i = 0; i < o->threads; i++)
+            if (!sources[i])
+                return vt_error_set(err, VT_ERR_ARG, "resuming needs one source per worker");
+    }
     if (o->out_channels != in->channels && !(in->has_alpha && o->out_channels == in->channels - 1))
         return vt_error_set(err, VT_ERR_ARG, "cannot make %u channels from %u", o->out_channels,
                             in->channels);
@@ -625,9 +722,8 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
     int rc = check_options(sources, o, err);
     if (rc)
         return rc;
-    const struct vt_source_info *in = &sources[0]->info;
-    uint32_t k = o->levels_per_pass ? o->levels_per_pass : DEFAULT_LEVELS_PER_PASS;
-    k = k > MAX_LEVELS_PER_PASS ? MAX_LEVELS_PER_PASS : k;
+    const struct vt_source_info *in = o->resume_input ? o->resume_input : &sources[0]->info;
+    uint32_t k = resolved_levels_per_pass(o);
     uint64_t done = 0;
     struct pass p = {.o = o,
                      .sources = sources,
@@ -648,6 +744,15 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
         (struct vt_pixel_mode){in->channels, o->colour,
                                in->has_alpha && !in->premultiplied && o->colour != VTS_COLOUR_DATA};
     vt_kernel_init(&p.kernel, o->filter);
+    if (o->resume_input) { /* as after the first pass: read its last level, in working space */
+        p.sequential = false;
+        p.source_is_working = true;
+        p.emit_base = false;
+        p.base = k;
+        p.w = level_extent(o->width, k);
+        p.h = level_extent(o->height, k);
+        p.sample = VTS_SAMPLE_F32;
+    }
     p.band_source = (struct vt_source){.info = *in, .ops = &band_ops, .ctx = &p.band};
     snprintf(p.band_source.name, sizeof p.band_source.name, "%s", sources[0]->name);
     struct vt_float_file *prev = NULL;
@@ -656,7 +761,7 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
     /* tiled inputs: workers share decoded tiles, so block margins do not decode tiles twice */
     struct vt_source cached[256], *cached_ptrs[256];
     struct vt_tile_cache *cache = NULL;
-    if (!in->sequential && in->tile_w && in->tile_h && o->threads <= 256) {
+    if (!o->resume_input && !in->sequential && in->tile_w && in->tile_h && o->threads <= 256) {
         cache = vt_tile_cache_create(sources, o->threads, INPUT_CACHE_BYTES, cached, err);
         if (!cache)
             return err ? err->status : VT_ERR_NOMEM;
@@ -668,7 +773,8 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
         uint32_t left = o->level_count - 1 - p.base;
         p.depth = left < k ? left : k;
         p.next = NULL;
-        if (p.depth < left) {
+        p.carry = o->part && p.depth < left;
+        if (p.depth < left && !o->part) {
             p.next = vt_float_file_create(o->temp_dir, level_extent(p.w, p.depth),
                                           level_extent(p.h, p.depth), p.channels, err);
             if (!p.next) {
@@ -682,7 +788,7 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
         vt_source_close(&temp_source);
         vt_float_file_destroy(prev);
         prev = p.next;
-        if (rc || !p.next)
+        if (rc || !p.next) /* a shard (o->part) stops after its first pass */
             break;
         /* the next pass reads this pass's last level, already in working space */
         free(temp_sources);

@@ -26,6 +26,14 @@ typedef int (*vt_pyramid_emit_fn)(void *user, unsigned worker, uint32_t level, u
                                   uint32_t ty, const struct vt_image *payload,
                                   struct vt_error *err);
 
+/* Sharded builds (docs/sharding.md): receives the texels a first-pass block computed of the pass's
+ * last level (relative level levels_per_pass): width x height texels of `channels` floats in the
+ * working space at (x, y) of that level, rows `stride` floats apart. Called from worker threads,
+ * once per block. */
+typedef int (*vt_pyramid_carry_fn)(void *user, unsigned worker, uint32_t x, uint32_t y,
+                                   uint32_t width, uint32_t height, uint32_t channels,
+                                   const float *texels, size_t stride, struct vt_error *err);
+
 /* Progress: tiles done of total; a non-zero return cancels. Called on the calling thread. */
 typedef int (*vt_pyramid_progress_fn)(void *user, uint64_t done, uint64_t total);
 
@@ -45,7 +53,36 @@ struct vt_pyramid_options {
     vt_pyramid_emit_fn emit;
     vt_pyramid_progress_fn progress;
     void *user;
+    /* Shard (part of level 0): when part is set, only the first pass runs, on the blocks
+     * [part_x0, part_x1) x [part_y0, part_y1) (see vt_pyramid_part()); it emits their tiles of
+     * levels 0 .. levels_per_pass and hands their texels of the last one to carry (when a next
+     * pass exists). Reads still use the whole source (margins), so these tiles are exact. */
+    bool part;
+    uint32_t part_x0, part_y0, part_x1, part_y1; /* may be empty: nothing is emitted */
+    vt_pyramid_carry_fn carry;
+    /* Resume (merging shards): when set, the first pass is skipped; sources[] read the first
+     * pass's last level (F32 working texels of resume_input->channels, level levels_per_pass)
+     * assembled from the carried parts, and the build emits the levels above it. resume_input
+     * describes the original input (channels, has_alpha, premultiplied). */
+    const struct vt_source_info *resume_input;
 };
+
+/* The first pass of a build: levels per pass (k, resolved), whether a next pass exists (then the
+ * carried level is k and every block carries one tile of it), the block edge and the blocks. */
+struct vt_pyramid_plan {
+    uint32_t levels_per_pass;
+    bool has_next;
+    uint64_t block;
+    uint32_t blocks_x, blocks_y;
+    uint32_t carry_width, carry_height; /* size of level k when has_next */
+};
+void vt_pyramid_plan(const struct vt_pyramid_options *o, struct vt_pyramid_plan *out);
+
+/* Part index (0 .. count-1, count a power of two) of a split of level 0 into a grid of
+ * 2^ceil(log2(count)/2) x 2^floor(log2(count)/2) parts, row-major, each ceil(blocks/grid) blocks
+ * (the last ones smaller, possibly empty). Returns false for a bad index or count. */
+bool vt_pyramid_part(const struct vt_pyramid_plan *plan, uint32_t index, uint32_t count,
+                     uint32_t *x0, uint32_t *y0, uint32_t *x1, uint32_t *y1);
 
 /* Builds the pyramid. sources[0 .. threads-1] are independent handles on the same image (so that
  * workers can decode in parallel); a sequential source needs only sources[0] (others may be
@@ -53,7 +90,7 @@ struct vt_pyramid_options {
 int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_options *o,
                      struct vt_error *err);
 
-/* Tiles per layer the build emits (for progress totals). */
+/* Tiles per layer the build emits (for progress totals; a shard's or a resumed build's own). */
 uint64_t vt_pyramid_tile_count(const struct vt_pyramid_options *o);
 
 #endif

@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "tool_common.h"
 #include "vt_atomic_file.h"
@@ -10,6 +11,7 @@
 #include "vt_image_input.h"
 #include "vt_pool.h"
 #include "vt_pyramid.h"
+#include "vt_shard.h"
 #include "vt_version.h"
 #include "vts_writer.h"
 
@@ -20,6 +22,7 @@ struct options {
     enum vt_filter_kind filter;
     const char *filtering; /* bilinear, trilinear, anisoN */
     uint64_t max_pixels;
+    uint32_t shard, shard_count; /* --shard I/N (docs/sharding.md); 0 = whole build */
 };
 
 static void usage(FILE *f)
@@ -54,32 +57,24 @@ static void usage(FILE *f)
         "      --name NAME          layer name (default diffuse)\n"
         "      --max-pixels N       refuse inputs with more texels (default 2^34)\n"
         "      --temp-dir DIR       where pass images go (default: the output's directory)\n"
+        "      --shard I/N          build part I of N (N a power of two) for vt-merge to join\n"
         "  -j, --threads N          worker threads (default: all cores)\n"
         "  -q, --quiet              errors only;  -v, --verbose  more detail\n"
         "  -h, --help               this help;    --version  version\n");
 }
 
-static const struct option long_options[] = {{"output", required_argument, 0, 'o'},
-                                             {"tile-size", required_argument, 0, 't'},
-                                             {"keep", required_argument, 0, 'K'},
-                                             {"border", required_argument, 0, 'b'},
-                                             {"filtering", required_argument, 0, 'F'},
-                                             {"filter", required_argument, 0, 'f'},
-                                             {"colour", required_argument, 0, 'c'},
-                                             {"wrap", no_argument, 0, 'w'},
-                                             {"codec", required_argument, 0, 'C'},
-                                             {"quality", required_argument, 0, 'Q'},
-                                             {"subsampling", required_argument, 0, 'S'},
-                                             {"mode", required_argument, 0, 'M'},
-                                             {"name", required_argument, 0, 'N'},
-                                             {"max-pixels", required_argument, 0, 'P'},
-                                             {"temp-dir", required_argument, 0, 'T'},
-                                             {"threads", required_argument, 0, 'j'},
-                                             {"quiet", no_argument, 0, 'q'},
-                                             {"verbose", no_argument, 0, 'v'},
-                                             {"help", no_argument, 0, 'h'},
-                                             {"version", no_argument, 0, 'V'},
-                                             {0, 0, 0, 0}};
+static const struct option long_options[] = {
+    {"output", required_argument, 0, 'o'},      {"tile-size", required_argument, 0, 't'},
+    {"keep", required_argument, 0, 'K'},        {"border", required_argument, 0, 'b'},
+    {"filtering", required_argument, 0, 'F'},   {"filter", required_argument, 0, 'f'},
+    {"colour", required_argument, 0, 'c'},      {"wrap", no_argument, 0, 'w'},
+    {"codec", required_argument, 0, 'C'},       {"quality", required_argument, 0, 'Q'},
+    {"subsampling", required_argument, 0, 'S'}, {"mode", required_argument, 0, 'M'},
+    {"name", required_argument, 0, 'N'},        {"max-pixels", required_argument, 0, 'P'},
+    {"temp-dir", required_argument, 0, 'T'},    {"shard", required_argument, 0, 'D'},
+    {"threads", required_argument, 0, 'j'},     {"quiet", no_argument, 0, 'q'},
+    {"verbose", no_argument, 0, 'v'},           {"help", no_argument, 0, 'h'},
+    {"version", no_argument, 0, 'V'},           {0, 0, 0, 0}};
 
 static int parse_colour(const char *s, uint32_t *out)
 {
@@ -175,6 +170,12 @@ static int parse_options(int argc, char **argv, struct options *o)
         case 'T':
             o->temp_dir = optarg;
             break;
+        case 'D':
+            if (vt_shard_parse(optarg, &o->shard, &o->shard_count))
+                return vt_usage_error("--shard must be I/N with N a power of two up to %u and I "
+                                      "1..N, not '%s'",
+                                      VT_SHARD_MAX_COUNT, optarg);
+            break;
         case 'j':
             if (vt_parse_u32(optarg, 1, 256, &o->threads))
                 return vt_usage_error("-j must be 1..256, not '%s'", optarg);
@@ -217,6 +218,7 @@ struct run {
     struct vts_writer *writer;
     unsigned char **bufs; /* one encode buffer per worker */
     size_t cap;
+    uint32_t carry_level, payload_px, border, content; /* shards: the carried level's tiles */
     struct vt_progress progress;
 };
 
@@ -233,6 +235,37 @@ static int emit_tile(void *user, unsigned worker, uint32_t level, uint32_t tx, u
                                 cerr.message);
     }
     return vts_writer_put(r->writer, 0, level, tx, ty, r->bufs[worker], len, err);
+}
+
+/* A shard's carried texels: one tile of the extra layer (vt_shard.h) per first-pass block. */
+static int carry_tile(void *user, unsigned worker, uint32_t x, uint32_t y, uint32_t width,
+                      uint32_t height, uint32_t channels, const float *texels, size_t stride,
+                      struct vt_error *err)
+{
+    struct run *r = user;
+    vt_shard_pack(r->bufs[worker], r->payload_px, r->border, texels, width, height, channels,
+                  stride);
+    size_t len = (size_t)r->payload_px * r->payload_px * channels * 4;
+    return vts_writer_put(r->writer, 1, r->carry_level, x / r->content, y / r->content,
+                          r->bufs[worker], len, err);
+}
+
+/* Shard metadata (after the single build's): shard=I/N, what the merge needs, the input's id. */
+static int set_shard_metadata(struct vts_writer *w, const struct options *o,
+                              const struct vt_shard_build *b, struct vt_error *err)
+{
+    char value[256];
+    struct stat st;
+    if (stat(o->input, &st) != 0)
+        return vt_error_set(err, VT_ERR_IO, "'%s': cannot stat the input", o->input);
+    snprintf(value, sizeof value, "%u/%u", o->shard, o->shard_count);
+    int rc = vts_writer_set_meta(w, VT_SHARD_KEY, value, err);
+    vt_shard_build_format(b, value, sizeof value);
+    if (rc == 0)
+        rc = vts_writer_set_meta(w, VT_SHARD_BUILD_KEY, value, err);
+    snprintf(value, sizeof value, "size=%lld mtime=%lld", (long long)st.st_size,
+             (long long)st.st_mtime);
+    return rc ? rc : vts_writer_set_meta(w, VT_SHARD_INPUT_KEY, value, err);
 }
 
 static int show_progress(void *user, uint64_t done, uint64_t total)
@@ -352,7 +385,15 @@ static int run(struct options *o)
     struct vt_error err = {0};
     struct run r = {.o = o};
     struct vts_geometry g;
-    int status = VT_EXIT_BAD_INPUT, rc = open_sources(o, src, o->threads, &err);
+    int status = VT_EXIT_BAD_INPUT, rc = 0;
+    struct stat in_stat;
+    if (o->shard && (stat(o->input, &in_stat) != 0 || !S_ISREG(in_stat.st_mode))) {
+        rc = vt_error_set(&err, VT_ERR_BAD_INPUT,
+                          "'%s': --shard needs INPUT to be a regular file (every shard reads it)",
+                          o->input);
+        goto out;
+    }
+    rc = open_sources(o, src, o->threads, &err);
     if (rc)
         goto out;
     const struct vt_source_info *in = &src[0].info;
@@ -384,13 +425,24 @@ static int run(struct options *o)
                                         o->best ? (r.codec->fourcc == VTS_CODEC_PNG ? 9 : 1) : 0,
                                         (int)o->subsampling};
     r.cap = r.codec->encoded_bound(g.tile_payload_px, g.tile_payload_px, channels, out_sample);
+    struct vts_layer layers[2] = {layer,
+                                  {VTS_CODEC_RAW, (uint8_t)in->channels, VTS_SAMPLE_F32,
+                                   (uint8_t)colour, 0, 0, VT_SHARD_LAYER_NAME}};
+    if (o->shard) { /* + the carried texels: payload_px^2 floats, beside the layer (vt_shard.h) */
+        g.layer_count = 2;
+        size_t carry = (size_t)g.tile_payload_px * g.tile_payload_px * in->channels * 4;
+        r.cap = carry > r.cap ? carry : r.cap;
+        r.payload_px = g.tile_payload_px;
+        r.border = g.border_px;
+        r.content = g.tile_content_px;
+    }
     r.bufs = calloc(o->threads, sizeof *r.bufs);
     for (unsigned i = 0; r.bufs && i < o->threads; i++)
         if (!(r.bufs[i] = malloc(r.cap))) {
             rc = vt_error_set(&err, VT_ERR_NOMEM, "out of memory for encode buffers");
             goto out;
         }
-    if (!(r.writer = vts_writer_create(o->output, &g, &layer, &err))) {
+    if (!(r.writer = vts_writer_create(o->output, &g, layers, &err))) {
         rc = err.status;
         goto out;
     }
@@ -417,9 +469,25 @@ static int run(struct options *o)
                  slash ? o->output : ".");
         po.temp_dir = dir;
     }
+    struct vt_pyramid_plan plan;
+    vt_pyramid_plan(&po, &plan);
+    struct vt_shard_build sb = {plan.levels_per_pass, in->channels,   in->has_alpha,
+                                in->premultiplied,    o->subsampling, (uint32_t)r.params.effort};
+    if (o->shard) {
+        po.part = true;
+        po.carry = carry_tile;
+        r.carry_level = plan.levels_per_pass;
+        vt_pyramid_part(&plan, o->shard - 1, o->shard_count, &po.part_x0, &po.part_y0, &po.part_x1,
+                        &po.part_y1);
+        vt_log(VT_LOG_INFO, "shard %u/%u: first-pass blocks %u..%u x %u..%u of %ux%u%s", o->shard,
+               o->shard_count, po.part_x0, po.part_x1, po.part_y0, po.part_y1, plan.blocks_x,
+               plan.blocks_y, po.part_x0 < po.part_x1 && po.part_y0 < po.part_y1 ? "" : " (empty)");
+    }
     rc = build(&r, src, &po, &err);
     if (rc == 0)
         rc = set_metadata(r.writer, o, r.codec->name, &err);
+    if (rc == 0 && o->shard)
+        rc = set_shard_metadata(r.writer, o, &sb, &err);
     if (rc == 0)
         rc = vts_writer_finish(r.writer, &err);
     if (rc == 0) {

@@ -9,6 +9,6 @@ s.vts s.vts
 s.vts -o
 s.vts -o out.vts --layer 1
 s.vts -o out.vts --out m.vts
-s.vts -o out.vts -j 2
+s.vts -o out.vts -j 0
 CASES
 [ ! -e out.vts ] || { echo "out.vts written"; exit 3; }
