@@ -23,18 +23,21 @@ struct options {
     int input_count;
     const char *out_path, *temp_dir;
     uint32_t threads;
+    uint64_t max_store;
 };
 
-enum { OPT_VERSION = 256, OPT_TEMP_DIR };
+enum { OPT_VERSION = 256, OPT_TEMP_DIR, OPT_MAX_STORE };
 
-static const struct option long_options[] = {{"output", required_argument, NULL, 'o'},
-                                             {"quiet", no_argument, NULL, 'q'},
-                                             {"verbose", no_argument, NULL, 'v'},
-                                             {"help", no_argument, NULL, 'h'},
-                                             {"threads", required_argument, NULL, 'j'},
-                                             {"temp-dir", required_argument, NULL, OPT_TEMP_DIR},
-                                             {"version", no_argument, NULL, OPT_VERSION},
-                                             {NULL, 0, NULL, 0}};
+static const struct option long_options[] = {
+    {"output", required_argument, NULL, 'o'},
+    {"quiet", no_argument, NULL, 'q'},
+    {"verbose", no_argument, NULL, 'v'},
+    {"help", no_argument, NULL, 'h'},
+    {"threads", required_argument, NULL, 'j'},
+    {"temp-dir", required_argument, NULL, OPT_TEMP_DIR},
+    {"max-store-size", required_argument, NULL, OPT_MAX_STORE},
+    {"version", no_argument, NULL, OPT_VERSION},
+    {NULL, 0, NULL, 0}};
 
 static void usage(void)
 {
@@ -53,6 +56,8 @@ static void usage(void)
           "  -j, --threads N     worker threads for the coarse levels (default: all cores)\n"
           "      --temp-dir DIR  where the coarse levels' pass images go (default: the output's\n"
           "                      directory)\n"
+          "      --max-store-size S  refuse to write more tile bytes than S (suffix K, M, G,\n"
+          "                      T; default 2T)\n"
           "  -q, --quiet         print errors only\n"
           "  -v, --verbose       print more (repeatable: info, then debug)\n"
           "  -h, --help          print this help and exit\n"
@@ -72,7 +77,7 @@ static void usage(void)
 static int parse_options(int argc, char **argv, struct options *o)
 {
     int c, verbosity = VT_LOG_WARN;
-    *o = (struct options){.threads = vt_pool_cpu_count()};
+    *o = (struct options){.threads = vt_pool_cpu_count(), .max_store = VT_DEFAULT_MAX_STORE};
     opterr = 0;
     while ((c = vt_getopt_long(argc, argv, ":hqvo:j:", long_options)) != -1) {
         if (c == 'h') {
@@ -90,6 +95,9 @@ static int parse_options(int argc, char **argv, struct options *o)
                 return vt_usage_error("-j must be 1..256, not '%s'", optarg);
         } else if (c == OPT_TEMP_DIR) {
             o->temp_dir = optarg;
+        } else if (c == OPT_MAX_STORE) {
+            if (vt_parse_size(optarg, &o->max_store) || o->max_store == 0)
+                return vt_usage_error("--max-store-size: '%s' is not a size like 500G", optarg);
         } else {
             return vt_usage_getopt_error(c, argv);
         }
@@ -603,6 +611,8 @@ static int create_writer(struct merge *m, bool shards, struct vt_error *err)
              i < (shards ? m->copy_layers : vts_store_geometry(m->in[k])->layer_count); i++)
             layers[g.layer_count++] = *vts_store_layer(m->in[k], i);
     m->out = vts_writer_create(m->o->out_path, &g, layers, err);
+    if (m->out)
+        vts_writer_set_max_bytes(m->out, m->o->max_store);
     return m->out ? 0 : err->status;
 }
 

@@ -12,16 +12,18 @@
 #include "vt_pool.h"
 #include "vt_pyramid.h"
 #include "vt_shard.h"
+#include "vt_tiles_layout.h"
 #include "vt_version.h"
 #include "vts_writer.h"
 
 struct options {
     const char *input, *output, *codec_name, *name, *temp_dir;
     uint32_t tile_size, border, quality, threads, colour, aniso, subsampling;
-    bool border_set, colour_set, keep_content, wrap, best;
+    bool border_set, colour_set, keep_content, wrap, best, tile_size_set;
+    const char *layout, *layer, *export_atlas; /* --layout build (tools/vt_tiles_layout.c) */
     enum vt_filter_kind filter;
     const char *filtering; /* bilinear, trilinear, anisoN */
-    uint64_t max_pixels;
+    uint64_t max_pixels, max_store, cache_bytes;
     uint32_t shard, shard_count; /* --shard I/N (docs/sharding.md); 0 = whole build */
 };
 
@@ -56,25 +58,47 @@ static void usage(FILE *f)
         "      --mode fast|best     bc1/bc3 encoder, png compression (default fast)\n"
         "      --name NAME          layer name (default diffuse)\n"
         "      --max-pixels N       refuse inputs with more texels (default 2^34)\n"
+        "      --max-store-size S   refuse to write more tile bytes than S (suffix K, M, G, T;\n"
+        "                           default 2T)\n"
+        "      --cache-size S       --layout: decoded textures kept in memory (default 1G)\n"
         "      --temp-dir DIR       where pass images go (default: the output's directory)\n"
         "      --shard I/N          build part I of N (N a power of two) for vt-merge to join\n"
+        "      --layout FILE        instead of INPUT: build the atlas FILE (vt-atlas) from its\n"
+        "                           textures; tile size and border come from the layout\n"
+        "      --layer NAME         with --layout: only this layer (default: every layer)\n"
+        "      --export-atlas FILE  with --layout: also write level 0 as one .tif/.png\n"
         "  -j, --threads N          worker threads (default: all cores)\n"
         "  -q, --quiet              errors only;  -v, --verbose  more detail\n"
         "  -h, --help               this help;    --version  version\n");
 }
 
-static const struct option long_options[] = {
-    {"output", required_argument, 0, 'o'},      {"tile-size", required_argument, 0, 't'},
-    {"keep", required_argument, 0, 'K'},        {"border", required_argument, 0, 'b'},
-    {"filtering", required_argument, 0, 'F'},   {"filter", required_argument, 0, 'f'},
-    {"colour", required_argument, 0, 'c'},      {"wrap", no_argument, 0, 'w'},
-    {"codec", required_argument, 0, 'C'},       {"quality", required_argument, 0, 'Q'},
-    {"subsampling", required_argument, 0, 'S'}, {"mode", required_argument, 0, 'M'},
-    {"name", required_argument, 0, 'N'},        {"max-pixels", required_argument, 0, 'P'},
-    {"temp-dir", required_argument, 0, 'T'},    {"shard", required_argument, 0, 'D'},
-    {"threads", required_argument, 0, 'j'},     {"quiet", no_argument, 0, 'q'},
-    {"verbose", no_argument, 0, 'v'},           {"help", no_argument, 0, 'h'},
-    {"version", no_argument, 0, 'V'},           {0, 0, 0, 0}};
+static const struct option long_options[] = {{"output", required_argument, 0, 'o'},
+                                             {"tile-size", required_argument, 0, 't'},
+                                             {"keep", required_argument, 0, 'K'},
+                                             {"border", required_argument, 0, 'b'},
+                                             {"filtering", required_argument, 0, 'F'},
+                                             {"filter", required_argument, 0, 'f'},
+                                             {"colour", required_argument, 0, 'c'},
+                                             {"wrap", no_argument, 0, 'w'},
+                                             {"codec", required_argument, 0, 'C'},
+                                             {"quality", required_argument, 0, 'Q'},
+                                             {"subsampling", required_argument, 0, 'S'},
+                                             {"mode", required_argument, 0, 'M'},
+                                             {"name", required_argument, 0, 'N'},
+                                             {"max-pixels", required_argument, 0, 'P'},
+                                             {"temp-dir", required_argument, 0, 'T'},
+                                             {"max-store-size", required_argument, 0, 'Z'},
+                                             {"cache-size", required_argument, 0, 'X'},
+                                             {"shard", required_argument, 0, 'D'},
+                                             {"layout", required_argument, 0, 'L'},
+                                             {"layer", required_argument, 0, 'l'},
+                                             {"export-atlas", required_argument, 0, 'E'},
+                                             {"threads", required_argument, 0, 'j'},
+                                             {"quiet", no_argument, 0, 'q'},
+                                             {"verbose", no_argument, 0, 'v'},
+                                             {"help", no_argument, 0, 'h'},
+                                             {"version", no_argument, 0, 'V'},
+                                             {0, 0, 0, 0}};
 
 static int parse_colour(const char *s, uint32_t *out)
 {
@@ -97,7 +121,8 @@ static int parse_options(int argc, char **argv, struct options *o)
                           .filtering = "trilinear",
                           .quality = 85,
                           .subsampling = 420,
-                          .max_pixels = VT_INPUT_DEFAULT_MAX_PIXELS};
+                          .max_pixels = VT_INPUT_DEFAULT_MAX_PIXELS,
+                          .max_store = VT_DEFAULT_MAX_STORE};
     int c;
     uint32_t v;
     opterr = 0;
@@ -110,6 +135,16 @@ static int parse_options(int argc, char **argv, struct options *o)
             if (vt_parse_u32(optarg, 8, VTS_MAX_PAYLOAD_PX, &o->tile_size))
                 return vt_usage_error("--tile-size must be 8..%u, not '%s'", VTS_MAX_PAYLOAD_PX,
                                       optarg);
+            o->tile_size_set = true;
+            break;
+        case 'L':
+            o->layout = optarg;
+            break;
+        case 'l':
+            o->layer = optarg;
+            break;
+        case 'E':
+            o->export_atlas = optarg;
             break;
         case 'K':
             if (strcmp(optarg, "content") && strcmp(optarg, "payload"))
@@ -167,6 +202,14 @@ static int parse_options(int argc, char **argv, struct options *o)
             o->max_pixels = n;
             break;
         }
+        case 'Z':
+            if (vt_parse_size(optarg, &o->max_store) || o->max_store == 0)
+                return vt_usage_error("--max-store-size: '%s' is not a size like 500G", optarg);
+            break;
+        case 'X':
+            if (vt_parse_size(optarg, &o->cache_bytes) || o->cache_bytes < (1u << 20))
+                return vt_usage_error("--cache-size: '%s' is not a size of at least 1M", optarg);
+            break;
         case 'T':
             o->temp_dir = optarg;
             break;
@@ -196,10 +239,20 @@ static int parse_options(int argc, char **argv, struct options *o)
             return vt_usage_getopt_error(c, argv);
         }
     }
-    if (optind != argc - 1)
-        return vt_usage_error(optind >= argc ? "missing INPUT" : "more than one INPUT");
-    o->input = argv[optind];
-    if (!o->output)
+    if (o->layout) {
+        if (optind != argc)
+            return vt_usage_error("--layout takes no INPUT ('%s')", argv[optind]);
+        if (o->wrap || o->colour_set || o->shard)
+            return vt_usage_error("--wrap, --colour and --shard do not apply to --layout");
+        o->input = o->layout;
+    } else {
+        if (o->layer || o->export_atlas)
+            return vt_usage_error("--layer and --export-atlas need --layout");
+        if (optind != argc - 1)
+            return vt_usage_error(optind >= argc ? "missing INPUT" : "more than one INPUT");
+        o->input = argv[optind];
+    }
+    if (!o->output && !(o->layout && o->export_atlas))
         return vt_usage_error("missing -o OUT.vts");
     if (strcmp(o->filtering, "bilinear") == 0)
         o->aniso = 0;
@@ -446,6 +499,7 @@ static int run(struct options *o)
         rc = err.status;
         goto out;
     }
+    vts_writer_set_max_bytes(r.writer, o->max_store);
     struct vt_pyramid_options po = {.width = g.width,
                                     .height = g.height,
                                     .tile_content_px = g.tile_content_px,
@@ -513,6 +567,31 @@ out:
     return status;
 }
 
+/* vt-tiles --layout: the atlas build (tools/vt_tiles_layout.c). */
+static int run_layout(const struct options *o)
+{
+    struct vt_tiles_layout_options lo = {.layout = o->layout,
+                                         .output = o->output,
+                                         .layer = o->layer,
+                                         .export_atlas = o->export_atlas,
+                                         .codec_name = o->codec_name,
+                                         .filtering = o->filtering,
+                                         .quality = o->quality,
+                                         .subsampling = o->subsampling,
+                                         .best = o->best,
+                                         .tile_size = o->tile_size,
+                                         .tile_size_set = o->tile_size_set,
+                                         .keep_content = o->keep_content,
+                                         .border = o->border,
+                                         .border_set = o->border_set,
+                                         .filter = o->filter,
+                                         .max_pixels = o->max_pixels,
+                                         .max_store = o->max_store,
+                                         .cache_bytes = o->cache_bytes,
+                                         .threads = o->threads};
+    return vt_tiles_layout_run(&lo);
+}
+
 int main(int argc, char **argv)
 {
     vt_tool_init("vt-tiles");
@@ -521,5 +600,5 @@ int main(int argc, char **argv)
     int status = parse_options(argc, argv, &o);
     if (status >= 0)
         return status;
-    return run(&o);
+    return o.layout ? run_layout(&o) : run(&o);
 }

@@ -1,0 +1,328 @@
+/* Mip chain of one atlas entry in one layer (see vt_mip_chain.h). */
+#include "vt_mip_chain.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "vt_checked.h"
+
+static uint32_t ceil_shift(uint32_t v, uint32_t k)
+{
+    return k >= 32 ? 1 : (uint32_t)(((uint64_t)v + (1ull << k) - 1) >> k);
+}
+
+void vt_mip_chain_mode(const struct vt_mip_chain_spec *s, struct vt_pixel_mode *out)
+{
+    *out = (struct vt_pixel_mode){s->colour_channels + (s->alpha ? 1u : 0u), s->colour,
+                                  s->alpha && s->colour != VTS_COLOUR_DATA};
+}
+
+void vt_mip_chain_release(struct vt_mip_chain *c)
+{
+    if (!c)
+        return;
+    for (uint32_t l = 0; l < VTS_MAX_LEVELS; l++)
+        vt_image_release(&c->levels[l]);
+    memset(c, 0, sizeof *c);
+}
+
+static int alloc_floats(float **out, uint64_t texels, uint32_t channels, struct vt_error *err)
+{
+    size_t n;
+    if (!vt_size_mul3((size_t)texels, channels, sizeof(float), &n) || n == 0)
+        return vt_error_set(err, VT_ERR_LIMIT, "a mip level of %llu texels is too large",
+                            (unsigned long long)texels);
+    *out = malloc(n);
+    return *out ? 0 : vt_error_set(err, VT_ERR_NOMEM, "out of memory for a mip level");
+}
+
+/* One 2:1 reduction of a whole w x h working image with edges clamped; *dst is allocated. */
+static int reduce_once(const struct vt_kernel *k, const struct vt_pixel_mode *m, const float *src,
+                       uint32_t w, uint32_t h, float **dst, struct vt_error *err)
+{
+    uint32_t dw = ceil_shift(w, 1), dh = ceil_shift(h, 1), ch = m->channels;
+    struct vt_fregion s = {0, 0, w, h, ch, (float *)(uintptr_t)src};
+    struct vt_fregion d = {0, 0, dw, dh, ch, NULL};
+    struct vt_edges edges = {w, h, false, false};
+    int rc = alloc_floats(&d.px, (uint64_t)dw * dh, ch, err);
+    if (rc)
+        return rc;
+    size_t scratch_n = vt_filter_reduce_scratch(k, &s, &d);
+    float *scratch = NULL;
+    if ((rc = alloc_floats(&scratch, scratch_n ? scratch_n : 1, 1, err)) == 0)
+        rc = vt_filter_reduce(k, &edges, &s, &d, scratch, scratch_n, err);
+    free(scratch);
+    if (rc == 0 && m->colour == VTS_COLOUR_NORMAL)
+        vt_filter_renormalize(&d);
+    if (rc) {
+        free(d.px);
+        return rc;
+    }
+    *dst = d.px;
+    return 0;
+}
+
+/* Converts the source's texels (any channels and sample) into the layer's 8-bit layout. */
+static int to_layer_u8(const struct vt_mip_chain_spec *s, const struct vt_source_info *in,
+                       const struct vt_image *raw, struct vt_image *out, struct vt_error *err)
+{
+    uint32_t och = s->colour_channels + (s->alpha ? 1u : 0u);
+    int rc = vt_image_alloc(out, raw->width, raw->height, och, VTS_SAMPLE_U8, err);
+    if (rc)
+        return rc;
+    uint8_t *row8 = NULL;
+    float *rowf = NULL;
+    if (raw->sample != VTS_SAMPLE_U8) {
+        /* values as stored (no linearisation, no premultiplication); float data is linear light,
+         * so it is sRGB-encoded for an sRGB layer */
+        bool is_float = raw->sample == VTS_SAMPLE_F16 || raw->sample == VTS_SAMPLE_F32;
+        struct vt_pixel_mode plain = {raw->channels, VTS_COLOUR_DATA, false};
+        struct vt_pixel_mode enc = {
+            raw->channels,
+            is_float && s->colour == VTS_COLOUR_SRGB ? VTS_COLOUR_SRGB : VTS_COLOUR_DATA, false};
+        if (in->has_alpha && enc.colour == VTS_COLOUR_SRGB)
+            enc.alpha = false; /* alpha stays linear: SRGB mode encodes colour channels only */
+        rowf = malloc((size_t)raw->width * raw->channels * sizeof(float));
+        row8 = malloc((size_t)raw->width * raw->channels);
+        if (!rowf || !row8) {
+            rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory converting a texture");
+            goto out;
+        }
+        for (uint32_t y = 0; y < raw->height; y++) {
+            vt_filter_to_working(&plain, raw->sample, vt_image_at(raw, 0, y), rowf, raw->width);
+            vt_filter_from_working(&enc, VTS_SAMPLE_U8, rowf, row8, raw->width);
+            uint8_t *dst = vt_image_at(out, 0, y);
+            for (uint32_t x = 0; x < raw->width; x++) {
+                const uint8_t *p = row8 + (size_t)x * raw->channels;
+                uint8_t *o = dst + (size_t)x * och;
+                bool grey = raw->channels <= 2;
+                for (uint32_t c = 0; c < s->colour_channels; c++)
+                    o[c] = p[grey ? 0 : c];
+                if (s->alpha)
+                    o[och - 1] = in->has_alpha ? p[raw->channels - 1] : 255;
+            }
+        }
+        goto out;
+    }
+    for (uint32_t y = 0; y < raw->height; y++) {
+        const uint8_t *src = vt_image_at(raw, 0, y);
+        uint8_t *dst = vt_image_at(out, 0, y);
+        if (raw->channels == och) {
+            memcpy(dst, src, (size_t)raw->width * och);
+            continue;
+        }
+        bool grey = raw->channels <= 2;
+        for (uint32_t x = 0; x < raw->width; x++) {
+            const uint8_t *p = src + (size_t)x * raw->channels;
+            uint8_t *o = dst + (size_t)x * och;
+            for (uint32_t c = 0; c < s->colour_channels; c++)
+                o[c] = p[grey ? 0 : c];
+            if (s->alpha)
+                o[och - 1] = in->has_alpha ? p[raw->channels - 1] : 255;
+        }
+    }
+out:
+    free(rowf);
+    free(row8);
+    if (rc)
+        vt_image_release(out);
+    return rc;
+}
+
+/* dst (already allocated, W x H) from src by nearest-neighbour sampling at texel centres. */
+static void resample_nearest(const struct vt_image *src, struct vt_image *dst)
+{
+    size_t tb = vt_image_texel_bytes(dst);
+    for (uint32_t y = 0; y < dst->height; y++) {
+        uint32_t sy =
+            (uint32_t)(((2 * (uint64_t)y + 1) * src->height) / (2 * (uint64_t)dst->height));
+        uint8_t *o = vt_image_at(dst, 0, y);
+        for (uint32_t x = 0; x < dst->width; x++) {
+            uint32_t sx =
+                (uint32_t)(((2 * (uint64_t)x + 1) * src->width) / (2 * (uint64_t)dst->width));
+            memcpy(o + (size_t)x * tb, vt_image_at(src, sx, sy), tb);
+        }
+    }
+}
+
+/* Reduces an 8-bit image k times in the working space (the texture's own mip level k). */
+static int reduce_u8(const struct vt_mip_chain_spec *s, const struct vt_image *src, uint32_t k,
+                     struct vt_image *dst, struct vt_error *err)
+{
+    struct vt_pixel_mode m;
+    vt_mip_chain_mode(s, &m);
+    struct vt_kernel kern;
+    vt_kernel_init(&kern, s->filter);
+    float *cur = NULL;
+    uint32_t w = src->width, h = src->height;
+    int rc = alloc_floats(&cur, (uint64_t)w * h, m.channels, err);
+    if (rc)
+        return rc;
+    for (uint32_t y = 0; y < h; y++)
+        vt_filter_to_working(&m, VTS_SAMPLE_U8, vt_image_at(src, 0, y),
+                             cur + (size_t)y * w * m.channels, w);
+    for (uint32_t i = 0; i < k && rc == 0; i++) {
+        float *next = NULL;
+        rc = reduce_once(&kern, &m, cur, w, h, &next, err);
+        free(cur);
+        cur = next;
+        w = ceil_shift(w, 1);
+        h = ceil_shift(h, 1);
+    }
+    if (rc == 0)
+        rc = vt_image_alloc(dst, w, h, m.channels, VTS_SAMPLE_U8, err);
+    for (uint32_t y = 0; rc == 0 && y < h; y++)
+        vt_filter_from_working(&m, VTS_SAMPLE_U8, cur + (size_t)y * w * m.channels,
+                               vt_image_at(dst, 0, y), w);
+    free(cur);
+    return rc;
+}
+
+/* Brings a layer-format image of the texture's size to the entry's size W x H. */
+static int resample(const struct vt_mip_chain_spec *s, struct vt_image *img, struct vt_error *err)
+{
+    uint32_t tw = img->width, th = img->height, W = s->width, H = s->height;
+    if (tw == W && th == H)
+        return 0;
+    struct vt_image out = {0};
+    int rc = 0;
+    uint32_t k = 1;
+    while (k < 32 && (ceil_shift(tw, k) != W || ceil_shift(th, k) != H) && ceil_shift(tw, k) > W)
+        k++;
+    if (tw > W && k < 32 && ceil_shift(tw, k) == W && ceil_shift(th, k) == H) {
+        rc = reduce_u8(s, img, k, &out, err);
+    } else {
+        if ((rc = vt_image_alloc(&out, W, H, img->channels, VTS_SAMPLE_U8, err)) != 0)
+            return rc;
+        resample_nearest(img, &out); /* exact replication for a power-of-two enlargement */
+    }
+    if (rc)
+        return rc;
+    vt_image_release(img);
+    *img = out;
+    return 0;
+}
+
+/* Replaces img by repeat_u x repeat_v copies of it. */
+static int replicate(const struct vt_mip_chain_spec *s, struct vt_image *img, struct vt_error *err)
+{
+    if (s->repeat_u == 1 && s->repeat_v == 1)
+        return 0;
+    struct vt_image out;
+    int rc = vt_image_alloc(&out, img->width * s->repeat_u, img->height * s->repeat_v,
+                            img->channels, VTS_SAMPLE_U8, err);
+    if (rc)
+        return rc;
+    size_t row = (size_t)img->width * vt_image_texel_bytes(img);
+    for (uint32_t y = 0; y < out.height; y++) {
+        uint8_t *o = vt_image_at(&out, 0, y);
+        const uint8_t *i = vt_image_at(img, 0, y % img->height);
+        for (uint32_t r = 0; r < s->repeat_u; r++)
+            memcpy(o + r * row, i, row);
+    }
+    vt_image_release(img);
+    *img = out;
+    return 0;
+}
+
+/* Levels 1.. of the chain from level 0. */
+static int build_levels(struct vt_mip_chain *c, const struct vt_mip_chain_spec *s,
+                        struct vt_error *err)
+{
+    struct vt_pixel_mode m;
+    vt_mip_chain_mode(s, &m);
+    struct vt_kernel kern;
+    vt_kernel_init(&kern, s->filter);
+    const struct vt_image *l0 = &c->levels[0];
+    uint32_t w = l0->width, h = l0->height;
+    c->bytes = (size_t)w * h * m.channels;
+    c->level_count = 1;
+    if (s->level_count <= 1)
+        return 0;
+    float *cur = NULL;
+    int rc = alloc_floats(&cur, (uint64_t)w * h, m.channels, err);
+    if (rc)
+        return rc;
+    for (uint32_t y = 0; y < h; y++)
+        vt_filter_to_working(&m, VTS_SAMPLE_U8, vt_image_at(l0, 0, y),
+                             cur + (size_t)y * w * m.channels, w);
+    for (uint32_t l = 1; l < s->level_count && rc == 0; l++) {
+        float *next = NULL;
+        if ((rc = reduce_once(&kern, &m, cur, w, h, &next, err)) != 0)
+            break;
+        free(cur);
+        cur = next;
+        w = ceil_shift(w, 1);
+        h = ceil_shift(h, 1);
+        struct vt_image *lv = &c->levels[l];
+        if ((rc = vt_image_alloc(lv, w, h, m.channels, VTS_SAMPLE_U8, err)) != 0)
+            break;
+        for (uint32_t y = 0; y < h; y++)
+            vt_filter_from_working(&m, VTS_SAMPLE_U8, cur + (size_t)y * w * m.channels,
+                                   vt_image_at(lv, 0, y), w);
+        c->bytes += (size_t)w * h * m.channels;
+        c->level_count = l + 1;
+    }
+    free(cur);
+    return rc;
+}
+
+int vt_mip_chain_from_source(struct vt_mip_chain *c, const struct vt_mip_chain_spec *s,
+                             struct vt_source *src, struct vt_error *err)
+{
+    memset(c, 0, sizeof *c);
+    uint64_t copies_w, copies_h, texels;
+    if (!vt_u64_mul(s->width, s->repeat_u, &copies_w) ||
+        !vt_u64_mul(s->height, s->repeat_v, &copies_h) ||
+        !vt_u64_mul(copies_w, copies_h, &texels) || texels > s->max_pixels ||
+        copies_w > UINT32_MAX || copies_h > UINT32_MAX)
+        return vt_error_set(err, VT_ERR_LIMIT,
+                            "'%s': %ux%u copies of %ux%u texels exceed the limit of %llu texels",
+                            src->name, s->repeat_u, s->repeat_v, s->width, s->height,
+                            (unsigned long long)s->max_pixels);
+    struct vt_image raw = {0};
+    const struct vt_source_info *in = &src->info;
+    int rc = vt_image_alloc(&raw, in->width, in->height, in->channels, in->sample, err);
+    if (rc == 0)
+        rc = vt_source_read(src, 0, 0, &raw, err);
+    if (rc == 0)
+        rc = to_layer_u8(s, in, &raw, &c->levels[0], err);
+    vt_image_release(&raw);
+    if (rc == 0)
+        rc = resample(s, &c->levels[0], err);
+    if (rc == 0)
+        rc = replicate(s, &c->levels[0], err);
+    if (rc == 0)
+        rc = build_levels(c, s, err);
+    if (rc)
+        vt_mip_chain_release(c);
+    return rc;
+}
+
+int vt_mip_chain_from_fill(struct vt_mip_chain *c, const struct vt_mip_chain_spec *s,
+                           const double fill[4], struct vt_error *err)
+{
+    memset(c, 0, sizeof *c);
+    uint32_t ch = s->colour_channels + (s->alpha ? 1u : 0u);
+    uint8_t px[4];
+    for (uint32_t i = 0; i < s->colour_channels; i++) {
+        double v = fill[i] < 0 ? 0 : fill[i] > 1 ? 1 : fill[i];
+        px[i] = (uint8_t)(v * 255.0 + 0.5);
+    }
+    if (s->alpha) {
+        double a = fill[3] < 0 ? 0 : fill[3] > 1 ? 1 : fill[3];
+        px[ch - 1] = (uint8_t)(a * 255.0 + 0.5);
+    }
+    uint32_t n = s->level_count ? s->level_count : 1;
+    for (uint32_t l = 0; l < n; l++) {
+        int rc = vt_image_alloc(&c->levels[l], 1, 1, ch, VTS_SAMPLE_U8, err);
+        if (rc) {
+            vt_mip_chain_release(c);
+            return rc;
+        }
+        memcpy(c->levels[l].pixels, px, ch);
+        c->bytes += ch;
+    }
+    c->level_count = n;
+    return 0;
+}

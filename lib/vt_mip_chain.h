@@ -1,0 +1,56 @@
+/* The mip chain of one atlas entry in one layer: the entry's texture (or constant fill) decoded,
+ * converted to the layer's 8-bit format, resampled to the entry's size, copied repeat_u x repeat_v
+ * times side by side, then reduced level by level in the float working space (linear light for
+ * sRGB, premultiplied alpha, renormalised normals) with edges clamped at the copies' rectangle.
+ * Used by vt_atlas_build.c; see docs/atlas-build.md. */
+#ifndef VT_MIP_CHAIN_H
+#define VT_MIP_CHAIN_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vt_error.h"
+#include "vt_filter.h"
+#include "vt_image.h"
+#include "vt_source.h"
+#include "vts.h"
+
+/* What the chain holds: the layer's output format and the entry's geometry. */
+struct vt_mip_chain_spec {
+    uint32_t width, height;      /* one copy, atlas texels at level 0 */
+    uint32_t repeat_u, repeat_v; /* copies side by side (>= 1) */
+    uint32_t level_count;        /* levels to compute, >= 1 (level l is ceil(size / 2^l)) */
+    uint32_t colour_channels;    /* 1 (grey) or 3 (RGB) */
+    bool alpha;                  /* an alpha channel follows the colour channels */
+    uint32_t colour;             /* enum vts_colour of the layer */
+    enum vt_filter_kind filter;  /* reduction kernel */
+    uint64_t max_pixels;         /* refuse copies (all of them together) above this many texels */
+};
+
+/* Level l: (width * repeat_u) / 2^l rounded up, 8-bit samples, colour_channels + alpha channels.
+ * Level 0 holds the texture's texels exactly (8-bit inputs at scale 1 are copied byte for byte). */
+struct vt_mip_chain {
+    uint32_t level_count;
+    struct vt_image levels[VTS_MAX_LEVELS];
+    size_t bytes; /* pixel bytes of every level */
+};
+
+/* Builds the chain from an opened source whose size must be the entry's size times a power of two
+ * (a finer texture: its own mip level k is used; a coarser one: texels are replicated); other
+ * sizes are resampled nearest-neighbour. 16-bit and float sources are converted to 8 bits (float
+ * as linear light). Returns 0, VT_ERR_LIMIT, VT_ERR_NOMEM or the source's read error. */
+int vt_mip_chain_from_source(struct vt_mip_chain *c, const struct vt_mip_chain_spec *s,
+                             struct vt_source *src, struct vt_error *err);
+
+/* A constant fill (RGBA in 0..1, stored values): every level is one texel. */
+int vt_mip_chain_from_fill(struct vt_mip_chain *c, const struct vt_mip_chain_spec *s,
+                           const double fill[4], struct vt_error *err);
+
+/* Frees the levels and zeroes *c. Accepts NULL. */
+void vt_mip_chain_release(struct vt_mip_chain *c);
+
+/* The working-space mode of a layer format (shared with the compositor's coarse-level mixing). */
+void vt_mip_chain_mode(const struct vt_mip_chain_spec *s, struct vt_pixel_mode *out);
+
+#endif

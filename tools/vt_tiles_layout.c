@@ -1,0 +1,385 @@
+/* vt-tiles --layout: the tool side of the atlas build (see vt_tiles_layout.h). */
+#include "vt_tiles_layout.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <tiffio.h>
+#include <unistd.h>
+
+#include "tool_common.h"
+#include "vt_atlas_build.h"
+#include "vt_atomic_file.h"
+#include "vt_codec.h"
+#include "vt_image_input.h"
+#include "vt_layout.h"
+#include "vt_png_file.h"
+#include "vt_version.h"
+#include "vts_writer.h"
+
+#define EXPORT_MAX_TEXELS (1ull << 28)
+#define EXPORT_BAND_ROWS  64u
+
+struct layout_run {
+    const struct vt_tiles_layout_options *o;
+    struct vt_layout lay;
+    uint32_t layers[VT_LAYOUT_MAX_LAYERS], nslots;
+    struct vt_atlas_build *build;
+    const struct vt_codec *codecs[VT_LAYOUT_MAX_LAYERS];
+    struct vt_codec_params params[VT_LAYOUT_MAX_LAYERS];
+    struct vts_writer *writer;
+    unsigned char **bufs; /* one encode buffer per worker */
+    size_t cap;
+    struct vt_progress progress;
+    struct vt_input_limits limits;
+};
+
+static int open_texture(void *user, const char *path, struct vt_source *out, struct vt_error *err)
+{
+    const struct layout_run *r = user;
+    return vt_image_input_open(path, &r->limits, out, err);
+}
+
+static int show_progress(void *user, uint64_t done, uint64_t total)
+{
+    struct layout_run *r = user;
+    (void)total;
+    vt_progress_update(&r->progress, done);
+    return 0;
+}
+
+static int emit_tile(void *user, unsigned worker, uint32_t slot, uint32_t level, uint32_t tx,
+                     uint32_t ty, const struct vt_image *payload, struct vt_error *err)
+{
+    struct layout_run *r = user;
+    size_t len = 0;
+    if (payload) {
+        struct vt_error cerr = {0};
+        int rc = r->codecs[slot]->encode(payload, &r->params[slot], r->bufs[worker], r->cap, &len,
+                                         &cerr);
+        if (rc)
+            return vt_error_set(err, rc, "cannot encode tile %u,%u of level %u: %s", tx, ty, level,
+                                cerr.message);
+    }
+    return vts_writer_put(r->writer, slot, level, tx, ty, r->bufs[worker], len, err);
+}
+
+/* The layout fixes tile content and border; an explicit option must agree. */
+static int check_geometry(const struct vt_tiles_layout_options *o, const struct vt_layout *lay)
+{
+    if (o->border_set && o->border != lay->border)
+        return vt_usage_error("--border %u conflicts with the layout's border %u (the layout "
+                              "fixes it: omit --border)",
+                              o->border, lay->border);
+    uint32_t want = o->keep_content ? lay->tile_content : lay->tile_content + 2 * lay->border;
+    if (o->tile_size_set && o->tile_size != want)
+        return vt_usage_error("--tile-size %u conflicts with the layout's tiles (content %u, "
+                              "border %u: --tile-size %u%s; or omit it)",
+                              o->tile_size, lay->tile_content, lay->border, want,
+                              o->keep_content ? " with --keep content" : "");
+    if (lay->tile_content + 2 * lay->border > VTS_MAX_PAYLOAD_PX)
+        return vt_usage_error("the layout's tile payload %u exceeds %u",
+                              lay->tile_content + 2 * lay->border, VTS_MAX_PAYLOAD_PX);
+    return 0;
+}
+
+static int pick_layers(struct layout_run *r)
+{
+    if (!r->o->layer) {
+        r->nslots = r->lay.layer_count;
+        for (uint32_t i = 0; i < r->nslots; i++)
+            r->layers[i] = i;
+        return 0;
+    }
+    int i = vt_layout_layer_index(&r->lay, r->o->layer);
+    if (i < 0)
+        return vt_usage_error("--layer '%s' is not a layer of '%s'", r->o->layer, r->o->layout);
+    r->layers[0] = (uint32_t)i;
+    r->nslots = 1;
+    return 0;
+}
+
+/* Codec of one layer (like vt-tiles: png for alpha, normals and data, else jpeg). */
+static int pick_codec(struct layout_run *r, uint32_t slot, struct vts_layer *layer,
+                      struct vt_error *err)
+{
+    const struct vt_tiles_layout_options *o = r->o;
+    struct vt_atlas_layer_format f;
+    vt_atlas_build_format(r->build, slot, &f);
+    const char *name = o->codec_name ? o->codec_name : "auto";
+    if (strcmp(name, "auto") == 0)
+        name = f.alpha || f.colour == VTS_COLOUR_NORMAL || f.colour == VTS_COLOUR_DATA ? "png"
+                                                                                       : "jpeg";
+    const struct vt_codec *codec = vt_codec_find(name);
+    if (!codec)
+        return vt_usage_error("codec '%s' is not available (raw, png, jpeg, bc1, bc3, auto)", name);
+    uint32_t pp = r->lay.tile_content + 2 * r->lay.border;
+    int rc = codec->check(pp, f.channels, VTS_SAMPLE_U8, err);
+    if (rc)
+        return VT_EXIT_BAD_INPUT;
+    const struct vt_layout_layer *ll = &r->lay.layers[r->layers[slot]];
+    *layer = (struct vts_layer){
+        codec->fourcc, (uint8_t)f.channels, VTS_SAMPLE_U8, (uint8_t)f.colour, 0, 0, {0}};
+    layer->codec_param = codec->fourcc == VTS_CODEC_JPEG ? o->quality : 0;
+    snprintf(layer->name, sizeof layer->name, "%s", ll->name);
+    r->codecs[slot] = codec;
+    r->params[slot] = (struct vt_codec_params){
+        (int)o->quality, o->best ? (codec->fourcc == VTS_CODEC_PNG ? 9 : 1) : 0,
+        (int)o->subsampling};
+    size_t cap = codec->encoded_bound(pp, pp, f.channels, VTS_SAMPLE_U8);
+    r->cap = cap > r->cap ? cap : r->cap;
+    if (f.converted)
+        vt_log(VT_LOG_WARN, "layer '%s': %u textures are not 8-bit; stored as 8-bit", ll->name,
+               f.converted);
+    vt_log(VT_LOG_INFO, "layer '%s': %u channels (%s), codec %s", ll->name, f.channels,
+           vts_colour_name(f.colour), codec->name);
+    return 0;
+}
+
+static int set_metadata(struct layout_run *r, struct vt_error *err)
+{
+    const struct vt_tiles_layout_options *o = r->o;
+    char names[VT_LAYOUT_MAX_LAYERS * 64] = "", codecs[VT_LAYOUT_MAX_LAYERS * 8] = "";
+    char quality[16];
+    for (uint32_t s = 0; s < r->nslots; s++) {
+        size_t n = strlen(names), c = strlen(codecs);
+        snprintf(names + n, sizeof names - n, "%s%s", s ? "," : "",
+                 r->lay.layers[r->layers[s]].name);
+        snprintf(codecs + c, sizeof codecs - c, "%s%s", s ? "," : "", r->codecs[s]->name);
+    }
+    snprintf(quality, sizeof quality, "%u", o->quality);
+    const char *pairs[][2] = {{"tool", "vt-tiles"},
+                              {"tool.version", VT_VERSION_STRING},
+                              {"source", o->layout},
+                              {"layout", o->layout},
+                              {"layers", names},
+                              {"filter", vt_filter_name(o->filter)},
+                              {"filtering", o->filtering ? o->filtering : "trilinear"},
+                              {"codec", codecs},
+                              {"quality", strstr(codecs, "jpeg") ? quality : "-"},
+                              {"wrap", "no"}};
+    for (size_t i = 0; i < sizeof pairs / sizeof pairs[0]; i++) {
+        int rc = vts_writer_set_meta(r->writer, pairs[i][0], pairs[i][1], err);
+        if (rc)
+            return rc;
+    }
+    return 0;
+}
+
+static int write_store(struct layout_run *r, struct vt_error *err)
+{
+    struct vts_layer layers[VT_LAYOUT_MAX_LAYERS];
+    for (uint32_t s = 0; s < r->nslots; s++) {
+        int status = pick_codec(r, s, &layers[s], err);
+        if (status)
+            return status;
+    }
+    unsigned threads = r->o->threads;
+    r->bufs = calloc(threads, sizeof *r->bufs);
+    for (unsigned i = 0; r->bufs && i < threads; i++)
+        if (!(r->bufs[i] = malloc(r->cap)))
+            break;
+    if (!r->bufs || !r->bufs[threads - 1]) {
+        vt_error_set(err, VT_ERR_NOMEM, "out of memory for encode buffers");
+        return VT_EXIT_BAD_INPUT;
+    }
+    uint32_t c = r->lay.tile_content, b = r->lay.border;
+    struct vts_geometry g = {r->lay.width,
+                             r->lay.height,
+                             c,
+                             b,
+                             c + 2 * b,
+                             vt_atlas_build_level_count(r->build),
+                             r->nslots,
+                             0};
+    if ((r->writer = vts_writer_create(r->o->output, &g, layers, err)))
+        vts_writer_set_max_bytes(r->writer, r->o->max_store);
+    if (!r->writer)
+        return VT_EXIT_BAD_INPUT;
+    vt_progress_start(&r->progress, "tiling", "tiles", vt_atlas_build_tile_count(r->build));
+    int rc = vt_atlas_build_tiles(r->build, emit_tile, r, err);
+    vt_progress_end(&r->progress);
+    if (rc == 0)
+        rc = set_metadata(r, err);
+    if (rc == 0)
+        rc = vts_writer_finish(r->writer, err);
+    if (rc)
+        return VT_EXIT_BAD_INPUT;
+    struct vts_writer_stats st;
+    struct vt_atlas_build_stats bs;
+    vts_writer_stats(r->writer, &st);
+    vt_atlas_build_stats(r->build, &bs);
+    vt_log(VT_LOG_INFO,
+           "wrote '%s': %ux%u, %u levels, %u layers, %llu tiles stored (%llu shared), %llu empty, "
+           "%llu payload bytes; %llu texture decodes, cache peak %.1f MiB",
+           r->o->output, g.width, g.height, g.level_count, g.layer_count,
+           (unsigned long long)st.tiles_stored, (unsigned long long)st.tiles_shared,
+           (unsigned long long)st.tiles_empty, (unsigned long long)st.unique_bytes,
+           (unsigned long long)bs.chains_built, (double)bs.cache_peak / (1 << 20));
+    return 0;
+}
+
+/* ---- --export-atlas ---- */
+
+static bool ends_with(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), m = strlen(suffix);
+    return n >= m && strcasecmp(s + n - m, suffix) == 0;
+}
+
+struct tiff_out {
+    struct vt_atomic_file file;
+    TIFF *tif;
+};
+
+static int tiff_start(struct tiff_out *t, const char *path, uint32_t w, uint32_t h, uint32_t ch,
+                      struct vt_error *err)
+{
+    int rc = vt_atomic_file_create(&t->file, path, "tmp", err);
+    if (rc)
+        return rc;
+    int fd = dup(t->file.fd);
+    if (fd < 0 ||
+        !(t->tif = TIFFFdOpen(fd, path, w * (uint64_t)h * ch > (1ull << 31) ? "w8" : "w"))) {
+        if (fd >= 0)
+            close(fd);
+        return vt_error_set(err, VT_ERR_IO, "cannot write '%s'", path);
+    }
+    uint16_t extra = ch == 2 || ch == 4 ? EXTRASAMPLE_UNASSALPHA : 0;
+    TIFFSetField(t->tif, TIFFTAG_IMAGEWIDTH, w);
+    TIFFSetField(t->tif, TIFFTAG_IMAGELENGTH, h);
+    TIFFSetField(t->tif, TIFFTAG_SAMPLESPERPIXEL, (uint16_t)ch);
+    TIFFSetField(t->tif, TIFFTAG_BITSPERSAMPLE, (uint16_t)8);
+    TIFFSetField(t->tif, TIFFTAG_PHOTOMETRIC, ch >= 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK);
+    TIFFSetField(t->tif, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
+    TIFFSetField(t->tif, TIFFTAG_COMPRESSION, COMPRESSION_ADOBE_DEFLATE);
+    TIFFSetField(t->tif, TIFFTAG_ROWSPERSTRIP, EXPORT_BAND_ROWS);
+    if (extra)
+        TIFFSetField(t->tif, TIFFTAG_EXTRASAMPLES, (uint16_t)1, &extra);
+    return 0;
+}
+
+static int export_band(struct vt_png_file_writer *png, struct tiff_out *t, const char *path,
+                       const struct vt_image *band, uint32_t y0, struct vt_error *err)
+{
+    if (png)
+        return vt_png_file_writer_rows(png, band->pixels, band->height, band->stride, err);
+    for (uint32_t j = 0; j < band->height; j++)
+        if (TIFFWriteScanline(t->tif, vt_image_at(band, 0, j), y0 + j, 0) < 0)
+            return vt_error_set(err, VT_ERR_IO, "cannot write '%s'", path);
+    return 0;
+}
+
+static int export_atlas(struct layout_run *r, struct vt_error *err)
+{
+    const char *path = r->o->export_atlas;
+    uint32_t w = r->lay.width, h = r->lay.height;
+    if ((uint64_t)w * h > EXPORT_MAX_TEXELS)
+        return vt_error_set(err, VT_ERR_LIMIT,
+                            "cannot export '%s': the atlas has %ux%u texels, more than %llu", path,
+                            w, h, (unsigned long long)EXPORT_MAX_TEXELS);
+    bool is_png = ends_with(path, ".png");
+    if (!is_png && !ends_with(path, ".tif") && !ends_with(path, ".tiff"))
+        return vt_error_set(err, VT_ERR_ARG,
+                            "cannot export '%s': the name must end in .png, "
+                            ".tif or .tiff",
+                            path);
+    struct vt_atlas_layer_format f;
+    vt_atlas_build_format(r->build, 0, &f);
+    struct vt_png_file_writer *png = NULL;
+    struct tiff_out t = {.file.fd = -1};
+    struct vt_image band = {0};
+    int rc = vt_image_alloc(&band, w, h < EXPORT_BAND_ROWS ? h : EXPORT_BAND_ROWS, f.channels,
+                            VTS_SAMPLE_U8, err);
+    if (rc)
+        return rc;
+    if (is_png)
+        rc = (png = vt_png_file_writer_create(path, w, h, f.channels, 8, err)) ? 0 : err->status;
+    else
+        rc = tiff_start(&t, path, w, h, f.channels, err);
+    for (uint32_t y = 0; rc == 0 && y < h; y += band.height) {
+        struct vt_image v = band;
+        v.height = h - y < band.height ? h - y : band.height;
+        rc = vt_atlas_build_render(r->build, 0, 0, 0, y, &v, err);
+        if (rc == 0)
+            rc = export_band(png, &t, path, &v, y, err);
+    }
+    if (png) {
+        if (rc == 0)
+            rc = vt_png_file_writer_finish(png, err);
+        vt_png_file_writer_destroy(png);
+    } else if (t.tif) {
+        TIFFClose(t.tif);
+        if (rc == 0)
+            rc = vt_atomic_file_commit(&t.file, err);
+    }
+    if (!is_png)
+        vt_atomic_file_abort(&t.file);
+    vt_image_release(&band);
+    if (rc == 0)
+        vt_log(VT_LOG_INFO, "wrote '%s': %ux%u, layer '%s'", path, w, h,
+               r->lay.layers[r->layers[0]].name);
+    return rc;
+}
+
+/* ---- run ---- */
+
+static int start_build(struct layout_run *r, struct vt_error *err)
+{
+    const struct vt_tiles_layout_options *o = r->o;
+    r->limits.max_pixels = o->max_pixels;
+    struct vt_atlas_build_options bo = {.layout = &r->lay,
+                                        .layers = r->layers,
+                                        .layer_count = r->nslots,
+                                        .filter = o->filter,
+                                        .threads = o->threads,
+                                        .cache_bytes = o->cache_bytes,
+                                        .max_pixels = o->max_pixels,
+                                        .open = open_texture,
+                                        .open_user = r,
+                                        .progress = show_progress,
+                                        .progress_user = r};
+    vt_progress_start(&r->progress, "reading textures", "textures",
+                      (uint64_t)r->lay.entry_count * r->nslots);
+    r->build = vt_atlas_build_create(&bo, err);
+    vt_progress_end(&r->progress);
+    return r->build ? 0 : err->status;
+}
+
+int vt_tiles_layout_run(const struct vt_tiles_layout_options *options)
+{
+    struct vt_tiles_layout_options fixed = *options, *o = &fixed;
+    if (o->threads == 0)
+        o->threads = 1;
+    if (o->threads > 256)
+        o->threads = 256;
+    struct layout_run r = {.o = o};
+    struct vt_error err = {0};
+    int status = VT_EXIT_BAD_INPUT;
+    if (!o->output && !o->export_atlas)
+        return vt_usage_error("missing -o OUT.vts (or --export-atlas FILE)");
+    if (vt_layout_read(o->layout, NULL, &r.lay, &err))
+        goto out;
+    if ((status = check_geometry(o, &r.lay)) != 0 || (status = pick_layers(&r)) != 0)
+        goto out;
+    status = VT_EXIT_BAD_INPUT;
+    if (start_build(&r, &err))
+        goto out;
+    if (o->output && (status = write_store(&r, &err)) != 0)
+        goto out;
+    status = VT_EXIT_BAD_INPUT;
+    if (o->export_atlas && export_atlas(&r, &err))
+        goto out;
+    status = VT_EXIT_OK;
+out:
+    if (status == VT_EXIT_BAD_INPUT && err.status)
+        vt_log(VT_LOG_ERROR, "%s", err.message);
+    vts_writer_destroy(r.writer);
+    for (unsigned i = 0; r.bufs && i < o->threads; i++)
+        free(r.bufs[i]);
+    free(r.bufs);
+    vt_atlas_build_destroy(r.build);
+    vt_layout_release(&r.lay);
+    return status;
+}
