@@ -1,0 +1,137 @@
+/* Test helper for vt-view: compares screenshots and reads statistics.
+ *   vtv_check psnr A.png B.png --min DB | --max DB   PSNR over RGB (prints it)
+ *   vtv_check stat S.json KEY OP VALUE               KEY in "last" (OP: == != < <= > >=)
+ *   vtv_check frames-equal A.json B.json             the "frames" arrays are identical
+ *   vtv_check dark A.png MAX                          at most MAX pixels with R+G+B < 24
+ * Exit 0 when the check holds, 1 when it does not, 2 on bad use or unreadable files. */
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vt_png_file.h"
+
+static int load(const char *path, struct vt_image *img)
+{
+    struct vt_error err = {0};
+    if (vt_png_file_read(path, img, &err) != 0) {
+        fprintf(stderr, "vtv_check: %s\n", err.message);
+        return -1;
+    }
+    return 0;
+}
+
+static int psnr(int argc, char **argv)
+{
+    if (argc != 6)
+        return 2;
+    struct vt_image a = {0}, b = {0};
+    if (load(argv[2], &a) || load(argv[3], &b))
+        return 2;
+    if (a.width != b.width || a.height != b.height || a.channels < 3 || b.channels < 3) {
+        fprintf(stderr, "vtv_check: images differ in size or channels\n");
+        return 2;
+    }
+    double se = 0;
+    for (uint32_t y = 0; y < a.height; y++)
+        for (uint32_t x = 0; x < a.width; x++) {
+            const uint8_t *p = vt_image_at(&a, x, y), *q = vt_image_at(&b, x, y);
+            for (int c = 0; c < 3; c++)
+                se += (double)(p[c] - q[c]) * (p[c] - q[c]);
+        }
+    double mse = se / ((double)a.width * a.height * 3);
+    double db = mse > 0 ? 10 * log10(255.0 * 255.0 / mse) : 99.0;
+    double limit = atof(argv[5]);
+    printf("PSNR %.2f dB (%s %s %.2f)\n", db, argv[4],
+           strcmp(argv[4], "--min") ? "<" : ">=", limit);
+    vt_image_release(&a);
+    vt_image_release(&b);
+    if (!strcmp(argv[4], "--min"))
+        return db >= limit ? 0 : 1;
+    if (!strcmp(argv[4], "--max"))
+        return db < limit ? 0 : 1;
+    return 2;
+}
+
+static json_t *load_json(const char *path)
+{
+    json_error_t e;
+    json_t *j = json_load_file(path, 0, &e);
+    if (!j)
+        fprintf(stderr, "vtv_check: %s: %s (line %d)\n", path, e.text, e.line);
+    return j;
+}
+
+static int check_stat(int argc, char **argv)
+{
+    if (argc != 6)
+        return 2;
+    json_t *j = load_json(argv[2]);
+    json_t *v = j ? json_object_get(json_object_get(j, "last"), argv[3]) : NULL;
+    if (!v || !json_is_integer(v)) {
+        fprintf(stderr, "vtv_check: no integer last.%s in %s\n", argv[3], argv[2]);
+        json_decref(j);
+        return 2;
+    }
+    long long x = json_integer_value(v), y = atoll(argv[5]);
+    const char *op = argv[4];
+    int ok = !strcmp(op, "==")   ? x == y
+             : !strcmp(op, "!=") ? x != y
+             : !strcmp(op, "<")  ? x < y
+             : !strcmp(op, "<=") ? x <= y
+             : !strcmp(op, ">")  ? x > y
+             : !strcmp(op, ">=") ? x >= y
+                                 : -1;
+    printf("last.%s = %lld (%s %lld)\n", argv[3], x, op, y);
+    json_decref(j);
+    return ok < 0 ? 2 : ok ? 0 : 1;
+}
+
+static int frames_equal(int argc, char **argv)
+{
+    if (argc != 4)
+        return 2;
+    json_t *a = load_json(argv[2]), *b = load_json(argv[3]);
+    if (!a || !b)
+        return 2;
+    json_t *fa = json_object_get(a, "frames"), *fb = json_object_get(b, "frames");
+    int ok = fa && fb && json_array_size(fa) > 0 && json_equal(fa, fb);
+    printf("frames %s (%zu frames)\n", ok ? "identical" : "differ", json_array_size(fa));
+    json_decref(a);
+    json_decref(b);
+    return ok ? 0 : 1;
+}
+
+static int dark(int argc, char **argv)
+{
+    if (argc != 4)
+        return 2;
+    struct vt_image a = {0};
+    if (load(argv[2], &a))
+        return 2;
+    long n = 0;
+    for (uint32_t y = 0; y < a.height; y++)
+        for (uint32_t x = 0; x < a.width; x++) {
+            const uint8_t *p = vt_image_at(&a, x, y);
+            n += p[0] + p[1] + p[2] < 24;
+        }
+    vt_image_release(&a);
+    printf("%ld dark pixels (max %s)\n", n, argv[3]);
+    return n <= atol(argv[3]) ? 0 : 1;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2)
+        return 2;
+    if (!strcmp(argv[1], "psnr"))
+        return psnr(argc, argv);
+    if (!strcmp(argv[1], "stat"))
+        return check_stat(argc, argv);
+    if (!strcmp(argv[1], "frames-equal"))
+        return frames_equal(argc, argv);
+    if (!strcmp(argv[1], "dark"))
+        return dark(argc, argv);
+    return 2;
+}

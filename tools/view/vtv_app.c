@@ -1,0 +1,311 @@
+/* vt-view application: set-up and frame loop. */
+#include "vtv_app.h"
+
+#include <inttypes.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "tool_common.h"
+#include "vtv_camera.h"
+#include "vtv_context.h"
+#include "vtv_mesh.h"
+#include "vtv_output.h"
+#include "vtv_render.h"
+#include "vtv_stream.h"
+
+void vtv_options_default(struct vtv_options *o)
+{
+    memset(o, 0, sizeof(*o));
+    o->width = 1024;
+    o->height = 768;
+    o->feedback_div = 4;
+    o->cache_tiles = 256;
+    o->uploads = 32;
+    o->threads = 2;
+}
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static int find_layer(const struct vts_store *s, const char *name, uint32_t *out)
+{
+    const struct vts_geometry *g = vts_store_geometry(s);
+    *out = 0;
+    if (!name)
+        return 0;
+    for (uint32_t i = 0; i < g->layer_count; i++)
+        if (strcmp(vts_store_layer(s, i)->name, name) == 0) {
+            *out = i;
+            return 0;
+        }
+    if (vt_parse_u32(name, 0, g->layer_count - 1, out) == 0)
+        return 0;
+    return -1;
+}
+
+/* The 2D camera that shows the whole texture. */
+static void fit_2d(const struct vts_geometry *g, uint32_t w, uint32_t h, struct vtv_camera *c)
+{
+    c->v[0] = g->width / 2.0;
+    c->v[1] = g->height / 2.0;
+    c->v[2] = fmin((double)w / g->width, (double)h / g->height);
+}
+
+struct app {
+    const struct vtv_options *o;
+    struct vts_store *store;
+    struct vtv_context *ctx;
+    struct vtv_render render;
+    struct vtv_stream stream;
+    struct vtv_mesh mesh;
+    struct vtv_camera_path path;
+    struct vtv_camera cam; /* interactive / default */
+    struct vtv_frame_stats *stats;
+    uint16_t *feedback;
+    uint8_t *shot;
+    bool three_d, trilinear;
+    int debug;
+};
+
+static void frame_view(struct app *a, uint64_t frame, struct vtv_view *v)
+{
+    const struct vtv_options *o = a->o;
+    struct vtv_camera cam = a->cam;
+    if (a->path.count)
+        cam = *vtv_camera_path_at(&a->path, frame);
+    else if (o->orbit)
+        vtv_camera_orbit(a->mesh.lo, a->mesh.hi, frame, o->orbit, &cam);
+    if (a->three_d) {
+        double d = 0;
+        for (int k = 0; k < 3; k++)
+            d += (a->mesh.hi[k] - a->mesh.lo[k]) * (a->mesh.hi[k] - a->mesh.lo[k]);
+        d = sqrt(d) + 1e-6;
+        vtv_camera_matrix_3d(&cam, o->width, o->height, d * 1e-3, d * 10, v->mvp);
+    } else {
+        vtv_camera_matrix_2d(&cam, o->width, o->height, v->mvp);
+    }
+    v->trilinear = a->trilinear;
+    v->debug = a->debug;
+}
+
+static void apply_input(struct app *a, const struct vtv_input *in)
+{
+    if (in->toggle_filter)
+        a->trilinear = !a->trilinear;
+    if (in->cycle_debug)
+        a->debug = (a->debug + 1) % 3;
+    if (a->three_d) {
+        double *e = a->cam.v, *t = a->cam.v + 3;
+        double dx = e[0] - t[0], dz = e[2] - t[2];
+        double ang = -in->orbit_x * 0.01, r = sqrt(dx * dx + dz * dz);
+        double na = atan2(dz, dx) + ang;
+        e[0] = t[0] + r * cos(na) * (1.0 / in->zoom);
+        e[2] = t[2] + r * sin(na) * (1.0 / in->zoom);
+        e[1] += in->orbit_y * 0.01 * r;
+    } else {
+        a->cam.v[0] -= in->pan_x / a->cam.v[2];
+        a->cam.v[1] -= in->pan_y / a->cam.v[2];
+        a->cam.v[2] *= in->zoom;
+    }
+}
+
+static int setup(struct app *a, struct vt_error *err)
+{
+    const struct vtv_options *o = a->o;
+    a->store = vts_open(o->store_path, err);
+    if (!a->store)
+        return err->status;
+    uint32_t layer;
+    if (find_layer(a->store, o->layer_name, &layer) != 0)
+        return vt_error_set(err, VT_ERR_ARG, "%s: no layer '%s'", o->store_path, o->layer_name);
+    const struct vts_geometry *g = vts_store_geometry(a->store);
+    a->three_d = o->obj_path != NULL;
+    int st = a->three_d ? vtv_mesh_read_obj(&a->mesh, o->obj_path, err)
+                        : vtv_mesh_quad(&a->mesh, g->width, g->height, err);
+    if (st != 0)
+        return st;
+    if (o->camera_path) {
+        st = vtv_camera_path_read(&a->path, o->camera_path, a->three_d ? 7 : 3, err);
+        if (st != 0)
+            return st;
+    }
+    if (a->three_d)
+        vtv_camera_orbit(a->mesh.lo, a->mesh.hi, 0, 1, &a->cam);
+    else
+        fit_2d(g, o->width, o->height, &a->cam);
+    a->ctx = o->headless ? vtv_context_headless(err)
+                         : vtv_context_window(o->width, o->height, "vt-view", err);
+    if (!a->ctx)
+        return err->status;
+    uint32_t fw = (o->width + o->feedback_div - 1) / o->feedback_div;
+    uint32_t fh = (o->height + o->feedback_div - 1) / o->feedback_div;
+    st = vtv_render_init(&a->render, o->width, o->height, fw, fh, err);
+    if (st != 0)
+        return st;
+    vtv_render_set_mesh(&a->render, a->mesh.vertices, a->mesh.vertex_count, a->mesh.indices,
+                        a->mesh.index_count);
+    if (o->reference) {
+        uint8_t *img = vtv_stream_level0(a->store, layer, err);
+        if (!img)
+            return err->status;
+        bool srgb = vts_store_layer(a->store, layer)->colour == VTS_COLOUR_SRGB;
+        st = vtv_render_set_reference(&a->render, img, g->width, g->height, srgb, err);
+        free(img);
+    } else {
+        st = vtv_stream_init(&a->stream, a->store, layer, o->cache_tiles, o->threads, o->sync,
+                             o->uploads, !o->no_bc_upload, &a->render, err);
+    }
+    if (st != 0)
+        return st;
+    a->feedback = malloc((size_t)fw * fh * 8);
+    a->shot = malloc((size_t)o->width * o->height * 4);
+    a->stats = calloc(o->frames ? o->frames : 1, sizeof(*a->stats));
+    if (!a->feedback || !a->shot || !a->stats)
+        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+    a->trilinear = o->trilinear;
+    a->debug = o->debug;
+    return 0;
+}
+
+/* One frame; returns 0 or a negative status. */
+static int frame(struct app *a, uint64_t i, struct vtv_frame_stats *st, struct vt_error *err)
+{
+    struct vtv_view v;
+    frame_view(a, i, &v);
+    if (a->o->reference) {
+        vtv_render_reference(&a->render, &v);
+        return 0;
+    }
+    vtv_stream_update(&a->stream, st);
+    st->fallback_pixels = vtv_render_vt(&a->render, &v);
+    /* Jitter the low-resolution pass over the K x K sub-pixel positions so that thin slivers of a
+     * tile are found within K^2 frames. */
+    uint32_t k = a->o->feedback_div, j = (uint32_t)(i % ((uint64_t)k * k));
+    float jx = (((float)(j % k) + 0.5f) / (float)k - 0.5f) * 2.0f / (float)a->render.fb_width;
+    float jy = (((float)(j / k) + 0.5f) / (float)k - 0.5f) * 2.0f / (float)a->render.fb_height;
+    vtv_render_feedback(&a->render, &v, jx, jy, a->feedback);
+    if (vtv_stream_request(&a->stream, a->feedback,
+                           (size_t)a->render.fb_width * a->render.fb_height, st) != 0)
+        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR)
+        return vt_error_set(err, VT_ERR_UNSUPPORTED, "OpenGL error 0x%x in frame %" PRIu64,
+                            (unsigned)e, i);
+    return 0;
+}
+
+static int loop(struct app *a, struct vt_error *err)
+{
+    const struct vtv_options *o = a->o;
+    uint64_t n = 0;
+    double title_t = 0;
+    for (uint64_t i = 0; o->frames == 0 || i < o->frames; i++) {
+        struct vtv_frame_stats st = {0};
+        double t0 = now_s();
+        int s = frame(a, i, &st, err);
+        if (s != 0)
+            return s;
+        st.ms = (now_s() - t0) * 1e3;
+        if (i < o->frames)
+            a->stats[i] = st;
+        n = i + 1;
+        if (vtv_context_is_window(a->ctx)) {
+            vtv_render_present(&a->render, o->width, o->height);
+            struct vtv_input in;
+            uint32_t w = o->width, h = o->height;
+            vtv_context_frame(a->ctx, &in, &w, &h);
+            if (in.quit)
+                break;
+            apply_input(a, &in);
+            if (now_s() - title_t > 0.25) {
+                char title[256];
+                snprintf(title, sizeof(title),
+                         "vt-view %s | %s%s | req %" PRIu64 " res %" PRIu64 " up %" PRIu64
+                         " fallback %" PRIu64 " px | %.1f ms",
+                         o->store_path, a->trilinear ? "trilinear" : "bilinear",
+                         a->debug == 1   ? " levels"
+                         : a->debug == 2 ? " tiles"
+                                         : "",
+                         st.requested, st.resident, st.uploads, st.fallback_pixels, st.ms);
+                vtv_context_set_title(a->ctx, title);
+                title_t = now_s();
+            }
+        }
+        vt_log(VT_LOG_DEBUG,
+               "frame %" PRIu64 ": requested %" PRIu64 ", loaded %" PRIu64 ", resident %" PRIu64
+               ", uploads %" PRIu64 ", fallback %" PRIu64 " px",
+               i, st.requested, st.loaded, st.resident, st.uploads, st.fallback_pixels);
+    }
+    if (o->screenshot) {
+        vtv_render_read_color(&a->render, a->shot);
+        int s = vtv_write_screenshot(o->screenshot, a->shot, o->width, o->height, err);
+        if (s != 0)
+            return s;
+    }
+    if (o->stats) {
+        struct vtv_run_info info = {
+            .store = o->store_path,
+            .mode = a->three_d ? "3d" : "2d",
+            .filtering = a->trilinear ? "trilinear" : "bilinear",
+            .renderer = o->reference ? "reference" : "virtual",
+            .width = o->width,
+            .height = o->height,
+            .feedback_width = a->render.fb_width,
+            .feedback_height = a->render.fb_height,
+            .cache_tiles = o->cache_tiles,
+            .uploads_per_frame = o->uploads,
+            .sync = o->sync,
+            .physical_format = o->reference               ? "none"
+                               : a->render.bc_format != 0 ? "bc"
+                               : a->render.srgb           ? "srgb8_alpha8"
+                                                          : "rgba8",
+        };
+        size_t count = n < o->frames ? n : o->frames;
+        int s = vtv_write_stats(o->stats, &info, a->stats, count, err);
+        if (s != 0)
+            return s;
+    }
+    if (n > 0 && !o->reference) {
+        const struct vtv_frame_stats *l = &a->stats[(n < o->frames ? n : o->frames) - 1];
+        vt_log(VT_LOG_INFO,
+               "%" PRIu64 " frames; last: requested %" PRIu64 ", resident %" PRIu64
+               ", fallback %" PRIu64 " px",
+               n, l->requested, l->resident, l->fallback_pixels);
+    }
+    return 0;
+}
+
+int vtv_app_run(const struct vtv_options *o)
+{
+    struct app a;
+    memset(&a, 0, sizeof(a));
+    a.o = o;
+    struct vt_error err = {0};
+    int st = setup(&a, &err);
+    if (st == 0)
+        st = loop(&a, &err);
+    if (st != 0)
+        vt_log(VT_LOG_ERROR, "%s", err.message);
+    if (a.ctx) {
+        if (!o->reference)
+            vtv_stream_free(&a.stream);
+        vtv_render_free(&a.render);
+        vtv_context_destroy(a.ctx);
+    }
+    vtv_mesh_free(&a.mesh);
+    vtv_camera_path_free(&a.path);
+    vts_close(a.store);
+    free(a.feedback);
+    free(a.shot);
+    free(a.stats);
+    if (st == 0)
+        return VT_EXIT_OK;
+    return st == VT_ERR_ARG ? VT_EXIT_USAGE : VT_EXIT_BAD_INPUT;
+}

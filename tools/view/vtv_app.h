@@ -1,0 +1,21 @@
+/* vt-view application: options and the frame loop (stream, main pass, feedback, outputs). */
+#ifndef VTV_APP_H
+#define VTV_APP_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+struct vtv_options {
+    const char *store_path, *obj_path;
+    const char *camera_path, *screenshot, *stats, *layer_name;
+    bool headless, sync, reference, trilinear, no_bc_upload;
+    int debug;
+    uint32_t width, height, orbit, frames, feedback_div, cache_tiles, uploads, threads;
+};
+
+void vtv_options_default(struct vtv_options *o);
+
+/* Runs the viewer; returns the process exit status. */
+int vtv_app_run(const struct vtv_options *o);
+
+#endif

@@ -1,0 +1,207 @@
+/* vt-view: OpenGL viewer of a .vts virtual-texture store (2D pan/zoom, or 3D over a .vt.obj), in a
+ * GLFW window or headless through EGL surfaceless. See docs/cli/vt-view.md and docs/viewer.md. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "tool_common.h"
+#include "vt_atomic_file.h"
+#include "vtv_app.h"
+
+static const char usage_text[] =
+    "usage: vt-view STORE.vts [SCENE.vt.obj] [options]\n"
+    "Shows a virtual-texture store through a page table and a tile cache: 2D (pan/zoom over the\n"
+    "whole texture) without a scene, 3D with a .vt.obj scene.\n"
+    "  --headless            render offscreen (EGL surfaceless) instead of a window\n"
+    "  --size WxH            frame size (default 1024x768)\n"
+    "  --camera FILE         camera per frame: 2D 'CX CY ZOOM', 3D 'EX EY EZ TX TY TZ FOVY'\n"
+    "  --orbit N             3D: N frames around the scene's bounding box\n"
+    "  --frames N            frames to render (headless default 30; window: 0 = until closed)\n"
+    "  --screenshot OUT.png  write the last frame\n"
+    "  --stats OUT.json      write per-frame statistics\n"
+    "  --feedback-scale 1/K  resolution of the tile-determination pass (default 1/4)\n"
+    "  --filtering MODE      bilinear (default) or trilinear\n"
+    "  --debug MODE          none (default), levels (colour by level used), tiles (outlines)\n"
+    "  --cache N             physical cache size in tiles (default 256)\n"
+    "  --uploads N           tile uploads per frame at most (default 32)\n"
+    "  --threads N           loader threads (default 2)\n"
+    "  --sync                load tiles on the render thread (deterministic statistics)\n"
+    "  --reference           render with one plain mipmapped GL texture (level 0 of the store)\n"
+    "  --layer NAME|INDEX    layer to show (default 0)\n"
+    "  --bc-upload auto|off  BC1/BC3 tiles: upload the blocks compressed when the GL has S3TC\n"
+    "                        (auto, default) or decode them on the CPU (off)\n"
+    "  -q, --quiet           errors only\n"
+    "  -v, --verbose         more messages\n"
+    "  --help, --version\n"
+    "Window keys: arrows/WASD pan, +/- or wheel zoom, drag pan/orbit, F filtering, G debug view,\n"
+    "Esc/Q quit.\n";
+
+enum {
+    OPT_HEADLESS = 256,
+    OPT_SIZE,
+    OPT_CAMERA,
+    OPT_ORBIT,
+    OPT_FRAMES,
+    OPT_SCREENSHOT,
+    OPT_STATS,
+    OPT_FEEDBACK,
+    OPT_FILTERING,
+    OPT_DEBUG,
+    OPT_CACHE,
+    OPT_UPLOADS,
+    OPT_THREADS,
+    OPT_SYNC,
+    OPT_REFERENCE,
+    OPT_LAYER,
+    OPT_BC_UPLOAD,
+    OPT_HELP,
+    OPT_VERSION,
+};
+
+int main(int argc, char **argv)
+{
+    vt_tool_init("vt-view");
+    vt_atomic_file_cleanup_on_signals();
+    static const struct option longopts[] = {
+        {"headless", no_argument, NULL, OPT_HEADLESS},
+        {"size", required_argument, NULL, OPT_SIZE},
+        {"camera", required_argument, NULL, OPT_CAMERA},
+        {"orbit", required_argument, NULL, OPT_ORBIT},
+        {"frames", required_argument, NULL, OPT_FRAMES},
+        {"screenshot", required_argument, NULL, OPT_SCREENSHOT},
+        {"stats", required_argument, NULL, OPT_STATS},
+        {"feedback-scale", required_argument, NULL, OPT_FEEDBACK},
+        {"filtering", required_argument, NULL, OPT_FILTERING},
+        {"debug", required_argument, NULL, OPT_DEBUG},
+        {"cache", required_argument, NULL, OPT_CACHE},
+        {"uploads", required_argument, NULL, OPT_UPLOADS},
+        {"threads", required_argument, NULL, OPT_THREADS},
+        {"sync", no_argument, NULL, OPT_SYNC},
+        {"reference", no_argument, NULL, OPT_REFERENCE},
+        {"layer", required_argument, NULL, OPT_LAYER},
+        {"bc-upload", required_argument, NULL, OPT_BC_UPLOAD},
+        {"quiet", no_argument, NULL, 'q'},
+        {"verbose", no_argument, NULL, 'v'},
+        {"help", no_argument, NULL, OPT_HELP},
+        {"version", no_argument, NULL, OPT_VERSION},
+        {NULL, 0, NULL, 0},
+    };
+    struct vtv_options o;
+    vtv_options_default(&o);
+    bool frames_set = false;
+    int verbosity = VT_LOG_WARN;
+    opterr = 0;
+    int c;
+    while ((c = vt_getopt_long(argc, argv, ":qv", longopts)) != -1) {
+        switch (c) {
+        case OPT_HEADLESS:
+            o.headless = true;
+            break;
+        case OPT_SIZE:
+            if (vt_parse_u32_pair(optarg, 'x', 16, 8192, &o.width, &o.height) != 0)
+                return vt_usage_error("--size '%s': expected WxH, 16..8192 each", optarg);
+            break;
+        case OPT_CAMERA:
+            o.camera_path = optarg;
+            break;
+        case OPT_ORBIT:
+            if (vt_parse_u32(optarg, 1, 1000000, &o.orbit) != 0)
+                return vt_usage_error("--orbit '%s': expected a frame count >= 1", optarg);
+            break;
+        case OPT_FRAMES:
+            if (vt_parse_u32(optarg, 0, 10000000, &o.frames) != 0)
+                return vt_usage_error("--frames '%s': expected a number", optarg);
+            frames_set = true;
+            break;
+        case OPT_SCREENSHOT:
+            o.screenshot = optarg;
+            break;
+        case OPT_STATS:
+            o.stats = optarg;
+            break;
+        case OPT_FEEDBACK:
+            if (strncmp(optarg, "1/", 2) != 0 || vt_parse_u32(optarg + 2, 1, 16, &o.feedback_div))
+                return vt_usage_error("--feedback-scale '%s': expected 1/K with K in 1..16",
+                                      optarg);
+            break;
+        case OPT_FILTERING:
+            if (strcmp(optarg, "bilinear") == 0)
+                o.trilinear = false;
+            else if (strcmp(optarg, "trilinear") == 0)
+                o.trilinear = true;
+            else
+                return vt_usage_error("--filtering '%s': expected bilinear or trilinear", optarg);
+            break;
+        case OPT_DEBUG:
+            if (strcmp(optarg, "none") == 0)
+                o.debug = 0;
+            else if (strcmp(optarg, "levels") == 0)
+                o.debug = 1;
+            else if (strcmp(optarg, "tiles") == 0)
+                o.debug = 2;
+            else
+                return vt_usage_error("--debug '%s': expected none, levels or tiles", optarg);
+            break;
+        case OPT_CACHE:
+            if (vt_parse_u32(optarg, 2, 65536, &o.cache_tiles) != 0)
+                return vt_usage_error("--cache '%s': expected 2..65536 tiles", optarg);
+            break;
+        case OPT_UPLOADS:
+            if (vt_parse_u32(optarg, 1, 65536, &o.uploads) != 0)
+                return vt_usage_error("--uploads '%s': expected 1..65536", optarg);
+            break;
+        case OPT_THREADS:
+            if (vt_parse_u32(optarg, 1, 64, &o.threads) != 0)
+                return vt_usage_error("--threads '%s': expected 1..64", optarg);
+            break;
+        case OPT_SYNC:
+            o.sync = true;
+            break;
+        case OPT_REFERENCE:
+            o.reference = true;
+            break;
+        case OPT_LAYER:
+            o.layer_name = optarg;
+            break;
+        case OPT_BC_UPLOAD:
+            if (strcmp(optarg, "auto") == 0)
+                o.no_bc_upload = false;
+            else if (strcmp(optarg, "off") == 0)
+                o.no_bc_upload = true;
+            else
+                return vt_usage_error("--bc-upload '%s': expected auto or off", optarg);
+            break;
+        case 'q':
+            verbosity = VT_LOG_ERROR;
+            break;
+        case 'v':
+            verbosity++;
+            break;
+        case OPT_HELP:
+            fputs(usage_text, stdout);
+            return VT_EXIT_OK;
+        case OPT_VERSION:
+            vt_print_version(stdout);
+            return VT_EXIT_OK;
+        default:
+            return vt_usage_getopt_error(c, argv);
+        }
+    }
+    vt_log_set_level(verbosity);
+    int rest = argc - optind;
+    if (rest < 1 || rest > 2)
+        return vt_usage_error(rest < 1 ? "missing STORE.vts" : "too many arguments");
+    o.store_path = argv[optind];
+    o.obj_path = rest == 2 ? argv[optind + 1] : NULL;
+    if (o.orbit && !o.obj_path)
+        return vt_usage_error("--orbit needs a scene (SCENE.vt.obj)");
+    if (o.orbit && o.camera_path)
+        return vt_usage_error("--orbit and --camera exclude each other");
+    if (!frames_set)
+        o.frames = o.headless ? (o.orbit ? o.orbit : 30) : 0;
+    if (o.headless && o.frames == 0)
+        return vt_usage_error("--frames 0 needs a window (no --headless)");
+    return vtv_app_run(&o);
+}

@@ -1,0 +1,98 @@
+/* vt-view outputs: screenshot PNG and statistics JSON. */
+#include "vtv_output.h"
+
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vt_atomic_file.h"
+#include "vt_png_file.h"
+
+int vtv_write_screenshot(const char *path, const uint8_t *rgba, uint32_t w, uint32_t h,
+                         struct vt_error *err)
+{
+    uint8_t *row = malloc((size_t)w * 3);
+    if (!row)
+        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+    struct vt_png_file_writer *pw = vt_png_file_writer_create(path, w, h, 3, 8, err);
+    int st = pw ? 0 : err->status;
+    for (uint32_t y = 0; st == 0 && y < h; y++) {
+        for (uint32_t x = 0; x < w; x++)
+            memcpy(row + (size_t)x * 3, rgba + ((size_t)y * w + x) * 4, 3);
+        st = vt_png_file_writer_rows(pw, row, 1, (size_t)w * 3, err);
+    }
+    if (st == 0)
+        st = vt_png_file_writer_finish(pw, err);
+    vt_png_file_writer_destroy(pw);
+    free(row);
+    return st;
+}
+
+static void json_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            fprintf(f, "\\%c", c);
+        else if (c < 0x20)
+            fprintf(f, "\\u%04x", c);
+        else
+            fputc(c, f);
+    }
+    fputc('"', f);
+}
+
+static void frame_json(FILE *f, const struct vtv_frame_stats *s)
+{
+    fprintf(f,
+            "{\"requested\": %" PRIu64 ", \"loaded\": %" PRIu64 ", \"resident\": %" PRIu64
+            ", \"uploads\": %" PRIu64 ", \"fallback_pixels\": %" PRIu64 ", \"empty\": %" PRIu64
+            ", \"failed\": %" PRIu64 "}",
+            s->requested, s->loaded, s->resident, s->uploads, s->fallback_pixels, s->empty,
+            s->failed);
+}
+
+int vtv_write_stats(const char *path, const struct vtv_run_info *info,
+                    const struct vtv_frame_stats *frames, size_t count, struct vt_error *err)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    if (!f)
+        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+    fputs("{\n  \"store\": ", f);
+    json_string(f, info->store);
+    fprintf(f, ",\n  \"mode\": \"%s\",\n  \"renderer\": \"%s\",\n  \"filtering\": \"%s\",\n",
+            info->mode, info->renderer, info->filtering);
+    fprintf(f, "  \"size\": [%u, %u],\n  \"feedback_size\": [%u, %u],\n", info->width, info->height,
+            info->feedback_width, info->feedback_height);
+    fprintf(f, "  \"cache_tiles\": %u,\n  \"uploads_per_frame\": %u,\n  \"sync\": %s,\n",
+            info->cache_tiles, info->uploads_per_frame, info->sync ? "true" : "false");
+    fprintf(f, "  \"physical_format\": \"%s\",\n", info->physical_format);
+    fputs("  \"frames\": [", f);
+    for (size_t i = 0; i < count; i++) {
+        fputs(i ? ",\n    " : "\n    ", f);
+        frame_json(f, &frames[i]);
+    }
+    fputs("\n  ],\n  \"last\": ", f);
+    struct vtv_frame_stats zero = {0};
+    frame_json(f, count ? &frames[count - 1] : &zero);
+    fputs(",\n  \"timing_ms\": [", f);
+    for (size_t i = 0; i < count; i++)
+        fprintf(f, "%s%.3f", i ? ", " : "", frames[i].ms);
+    fputs("]\n}\n", f);
+    fclose(f);
+    struct vt_atomic_file af;
+    int st = vt_atomic_file_create(&af, path, "tmp", err);
+    if (st == 0) {
+        st = vt_atomic_file_pwrite(&af, buf, len, 0, err);
+        if (st == 0)
+            st = vt_atomic_file_commit(&af, err);
+        else
+            vt_atomic_file_abort(&af);
+    }
+    free(buf);
+    return st;
+}
