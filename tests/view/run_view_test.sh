@@ -2,8 +2,12 @@
 # One vt-view test case (tests/view.cmake): builds its stores with vtv_make_store, renders them
 # headless (EGL surfaceless, Mesa llvmpipe) and checks screenshots and statistics with vtv_check.
 # usage: run_view_test.sh CASE VT_VIEW MAKE_STORE CHECK WORKDIR [VT_TILES VT_SYNTH_IMAGE]
+# The scene cases take VT_ATLAS, VT_OFFSET, VT_TILES, VTV_MAKE_SCENE (and VT_SAMPLE_SCENE) from
+# the environment (tests/view.cmake).
 set -euo pipefail
 case_name=$1 view=$2 make_store=$3 check=$4 work=$5 vt_tiles=${6:-} synth_image=${7:-}
+atlas=${VT_ATLAS:-} offset=${VT_OFFSET:-} layout_tiles=${VT_TILES:-} make_scene=${VTV_MAKE_SCENE:-}
+sample_scene=${VT_SAMPLE_SCENE:-}
 rm -rf "$work"
 mkdir -p "$work"
 cd "$work"
@@ -41,12 +45,16 @@ psnr_bilinear | psnr_trilinear)
   done
   ;;
 bad_borders)
-  # Borders not copied from the neighbours must show: the same comparison has to fail.
-  # (the good store passes the same comparisons in view_psnr_*)
-  store bad.vts --bad-borders
+  # Borders not copied from the neighbours must show: the same comparisons fail by a clear margin
+  # (each border sample pushed >= 128 away from the right value; 32 px tiles so that more pixels
+  # sit next to a tile edge), while the same store with correct borders passes them.
+  store good32.vts --tile 32
+  store bad.vts --tile 32 --bad-borders
   for cam in mag mid; do
-    compare bad.vts bilinear $cam --max 40
-    compare bad.vts trilinear $cam --max 35
+    compare good32.vts bilinear $cam --min 40
+    compare good32.vts trilinear $cam --min 35
+    compare bad.vts bilinear $cam --max 35
+    compare bad.vts trilinear $cam --max 30
   done
   ;;
 small_cache)
@@ -175,6 +183,92 @@ scene_3d)
   "$check" stat cam3d.json fallback_pixels == 0 || fail "3D static camera fallback"
   vt good.vts plane.vt.obj --camera view3d.cam --frames 1 --reference --screenshot cam3d_ref.png
   "$check" psnr cam3d.png cam3d_ref.png --min 35 || fail "3D camera file"
+  ;;
+scene_reference)
+  # --reference-scene: a generated scene (tests/view/vtv_make_scene.c: textured quads, one wrapped
+  # material with UVs in [-1, 2], one with turned UVs, one Kd-only) through vt-atlas -> vt-offset
+  # -> vt-tiles --layout (lossless png tiles), compared with the ORIGINAL OBJ drawn with its own
+  # textures: proves the atlas offsets, borders and wrap replication end to end.
+  mkdir tex
+  "$make_scene" .
+  "$atlas" scene.obj -o atlas.json --wrap replicate --tile-size 64 --border 4 -q
+  "$offset" scene.obj atlas.json -o scene.vt.obj -q
+  "$layout_tiles" --layout atlas.json -o scene.vts --codec png -q
+  # Fixed camera in front of the wall: textures magnified or near 1:1, the floor at a slant.
+  echo "0 1.0 2.6 0 0.75 0.3 50" >fix.cam
+  for f in bilinear trilinear; do
+    limit=40
+    [ $f = trilinear ] && limit=35
+    vt scene.vts scene.vt.obj --camera fix.cam --frames 20 --sync --filtering $f \
+      --screenshot vt_$f.png --stats vt_$f.json
+    vt scene.vts scene.vt.obj --camera fix.cam --frames 1 --reference --reference-scene scene.obj \
+      --filtering $f --screenshot ref_$f.png
+    "$check" psnr vt_$f.png ref_$f.png --min $limit || fail "$f: against the original scene"
+    "$check" stat vt_$f.json fallback_pixels == 0 || fail "$f: fallback after convergence"
+    "$check" stat vt_$f.json failed == 0 || fail "$f: failed tiles"
+    # an orbit (the camera moves every frame, so the cache trails it by one frame)
+    vt scene.vts scene.vt.obj --orbit 16 --frames 40 --sync --filtering $f --screenshot vo_$f.png \
+      --stats vo_$f.json
+    vt scene.vts scene.vt.obj --orbit 16 --frames 40 --reference --reference-scene scene.obj \
+      --filtering $f --screenshot ro_$f.png
+    "$check" psnr vo_$f.png ro_$f.png --min 35 || fail "$f orbit: against the original scene"
+    "$check" stat vo_$f.json fallback_pixels '<' 655 || fail "$f orbit: fallback above 1%"
+  done
+  # The comparison has teeth: texture coordinates 2 atlas texels off must fail it.
+  w=$(sed -n 's/^ "width": \([0-9]*\),$/\1/p' atlas.json)
+  [ -n "$w" ] || fail "no atlas width in atlas.json"
+  awk -v w="$w" '$1 == "vt" { $2 = $2 + 2 / w } { print }' scene.vt.obj >shifted.vt.obj
+  vt scene.vts shifted.vt.obj --camera fix.cam --frames 20 --sync --screenshot shifted.png
+  "$check" psnr shifted.png ref_bilinear.png --max 30 || fail "shifted offsets not detected"
+  ;;
+reference_scene_cli)
+  mkdir tex
+  "$make_scene" .
+  "$atlas" scene.obj -o atlas.json --wrap replicate --tile-size 64 -q
+  "$offset" scene.obj atlas.json -o scene.vt.obj -q
+  "$layout_tiles" --layout atlas.json -o scene.vts --codec png -q
+  set +e
+  "$view" scene.vts scene.vt.obj --headless --reference-scene scene.obj 2>err.txt
+  [ $? -eq 2 ] || fail "--reference-scene without --reference: exit 2"
+  grep -q 'vt-view: --reference-scene needs --reference and a scene' err.txt || fail "$(cat err.txt)"
+  "$view" scene.vts --headless --reference --reference-scene scene.obj 2>/dev/null
+  [ $? -eq 2 ] || fail "--reference-scene without a scene: exit 2"
+  vt scene.vts scene.vt.obj --frames 1 --reference --reference-scene missing.obj 2>err.txt
+  [ $? -eq 1 ] || fail "missing OBJ: exit 1"
+  grep -q "missing.obj" err.txt || fail "message names the OBJ: $(cat err.txt)"
+  rm tex/d.png
+  vt scene.vts scene.vt.obj --frames 1 --reference --reference-scene scene.obj 2>err.txt
+  [ $? -eq 1 ] || fail "missing texture: exit 1"
+  grep -q "tex/d.png" err.txt || fail "message names the texture: $(cat err.txt)"
+  set -e
+  ;;
+sample_scene)
+  # The sample scene (samples/gen_scene.c, half size): 44 materials, NPOT textures, RGBA cut-outs,
+  # a ground with UVs 0..8, a Kd-only antenna; the camera stands at a street corner close to
+  # building_00 (its faces at levels 0..2, the ground magnified).
+  "$sample_scene" -q --shrink 2 src
+  cd src
+  "$atlas" scene.obj -o atlas.json --wrap replicate -q
+  "$offset" scene.obj atlas.json -o scene.vt.obj -q
+  "$layout_tiles" --layout atlas.json -o scene.vts --codec png -q
+  echo "10 2 10 4 3.5 4 60" >corner.cam
+  for f in bilinear trilinear; do
+    limit=40
+    [ $f = trilinear ] && limit=35
+    vt scene.vts scene.vt.obj --camera corner.cam --frames 24 --sync --filtering $f \
+      --screenshot vt_$f.png --stats vt_$f.json
+    vt scene.vts scene.vt.obj --camera corner.cam --frames 1 --reference --reference-scene \
+      scene.obj --filtering $f --screenshot ref_$f.png
+    "$check" psnr vt_$f.png ref_$f.png --min $limit || fail "$f: against the original scene"
+    "$check" stat vt_$f.json fallback_pixels == 0 || fail "$f: fallback after convergence"
+  done
+  # The whole city from the orbit: far, strongly minified textures, where the atlas's coarse
+  # levels mix neighbouring entries and NPOT textures are filtered differently; a looser bound.
+  vt scene.vts scene.vt.obj --orbit 16 --frames 40 --sync --filtering trilinear \
+    --screenshot vo.png
+  vt scene.vts scene.vt.obj --orbit 16 --frames 40 --reference --reference-scene scene.obj \
+    --filtering trilinear --screenshot ro.png
+  "$check" psnr vo.png ro.png --min 25 || fail "orbit against the original scene"
   ;;
 window)
   store good.vts

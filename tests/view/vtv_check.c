@@ -3,6 +3,8 @@
  *   vtv_check stat S.json KEY OP VALUE               KEY in "last" (OP: == != < <= > >=)
  *   vtv_check frames-equal A.json B.json             the "frames" arrays are identical
  *   vtv_check dark A.png MAX                          at most MAX pixels with R+G+B < 24
+ *   vtv_check diff A.png B.png OUT.png                |A - B| x 8 as a PNG (for failures), and
+ *                                                     the count of pixels off by more than 8
  * Exit 0 when the check holds, 1 when it does not, 2 on bad use or unreadable files. */
 #include <jansson.h>
 #include <math.h>
@@ -121,6 +123,42 @@ static int dark(int argc, char **argv)
     return n <= atol(argv[3]) ? 0 : 1;
 }
 
+static int diff(int argc, char **argv)
+{
+    if (argc != 5)
+        return 2;
+    struct vt_image a = {0}, b = {0};
+    struct vt_error err = {0};
+    if (load(argv[2], &a) || load(argv[3], &b))
+        return 2;
+    if (a.width != b.width || a.height != b.height || a.channels < 3 || b.channels < 3)
+        return 2;
+    uint8_t *out = malloc((size_t)a.width * a.height * 3);
+    long n = 0;
+    for (uint32_t y = 0; out && y < a.height; y++)
+        for (uint32_t x = 0; x < a.width; x++) {
+            const uint8_t *p = vt_image_at(&a, x, y), *q = vt_image_at(&b, x, y);
+            int big = 0;
+            for (int c = 0; c < 3; c++) {
+                int d = abs(p[c] - q[c]);
+                big |= d > 8;
+                out[((size_t)y * a.width + x) * 3 + c] = (uint8_t)(d * 8 > 255 ? 255 : d * 8);
+            }
+            n += big;
+        }
+    struct vt_png_file_writer *w =
+        out ? vt_png_file_writer_create(argv[4], a.width, a.height, 3, 8, &err) : NULL;
+    int st = w ? vt_png_file_writer_rows(w, out, a.height, (size_t)a.width * 3, &err) : -1;
+    if (st == 0)
+        st = vt_png_file_writer_finish(w, &err);
+    vt_png_file_writer_destroy(w);
+    free(out);
+    vt_image_release(&a);
+    vt_image_release(&b);
+    printf("%ld pixels differ by more than 8\n", n);
+    return st == 0 ? 0 : 2;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2)
@@ -133,5 +171,7 @@ int main(int argc, char **argv)
         return frames_equal(argc, argv);
     if (!strcmp(argv[1], "dark"))
         return dark(argc, argv);
+    if (!strcmp(argv[1], "diff"))
+        return diff(argc, argv);
     return 2;
 }

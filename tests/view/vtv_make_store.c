@@ -1,7 +1,8 @@
 /* Test helper for vt-view: writes a small RGB store through vts_writer from a smooth synthetic
  * image, with mip levels made by 2x2 box averaging (as glGenerateMipmap does) and borders copied
  * from the neighbours (edge texels clamped). --bad-borders writes borders that are NOT copied from
- * the neighbours (inverted colours) so that the renderer's comparison must fail; --empty TX,TY
+ * the neighbours (each sample pushed to the far end: 255 below 128, else 0, at least 128 away from
+ * the right value) so that the renderer's comparison must fail clearly; --empty TX,TY
  * stores level-0 tile (TX, TY) with length 0. The layer is colour 'data' (mips averaged on the
  * stored values, like glGenerateMipmap on RGBA8), or 'srgb' with --srgb (the same values).
  * usage: vtv_make_store OUT.vts [--size N] [--tile N] [--border N] [--codec png|raw|jpeg]
@@ -114,7 +115,7 @@ int main(int argc, char **argv)
                             const uint8_t *s = img + ((size_t)sy * lw + (size_t)sx) * 3;
                             uint8_t *d = vt_image_at(&tile_img, i, j);
                             for (int c = 0; c < 3; c++)
-                                d[c] = (uint8_t)(bad && outside ? 255 - s[c] : s[c]);
+                                d[c] = (uint8_t)(bad && outside ? (s[c] < 128 ? 255 : 0) : s[c]);
                         }
                     if (codec->encode(&tile_img, &params, buf, cap, &len, &err) != 0)
                         return fail(&err);

@@ -13,6 +13,7 @@
 #include "vtv_context.h"
 #include "vtv_mesh.h"
 #include "vtv_output.h"
+#include "vtv_reference.h"
 #include "vtv_render.h"
 #include "vtv_stream.h"
 
@@ -65,6 +66,7 @@ struct app {
     struct vtv_render render;
     struct vtv_stream stream;
     struct vtv_mesh mesh;
+    struct vtv_reference_scene ref_scene;
     struct vtv_camera_path path;
     struct vtv_camera cam; /* interactive / default */
     struct vtv_frame_stats *stats;
@@ -151,11 +153,14 @@ static int setup(struct app *a, struct vt_error *err)
         return st;
     vtv_render_set_mesh(&a->render, a->mesh.vertices, a->mesh.vertex_count, a->mesh.indices,
                         a->mesh.index_count);
-    if (o->reference) {
+    bool srgb = vts_store_layer(a->store, layer)->colour == VTS_COLOUR_SRGB;
+    if (o->reference_scene) {
+        a->render.srgb = srgb; /* the frame encodes as the virtual-texture pass's would */
+        st = vtv_reference_scene_load(&a->ref_scene, o->reference_scene, srgb, err);
+    } else if (o->reference) {
         uint8_t *img = vtv_stream_level0(a->store, layer, err);
         if (!img)
             return err->status;
-        bool srgb = vts_store_layer(a->store, layer)->colour == VTS_COLOUR_SRGB;
         st = vtv_render_set_reference(&a->render, img, g->width, g->height, srgb, err);
         free(img);
     } else {
@@ -179,6 +184,10 @@ static int frame(struct app *a, uint64_t i, struct vtv_frame_stats *st, struct v
 {
     struct vtv_view v;
     frame_view(a, i, &v);
+    if (a->o->reference_scene) {
+        vtv_reference_scene_draw(&a->render, &a->ref_scene, &v);
+        return 0;
+    }
     if (a->o->reference) {
         vtv_render_reference(&a->render, &v);
         return 0;
@@ -296,6 +305,7 @@ int vtv_app_run(const struct vtv_options *o)
     if (a.ctx) {
         if (!o->reference)
             vtv_stream_free(&a.stream);
+        vtv_reference_scene_free(&a.ref_scene);
         vtv_render_free(&a.render);
         vtv_context_destroy(a.ctx);
     }

@@ -8,6 +8,7 @@
 struct vtv_options {
     const char *store_path, *obj_path;
     const char *camera_path, *screenshot, *stats, *layer_name;
+    const char *reference_scene; /* --reference-scene ORIGINAL.obj (with --reference) */
     bool headless, sync, reference, trilinear, no_bc_upload;
     int debug;
     uint32_t width, height, orbit, frames, feedback_div, cache_tiles, uploads, threads;

@@ -29,6 +29,9 @@ static const char usage_text[] =
     "  --threads N           loader threads (default 2)\n"
     "  --sync                load tiles on the render thread (deterministic statistics)\n"
     "  --reference           render with one plain mipmapped GL texture (level 0 of the store)\n"
+    "  --reference-scene ORIGINAL.obj\n"
+    "                        with --reference: draw the scene before vt-offset with its own\n"
+    "                        textures (map_Kd) instead, same camera\n"
     "  --layer NAME|INDEX    layer to show (default 0)\n"
     "  --bc-upload auto|off  BC1/BC3 tiles: upload the blocks compressed when the GL has S3TC\n"
     "                        (auto, default) or decode them on the CPU (off)\n"
@@ -54,6 +57,7 @@ enum {
     OPT_THREADS,
     OPT_SYNC,
     OPT_REFERENCE,
+    OPT_REFERENCE_SCENE,
     OPT_LAYER,
     OPT_BC_UPLOAD,
     OPT_HELP,
@@ -80,6 +84,7 @@ int main(int argc, char **argv)
         {"threads", required_argument, NULL, OPT_THREADS},
         {"sync", no_argument, NULL, OPT_SYNC},
         {"reference", no_argument, NULL, OPT_REFERENCE},
+        {"reference-scene", required_argument, NULL, OPT_REFERENCE_SCENE},
         {"layer", required_argument, NULL, OPT_LAYER},
         {"bc-upload", required_argument, NULL, OPT_BC_UPLOAD},
         {"quiet", no_argument, NULL, 'q'},
@@ -162,6 +167,9 @@ int main(int argc, char **argv)
         case OPT_REFERENCE:
             o.reference = true;
             break;
+        case OPT_REFERENCE_SCENE:
+            o.reference_scene = optarg;
+            break;
         case OPT_LAYER:
             o.layer_name = optarg;
             break;
@@ -199,6 +207,8 @@ int main(int argc, char **argv)
         return vt_usage_error("--orbit needs a scene (SCENE.vt.obj)");
     if (o.orbit && o.camera_path)
         return vt_usage_error("--orbit and --camera exclude each other");
+    if (o.reference_scene && (!o.reference || !o.obj_path))
+        return vt_usage_error("--reference-scene needs --reference and a scene (SCENE.vt.obj)");
     if (!frames_set)
         o.frames = o.headless ? (o.orbit ? o.orbit : 30) : 0;
     if (o.headless && o.frames == 0)

@@ -270,10 +270,7 @@ static void begin_main(const struct vtv_render *r)
     glClearBufferfv(GL_COLOR, 0, bg);
     glClearBufferuiv(GL_COLOR, 1, zero);
     glClear(GL_DEPTH_BUFFER_BIT);
-    if (r->srgb)
-        glEnable(GL_FRAMEBUFFER_SRGB);
-    else
-        glDisable(GL_FRAMEBUFFER_SRGB);
+    (r->srgb ? glEnable : glDisable)(GL_FRAMEBUFFER_SRGB);
 }
 
 uint64_t vtv_render_vt(struct vtv_render *r, const struct vtv_view *v)
@@ -345,7 +342,7 @@ int vtv_render_set_reference(struct vtv_render *r, const uint8_t *rgba, uint32_t
     return 0;
 }
 
-void vtv_render_reference(struct vtv_render *r, const struct vtv_view *v)
+GLuint vtv_render_reference_begin(struct vtv_render *r, const struct vtv_view *v)
 {
     begin_main(r);
     GLuint p = r->prog_reference;
@@ -353,13 +350,25 @@ void vtv_render_reference(struct vtv_render *r, const struct vtv_view *v)
     glUniformMatrix4fv(glGetUniformLocation(p, "u_mvp"), 1, GL_FALSE, v->mvp);
     glUniform2f(glGetUniformLocation(p, "u_jitter"), 0.0f, 0.0f);
     glUniform1i(glGetUniformLocation(p, "u_tex"), 0);
+    glUniform1i(glGetUniformLocation(p, "u_mode"), 1);
     glActiveTexture(GL_TEXTURE0);
+    return p;
+}
+
+void vtv_render_reference_end(void)
+{
+    glDisable(GL_FRAMEBUFFER_SRGB);
+    glUseProgram(0);
+}
+
+void vtv_render_reference(struct vtv_render *r, const struct vtv_view *v)
+{
+    vtv_render_reference_begin(r, v);
     glBindTexture(GL_TEXTURE_2D, r->tex_reference);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
                     v->trilinear ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR_MIPMAP_NEAREST);
     draw(r);
-    glDisable(GL_FRAMEBUFFER_SRGB);
-    glUseProgram(0);
+    vtv_render_reference_end();
 }
 
 void vtv_render_read_color(struct vtv_render *r, uint8_t *rgba)

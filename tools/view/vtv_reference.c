@@ -1,0 +1,346 @@
+/* vt-view --reference-scene: the original OBJ with one plain GL texture per material. */
+#include "vtv_reference.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vt_image.h"
+#include "vt_image_input.h"
+#include "vt_obj.h"
+
+/* Triangles of one material, 5 floats (x y z u v) per vertex, in order of first use. */
+struct mat_geo {
+    char *name;
+    float *v;
+    size_t n, cap;
+    double uv_lo[2], uv_hi[2]; /* texcoord range of the corners (v flipped) */
+};
+
+struct load_ctx {
+    const char *path;
+    struct vt_mtl *mtls;
+    size_t mtl_count;
+    struct mat_geo *mats;
+    uint32_t mat_count, cur;
+    char **tex_paths; /* parallel to s->textures */
+    double lo[3], hi[3];
+};
+
+static int on_mtllib(void *user, const struct vt_obj *obj, const char *mtl_path, uint64_t line,
+                     struct vt_error *err)
+{
+    (void)obj;
+    (void)line;
+    struct load_ctx *c = user;
+    struct vt_mtl *m = realloc(c->mtls, (c->mtl_count + 1) * sizeof(*m));
+    if (!m)
+        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+    c->mtls = m;
+    memset(&m[c->mtl_count], 0, sizeof(*m));
+    int st = vt_mtl_read(mtl_path, NULL, &m[c->mtl_count], err);
+    c->mtl_count++; /* released either way */
+    return st;
+}
+
+static int material_index(struct load_ctx *c, const char *name, struct vt_error *err)
+{
+    if (c->cur < c->mat_count && strcmp(c->mats[c->cur].name, name) == 0)
+        return 0;
+    for (c->cur = 0; c->cur < c->mat_count; c->cur++)
+        if (strcmp(c->mats[c->cur].name, name) == 0)
+            return 0;
+    struct mat_geo *m = realloc(c->mats, (c->mat_count + 1) * sizeof(*m));
+    if (!m)
+        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+    c->mats = m;
+    memset(&m[c->mat_count], 0, sizeof(*m));
+    m[c->mat_count].uv_lo[0] = m[c->mat_count].uv_lo[1] = 1e300;
+    m[c->mat_count].uv_hi[0] = m[c->mat_count].uv_hi[1] = -1e300;
+    m[c->mat_count].name = strdup(name);
+    if (!m[c->mat_count].name)
+        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+    c->cur = c->mat_count++;
+    return 0;
+}
+
+static int push(struct load_ctx *c, const struct vt_obj *obj, const struct vt_obj_corner *k)
+{
+    struct mat_geo *m = &c->mats[c->cur];
+    if (m->n == m->cap) {
+        if (m->cap >= ((size_t)1 << 27))
+            return VT_ERR_LIMIT;
+        size_t nc = m->cap ? m->cap * 2 : 256;
+        float *p = realloc(m->v, nc * 5 * sizeof(float));
+        if (!p)
+            return VT_ERR_NOMEM;
+        m->v = p;
+        m->cap = nc;
+    }
+    float *out = m->v + m->n++ * 5;
+    const double *p = vt_obj_positions(obj) + (size_t)k->v * 3;
+    for (int i = 0; i < 3; i++) {
+        out[i] = (float)p[i];
+        c->lo[i] = fmin(c->lo[i], p[i]);
+        c->hi[i] = fmax(c->hi[i], p[i]);
+    }
+    out[3] = out[4] = 0.0f;
+    if (k->vt != VT_OBJ_NONE) { /* v flipped as in vtv_mesh.c: v = 1 is the first row */
+        const double *t = vt_obj_texcoords(obj) + (size_t)k->vt * 3;
+        out[3] = (float)t[0];
+        out[4] = (float)(1.0 - t[1]);
+        for (int i = 0; i < 2; i++) {
+            m->uv_lo[i] = fmin(m->uv_lo[i], out[3 + i]);
+            m->uv_hi[i] = fmax(m->uv_hi[i], out[3 + i]);
+        }
+    }
+    return 0;
+}
+
+static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_face *f,
+                   struct vt_error *err)
+{
+    struct load_ctx *c = user;
+    int st = material_index(c, f->material, err);
+    for (uint32_t i = 1; st == 0 && i + 1 < f->corner_count; i++) { /* fanned as in vtv_mesh.c */
+        st = push(c, obj, &f->corners[0]);
+        if (st == 0)
+            st = push(c, obj, &f->corners[i]);
+        if (st == 0)
+            st = push(c, obj, &f->corners[i + 1]);
+        if (st != 0 && st != VT_ERR_NOMEM)
+            return vt_error_set(err, st, "'%s':%llu: too many triangles", c->path,
+                                (unsigned long long)f->line);
+        if (st != 0)
+            return vt_error_set(err, st, "out of memory");
+    }
+    return st;
+}
+
+static void to_rgba8(const struct vt_image *img, uint8_t *out)
+{
+    uint32_t ch = img->channels;
+    for (uint32_t y = 0; y < img->height; y++)
+        for (uint32_t x = 0; x < img->width; x++) {
+            const void *px = vt_image_at(img, x, y);
+            uint8_t s[4] = {0, 0, 0, 255};
+            for (uint32_t k = 0; k < ch; k++)
+                s[k] = img->sample == VTS_SAMPLE_U8
+                           ? ((const uint8_t *)px)[k]
+                           : (uint8_t)((((const uint16_t *)px)[k] * 255u + 32767u) / 65535u);
+            uint8_t *o = out + ((size_t)y * img->width + x) * 4;
+            bool grey = ch <= 2;
+            o[0] = s[0];
+            o[1] = grey ? s[0] : s[1];
+            o[2] = grey ? s[0] : s[2];
+            o[3] = ch == 2 ? s[1] : ch == 4 ? s[3] : 255;
+        }
+}
+
+static int load_texture(const char *path, bool srgb, GLuint *out, struct vt_error *err)
+{
+    struct vt_source src;
+    struct vt_image img = {0};
+    uint8_t *rgba = NULL;
+    int st = vt_image_input_open(path, NULL, &src, err);
+    if (st != 0)
+        return st;
+    const struct vt_source_info *in = &src.info;
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    if (in->sample != VTS_SAMPLE_U8 && in->sample != VTS_SAMPLE_U16) {
+        st = vt_error_set(err, VT_ERR_UNSUPPORTED,
+                          "'%s': --reference-scene shows 8- and 16-bit textures only", path);
+        goto cleanup;
+    }
+    if (in->width > (uint32_t)max_size || in->height > (uint32_t)max_size) {
+        st = vt_error_set(err, VT_ERR_LIMIT, "'%s': %ux%u is larger than GL_MAX_TEXTURE_SIZE %d",
+                          path, in->width, in->height, max_size);
+        goto cleanup;
+    }
+    st = vt_image_alloc(&img, in->width, in->height, in->channels, in->sample, err);
+    if (st == 0)
+        st = vt_source_read(&src, 0, 0, &img, err);
+    if (st != 0)
+        goto cleanup;
+    rgba = malloc((size_t)in->width * in->height * 4); /* each edge <= GL_MAX_TEXTURE_SIZE */
+    if (!rgba) {
+        st = vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        goto cleanup;
+    }
+    to_rgba8(&img, rgba);
+    bool s = srgb && in->colour == VTS_COLOUR_SRGB;
+    glGenTextures(1, out);
+    glBindTexture(GL_TEXTURE_2D, *out);
+    glTexImage2D(GL_TEXTURE_2D, 0, s ? GL_SRGB8_ALPHA8 : GL_RGBA8, (GLsizei)in->width,
+                 (GLsizei)in->height, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    glGenerateMipmap(GL_TEXTURE_2D);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+cleanup:
+    free(rgba);
+    vt_image_release(&img);
+    vt_source_close(&src);
+    return st;
+}
+
+static float srgb_to_linear(double c)
+{
+    c = c < 0 ? 0 : c > 1 ? 1 : c;
+    return (float)(c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4));
+}
+
+/* The texture or colour of material m (first MTL file that defines it, as vt-atlas does). */
+static int setup_part(struct vtv_reference_scene *s, struct load_ctx *c, const struct mat_geo *g,
+                      bool srgb, struct vtv_reference_part *part, struct vt_error *err)
+{
+    const char *name = g->name;
+    const struct vt_mtl_material *mat = NULL;
+    for (size_t i = 0; i < c->mtl_count && !mat; i++)
+        mat = vt_mtl_find(&c->mtls[i], name);
+    double kd[3] = {0.8, 0.8, 0.8};
+    if (mat && (mat->flags & VT_MTL_HAS_KD))
+        memcpy(kd, mat->kd, sizeof(kd));
+    for (int k = 0; k < 3; k++)
+        part->kd[k] = srgb ? srgb_to_linear(kd[k]) : (float)kd[k];
+    part->kd[3] = 1.0f;
+    /* vt-atlas --wrap replicate lays copies floor(min) .. ceil(max) (1e-6 tolerance) and clamps
+     * at their outer edge: an axis with copies repeats, clamped in the shader at the range's ends
+     * (exact at level 0); an axis in [0, 1] is GL_CLAMP_TO_EDGE (exact on every level). */
+    for (int k = 0; k < 2; k++) {
+        double lo = floor(g->uv_lo[k] + 1e-6), hi = ceil(g->uv_hi[k] - 1e-6);
+        part->repeat[k] = g->uv_lo[k] <= g->uv_hi[k] && (lo < 0 || hi > 1);
+        part->range[k] = part->repeat[k] ? (float)lo : -1e6f;
+        part->range[2 + k] = part->repeat[k] ? (float)hi : 1e6f;
+    }
+    const char *path = mat ? mat->maps[VT_MTL_MAP_KD].path : NULL;
+    if (!path)
+        return 0;
+    for (uint32_t i = 0; i < s->texture_count; i++)
+        if (strcmp(c->tex_paths[i], path) == 0) {
+            part->tex = s->textures[i];
+            return 0;
+        }
+    GLuint *t = realloc(s->textures, (s->texture_count + 1) * sizeof(*t));
+    if (t)
+        s->textures = t;
+    char **p = realloc(c->tex_paths, (s->texture_count + 1) * sizeof(*p));
+    if (p)
+        c->tex_paths = p;
+    if (!t || !p || !(p[s->texture_count] = strdup(path)))
+        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+    t[s->texture_count] = 0;
+    s->texture_count++;
+    int st = load_texture(path, srgb, &t[s->texture_count - 1], err);
+    part->tex = t[s->texture_count - 1];
+    return st;
+}
+
+int vtv_reference_scene_load(struct vtv_reference_scene *s, const char *obj_path, bool srgb,
+                             struct vt_error *err)
+{
+    memset(s, 0, sizeof(*s));
+    struct load_ctx c = {.path = obj_path, .cur = UINT32_MAX};
+    for (int k = 0; k < 3; k++) {
+        c.lo[k] = 1e300;
+        c.hi[k] = -1e300;
+    }
+    float *all = NULL;
+    struct vt_obj *obj = vt_obj_create(NULL, err);
+    if (!obj)
+        return err->status;
+    struct vt_obj_callbacks cb = {.mtllib = on_mtllib, .face = on_face, .user = &c};
+    int st = vt_obj_read(obj, obj_path, &cb, err);
+    vt_obj_destroy(obj);
+    size_t total = 0;
+    for (uint32_t i = 0; i < c.mat_count; i++)
+        total += c.mats[i].n;
+    if (st == 0 && total == 0)
+        st = vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': no faces", obj_path);
+    if (st != 0)
+        goto cleanup;
+    s->parts = calloc(c.mat_count, sizeof(*s->parts));
+    all = malloc(total * 5 * sizeof(float)); /* total < mat_count * 2^27 */
+    if (!s->parts || !all) {
+        st = vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        goto cleanup;
+    }
+    size_t first = 0;
+    for (uint32_t i = 0; i < c.mat_count && st == 0; i++) {
+        struct vtv_reference_part *part = &s->parts[s->part_count++];
+        part->first = (uint32_t)first;
+        part->count = (uint32_t)c.mats[i].n;
+        memcpy(all + first * 5, c.mats[i].v, c.mats[i].n * 5 * sizeof(float));
+        first += c.mats[i].n;
+        st = setup_part(s, &c, &c.mats[i], srgb, part, err);
+    }
+    if (st != 0)
+        goto cleanup;
+    memcpy(s->lo, c.lo, sizeof(s->lo));
+    memcpy(s->hi, c.hi, sizeof(s->hi));
+    glGenVertexArrays(1, &s->vao);
+    glGenBuffers(1, &s->vbo);
+    glBindVertexArray(s->vao);
+    glBindBuffer(GL_ARRAY_BUFFER, s->vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(total * 5 * sizeof(float)), all, GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 5 * sizeof(float), (void *)0);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 5 * sizeof(float), (void *)(3 * sizeof(float)));
+    glBindVertexArray(0);
+cleanup:
+    free(all);
+    for (size_t i = 0; i < c.mtl_count; i++)
+        vt_mtl_release(&c.mtls[i]);
+    free(c.mtls);
+    for (uint32_t i = 0; i < c.mat_count; i++) {
+        free(c.mats[i].name);
+        free(c.mats[i].v);
+    }
+    free(c.mats);
+    for (uint32_t i = 0; i < s->texture_count; i++)
+        free(c.tex_paths ? c.tex_paths[i] : NULL);
+    free(c.tex_paths);
+    if (st != 0)
+        vtv_reference_scene_free(s);
+    return st;
+}
+
+void vtv_reference_scene_draw(struct vtv_render *r, const struct vtv_reference_scene *s,
+                              const struct vtv_view *v)
+{
+    GLuint p = vtv_render_reference_begin(r, v);
+    GLint mode = glGetUniformLocation(p, "u_mode"), kd = glGetUniformLocation(p, "u_kd");
+    GLint range = glGetUniformLocation(p, "u_range");
+    glBindVertexArray(s->vao);
+    for (uint32_t i = 0; i < s->part_count; i++) {
+        const struct vtv_reference_part *part = &s->parts[i];
+        glUniform1i(mode, !part->tex ? 0 : part->repeat[0] || part->repeat[1] ? 2 : 1);
+        glUniform4fv(kd, 1, part->kd);
+        glUniform4fv(range, 1, part->range);
+        if (part->tex) {
+            glBindTexture(GL_TEXTURE_2D, part->tex);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S,
+                            part->repeat[0] ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T,
+                            part->repeat[1] ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
+                            v->trilinear ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR_MIPMAP_NEAREST);
+        }
+        glDrawArrays(GL_TRIANGLES, (GLint)part->first, (GLsizei)part->count);
+    }
+    glBindVertexArray(0);
+    vtv_render_reference_end();
+}
+
+void vtv_reference_scene_free(struct vtv_reference_scene *s)
+{
+    if (s->texture_count)
+        glDeleteTextures((GLsizei)s->texture_count, s->textures);
+    if (s->vbo)
+        glDeleteBuffers(1, &s->vbo);
+    if (s->vao)
+        glDeleteVertexArrays(1, &s->vao);
+    free(s->textures);
+    free(s->parts);
+    memset(s, 0, sizeof(*s));
+}
