@@ -473,10 +473,23 @@ static int pass1_vt(struct run *r, const unsigned char *cur, const unsigned char
     return 0;
 }
 
+/* True when every layer of e is a constant fill (a material without textures): its texture
+ * coordinates do not matter, and every one is mapped to the centre of its cell so that bilinear
+ * filtering never reaches the neighbouring cells. */
+static bool constant_entry(const struct vt_layout *l, const struct vt_layout_entry *e)
+{
+    for (uint32_t k = 0; k < l->layer_count; k++)
+        if (e->textures[k].path)
+            return false;
+    return true;
+}
+
 /* Checks that vt i lies in what material m covers. */
 static int check_covered(struct run *r, uint32_t i, uint32_t m, struct vt_error *err)
 {
     const struct vt_layout_entry *e = &r->layout->entries[m];
+    if (constant_entry(r->layout, e))
+        return 0;
     double u = r->uv[2 * (size_t)i], v = r->uv[2 * (size_t)i + 1];
     if (vt_layout_uv_covered(e, u, v))
         return 0;
@@ -714,8 +727,13 @@ static int put_coord(struct run *r, double x, double texels, struct vt_error *er
 static int put_uv(struct run *r, uint32_t i, uint32_t m, const struct tok *w, struct vt_error *err)
 {
     double au, av;
-    vt_layout_map_uv(r->layout, &r->layout->entries[m], r->uv[2 * (size_t)i],
-                     r->uv[2 * (size_t)i + 1], &au, &av);
+    const struct vt_layout_entry *e = &r->layout->entries[m];
+    if (constant_entry(r->layout, e)) {
+        au = (e->x + e->width / 2.0) / r->layout->width;
+        av = 1.0 - (e->y + e->height / 2.0) / r->layout->height;
+    } else {
+        vt_layout_map_uv(r->layout, e, r->uv[2 * (size_t)i], r->uv[2 * (size_t)i + 1], &au, &av);
+    }
     int rc = put_coord(r, au, r->layout->width, err);
     if (rc == 0)
         rc = out_put(r, " ", 1, err);

@@ -45,6 +45,12 @@ static void make_layout(struct vt_layout *l, uint32_t width, uint32_t height,
         e->origin_u = specs[i].ou, e->origin_v = specs[i].ov;
         e->cell_width = e->width * e->repeat_u;
         e->cell_height = e->height * e->repeat_v;
+        /* A texture file, except for entries named "const...": a material without textures. */
+        if (strncmp(e->name, "const", 5) != 0) {
+            e->textures[0].path = strdup("tex.png");
+            e->textures[0].resolved = strdup("tex.png");
+            e->textures[0].width = e->width, e->textures[0].height = e->height;
+        }
     }
     rc = vt_layout_index(l, &err);
     if (rc < 0)
@@ -308,6 +314,22 @@ static void maps_repeated_copies(void)
     VT_CHECK(expect_output("v 0 0 0\nvt -1 0\nvt 1 3\nvt 0 1.5\nusemtl w\nf 1/1 1/2 1/3\n", &l, 0,
                            "mtllib out.mtl\nv 0 0 0\nvt 0 0.25\nvt 0.5 1\nvt 0.25 0.625\n"
                            "usemtl vt_atlas\nf 1/1 1/2 1/3\n",
+                           &s));
+    vt_layout_release(&l);
+}
+
+/* A material without textures has a constant cell: every one of its coordinates, whatever it
+ * is (even outside [0,1]), goes to the centre of the cell, so that filtering stays inside it. */
+static void maps_constant_materials_to_the_cell_centre(void)
+{
+    static const struct spec rects[] = {{"a", 0, 0, 32, 32, 1, 1, 0, 0},
+                                        {"const_kd", 32, 0, 4, 4, 1, 1, 0, 0}};
+    struct vt_layout l;
+    make_layout(&l, 64, 64, rects, 2);
+    struct vt_offset_stats s;
+    VT_CHECK(expect_output("v 0 0 0\nvt 0 0\nvt 5 -2\nusemtl const_kd\nf 1/1 1/2 1/1\n", &l, 0,
+                           "mtllib out.mtl\nv 0 0 0\nvt 0.53125 0.96875\nvt 0.53125 0.96875\n"
+                           "usemtl vt_atlas\nf 1/1 1/2 1/1\n",
                            &s));
     vt_layout_release(&l);
 }
@@ -704,6 +726,7 @@ int main(void)
     VT_RUN(keeps_other_lines_byte_identical);
     VT_RUN(follows_the_v_axis_convention);
     VT_RUN(maps_repeated_copies);
+    VT_RUN(maps_constant_materials_to_the_cell_centre);
     VT_RUN(keeps_texel_precision_on_a_2_20_atlas);
     VT_RUN(warns_exactly_when_float32_loses_an_eighth_of_a_texel);
     VT_RUN(rejects_bad_input_before_writing);

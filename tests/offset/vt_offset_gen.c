@@ -1,8 +1,9 @@
 /* Inputs for vt-offset's tests and benchmark (built by tests/offset.cmake, not a test itself):
  *
  *   vt-offset-gen layout OUT.json WIDTH HEIGHT NAME:X,Y,W,H[,RU,RV,OU,OV]...
- *       an atlas.json with one layer (diffuse, map_Kd) and one constant-colour entry per argument:
- *       rectangle X,Y,W,H in level-0 texels, optional repeats RU,RV and UV origin OU,OV
+ *       an atlas.json with one layer (diffuse, map_Kd) and one entry per argument with the
+ *       texture NAME.png (a constant colour when NAME starts with "const"): rectangle X,Y,W,H in
+ *       level-0 texels, optional repeats RU,RV and UV origin OU,OV
  *   vt-offset-gen bench DIR MB
  *       DIR/scene.obj of about MB megabytes (v, vt, vn and triangles of 8 materials, some vt
  *       shared between materials, a comment every block) and DIR/atlas.json (2^20 atlas)
@@ -61,7 +62,16 @@ static int write_layout(const char *path, uint32_t width, uint32_t height, int n
         e->origin_u = (int32_t)v[6], e->origin_v = (int32_t)v[7];
         e->cell_width = e->width * e->repeat_u;
         e->cell_height = e->height * e->repeat_v;
-        e->textures[0].fill[0] = e->textures[0].fill[3] = 1;
+        /* A texture named after the entry (never read by vt-offset); an entry whose name
+         * starts with "const" is a material without textures (a constant cell). */
+        if (strncmp(e->name, "const", 5) == 0) {
+            e->textures[0].fill[0] = e->textures[0].fill[3] = 1;
+        } else {
+            char file[300];
+            snprintf(file, sizeof file, "%s.png", e->name);
+            e->textures[0].path = strdup(file);
+            e->textures[0].width = e->width, e->textures[0].height = e->height;
+        }
     }
     int rc = vt_layout_write(path, &l, &err);
     vt_layout_release(&l);
