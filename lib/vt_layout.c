@@ -46,28 +46,30 @@ static bool valid_scale(double s)
     return m == 0.5 && e - 1 >= -16 && e - 1 <= 16;
 }
 
-static int cmp_name(const void *a, const void *b, const struct vt_layout *l)
+static const char *name_of(const struct vt_layout *l, const struct vt_layout_name *n)
 {
-    return strcmp(l->entries[*(const uint32_t *)a].name, l->entries[*(const uint32_t *)b].name);
+    const struct vt_layout_entry *e = &l->entries[n->entry];
+    return n->alias ? e->aliases[n->alias - 1] : e->name;
 }
 
-/* Sorting by name with a merge sort (qsort lacks a context argument and thread-safe globals are
- * not worth it). */
-static void sort_by_name(uint32_t *idx, uint32_t *tmp, uint32_t n, const struct vt_layout *l)
+/* Sorting the names with a merge sort (stable, so equal names keep entry order; qsort lacks a
+ * context argument and thread-safe globals are not worth it). */
+static void sort_names(struct vt_layout_name *idx, struct vt_layout_name *tmp, size_t n,
+                       const struct vt_layout *l)
 {
     if (n < 2)
         return;
-    uint32_t h = n / 2;
-    sort_by_name(idx, tmp, h, l);
-    sort_by_name(idx + h, tmp, n - h, l);
-    uint32_t i = 0, j = h, k = 0;
+    size_t h = n / 2;
+    sort_names(idx, tmp, h, l);
+    sort_names(idx + h, tmp, n - h, l);
+    size_t i = 0, j = h, k = 0;
     while (i < h && j < n)
-        tmp[k++] = cmp_name(&idx[j], &idx[i], l) < 0 ? idx[j++] : idx[i++];
+        tmp[k++] = strcmp(name_of(l, &idx[j]), name_of(l, &idx[i])) < 0 ? idx[j++] : idx[i++];
     while (i < h)
         tmp[k++] = idx[i++];
     while (j < n)
         tmp[k++] = idx[j++];
-    memcpy(idx, tmp, (size_t)n * sizeof *idx);
+    memcpy(idx, tmp, n * sizeof *idx);
 }
 
 /* Checks one entry against the atlas; the message names the entry. */
@@ -79,6 +81,8 @@ static int check_entry(const struct vt_layout *l, uint32_t i, const char *name,
     uint64_t cw = (uint64_t)e->width * e->repeat_u, ch = (uint64_t)e->height * e->repeat_v;
     if (!e->name || !e->name[0])
         what = "has no name";
+    else if ((e->alias_count && !e->aliases) || e->alias_count == UINT32_MAX)
+        what = "has no alias array or too many aliases";
     else if (e->width == 0 || e->height == 0)
         what = "has an empty size";
     else if (e->repeat_u == 0 || e->repeat_v == 0 || e->repeat_u > 65536 || e->repeat_v > 65536)
@@ -96,6 +100,10 @@ static int check_entry(const struct vt_layout *l, uint32_t i, const char *name,
     if (what)
         return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': entry %u ('%s') %s", name, i,
                             e->name ? e->name : "", what);
+    for (uint32_t a = 0; a < e->alias_count; a++)
+        if (!e->aliases[a] || !e->aliases[a][0])
+            return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': entry '%s' has an empty alias", name,
+                                e->name);
     for (uint32_t k = 0; k < l->layer_count; k++) {
         const struct vt_layout_texture *t = &e->textures[k];
         if (t->path && (!t->path[0] || t->width == 0 || t->height == 0))
@@ -269,6 +277,51 @@ out:
     return rc;
 }
 
+/* Builds l->by_name from every entry name and alias and checks that they are unique. */
+static int index_names(struct vt_layout *l, const char *name, struct vt_error *err)
+{
+    free(l->by_name);
+    l->by_name = NULL;
+    l->name_count = 0;
+    size_t n = l->entry_count;
+    for (uint32_t i = 0; i < l->entry_count; i++)
+        if (!vt_size_add(n, l->entries[i].alias_count, &n))
+            return vt_error_set(err, VT_ERR_LIMIT, "'%s': too many names", name);
+    size_t bytes;
+    if (!vt_size_mul(n + 1, sizeof(struct vt_layout_name), &bytes))
+        return vt_error_set(err, VT_ERR_LIMIT, "'%s': too many names", name);
+    struct vt_layout_name *idx = malloc(bytes), *tmp = malloc(bytes);
+    if (!idx || !tmp) {
+        free(idx);
+        free(tmp);
+        return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory", name);
+    }
+    size_t k = 0;
+    for (uint32_t i = 0; i < l->entry_count; i++)
+        for (uint32_t a = 0; a <= l->entries[i].alias_count; a++)
+            idx[k++] = (struct vt_layout_name){i, a};
+    sort_names(idx, tmp, n, l);
+    free(tmp);
+    for (size_t i = 1; i < n; i++) {
+        const struct vt_layout_name *p = &idx[i - 1], *q = &idx[i];
+        if (strcmp(name_of(l, p), name_of(l, q)) != 0)
+            continue;
+        int rc;
+        if (!p->alias && !q->alias)
+            rc = vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': entry '%s' given twice", name,
+                              name_of(l, q));
+        else
+            rc = vt_error_set(err, VT_ERR_BAD_INPUT,
+                              "'%s': name '%s' given twice (entries '%s' and '%s')", name,
+                              name_of(l, q), l->entries[p->entry].name, l->entries[q->entry].name);
+        free(idx);
+        return rc;
+    }
+    l->by_name = idx;
+    l->name_count = n;
+    return 0;
+}
+
 int vt_layout_check(struct vt_layout *l, const char *name, struct vt_error *err)
 {
     if (l->width == 0 || l->height == 0)
@@ -298,29 +351,8 @@ int vt_layout_check(struct vt_layout *l, const char *name, struct vt_error *err)
         if (rc < 0)
             return rc;
     }
-    free(l->by_name);
-    l->by_name = NULL;
-    uint32_t n = l->entry_count;
-    uint32_t *idx = malloc(((size_t)n + 1) * sizeof *idx);
-    uint32_t *tmp = malloc(((size_t)n + 1) * sizeof *tmp);
-    if (!idx || !tmp) {
-        free(idx);
-        free(tmp);
-        return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory", name);
-    }
-    for (uint32_t i = 0; i < n; i++)
-        idx[i] = i;
-    sort_by_name(idx, tmp, n, l);
-    free(tmp);
-    for (uint32_t i = 1; i < n; i++)
-        if (strcmp(l->entries[idx[i - 1]].name, l->entries[idx[i]].name) == 0) {
-            int rc = vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': entry '%s' given twice", name,
-                                  l->entries[idx[i]].name);
-            free(idx);
-            return rc;
-        }
-    l->by_name = idx;
-    return check_overlaps(l, name, err);
+    int rc = index_names(l, name, err);
+    return rc ? rc : check_overlaps(l, name, err);
 }
 
 int vt_layout_index(struct vt_layout *layout, struct vt_error *err)
@@ -332,13 +364,13 @@ const struct vt_layout_entry *vt_layout_find(const struct vt_layout *layout, con
 {
     if (!layout->by_name)
         return NULL;
-    uint32_t lo = 0, hi = layout->entry_count;
+    size_t lo = 0, hi = layout->name_count;
     while (lo < hi) {
-        uint32_t mid = lo + (hi - lo) / 2;
-        const struct vt_layout_entry *e = &layout->entries[layout->by_name[mid]];
-        int c = strcmp(e->name, name);
+        size_t mid = lo + (hi - lo) / 2;
+        const struct vt_layout_name *n = &layout->by_name[mid];
+        int c = strcmp(name_of(layout, n), name);
         if (c == 0)
-            return e;
+            return &layout->entries[n->entry];
         if (c < 0)
             lo = mid + 1;
         else
@@ -410,6 +442,9 @@ void vt_layout_release(struct vt_layout *layout)
         }
         free(e->textures);
         free(e->name);
+        for (uint32_t a = 0; e->aliases && a < e->alias_count; a++)
+            free(e->aliases[a]);
+        free(e->aliases);
     }
     free(layout->layers);
     free(layout->entries);

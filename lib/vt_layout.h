@@ -50,7 +50,11 @@ struct vt_layout_texture {
 /* One material (or one texture of a --textures/--grid list) and its place in the atlas. All the
  * layers of an entry share its rectangle. */
 struct vt_layout_entry {
-    char *name;                  /* unique material name */
+    char *name;     /* material name, unique among all names and aliases */
+    char **aliases; /* other material names that use this entry (materials with the
+                       same textures in every layer and the same scale share one
+                       cell); NULL when alias_count is 0. Unique like names */
+    uint32_t alias_count;
     uint32_t x, y;               /* top-left texel of the first copy */
     uint32_t width, height;      /* one copy of the texture in the atlas, in texels (>= 1) */
     uint32_t repeat_u, repeat_v; /* copies side by side (wrap replication); 1 when not wrapped */
@@ -69,6 +73,12 @@ struct vt_layout_entry {
     struct vt_layout_texture *textures; /* one per layer, in layer order */
 };
 
+/* One name of the name index: entries[entry].name when alias is 0, else
+ * entries[entry].aliases[alias - 1]. */
+struct vt_layout_name {
+    uint32_t entry, alias;
+};
+
 /* A whole layout; caller-owned, freed with vt_layout_release(). */
 struct vt_layout {
     uint32_t width, height; /* atlas level-0 size in texels */
@@ -79,24 +89,26 @@ struct vt_layout {
     uint32_t layer_count; /* 1..VT_LAYOUT_MAX_LAYERS */
     struct vt_layout_entry *entries;
     uint32_t entry_count;
-    uint32_t *by_name; /* entry indices sorted by name (filled by the reader and by
-                          vt_layout_index()); used by vt_layout_find() */
+    struct vt_layout_name *by_name; /* every entry name and alias, sorted (filled by the reader
+                                       and by vt_layout_index()); used by vt_layout_find() */
+    size_t name_count;              /* entries plus aliases */
 };
 
 /* Limits against hostile files; exceeding one fails with VT_ERR_LIMIT and a message. */
 struct vt_layout_limits {
     uint64_t max_file_bytes; /* size of atlas.json (default 1 GiB) */
-    uint32_t max_entries;    /* textures/materials (default 2^20) */
+    uint32_t max_entries;    /* textures/materials: entries, and entries plus aliases (default
+                                2^20) */
     uint32_t max_edge;       /* atlas width and height (default 2^24) */
 };
 void vt_layout_limits_default(struct vt_layout_limits *limits);
 
 /* Reads and validates the layout at path into *layout (overwritten: release it after success or
  * failure). limits may be NULL (defaults). Checks: format and version, every field's type and
- * range, layer names unique, entry names unique, every copy inside its cell, every cell inside the
- * atlas, alignment a power of two dividing x/y/cell sizes, no two cells overlapping, texture
- * sizes non-zero. Returns 0, VT_ERR_IO, VT_ERR_BAD_INPUT ("'atlas.json': entries[3].x: ..."),
- * VT_ERR_LIMIT or VT_ERR_NOMEM. */
+ * range, layer names unique, entry names and aliases all unique and non-empty, every copy inside
+ * its cell, every cell inside the atlas, alignment a power of two dividing x/y/cell sizes, no two
+ * cells overlapping, texture sizes non-zero. Returns 0, VT_ERR_IO, VT_ERR_BAD_INPUT ("'atlas.json':
+ * entries[3].x: ..."), VT_ERR_LIMIT or VT_ERR_NOMEM. */
 int vt_layout_read(const char *path, const struct vt_layout_limits *limits,
                    struct vt_layout *layout, struct vt_error *err);
 
@@ -122,7 +134,8 @@ int vt_layout_write(const char *path, struct vt_layout *layout, struct vt_error 
 /* Frees everything *layout holds (strings, arrays) and zeroes it. Accepts NULL. */
 void vt_layout_release(struct vt_layout *layout);
 
-/* The entry named name, or NULL. O(log n) after vt_layout_read() or vt_layout_index(). */
+/* The entry named name (its name or one of its aliases), or NULL. O(log n) after
+ * vt_layout_read() or vt_layout_index(). */
 const struct vt_layout_entry *vt_layout_find(const struct vt_layout *layout, const char *name);
 
 /* Index of the layer named name, or -1. */
@@ -139,7 +152,8 @@ bool vt_layout_uv_covered(const struct vt_layout_entry *e, double u, double v);
 
 /* Allocation helpers for writers (vt-atlas, tests): zeroed arrays of count layers/entries, and
  * per entry layer_count textures. Return 0 or VT_ERR_NOMEM. Strings are strdup()ed by the
- * caller and freed by vt_layout_release(). */
+ * caller and freed by vt_layout_release(), as are aliases (a malloc()ed array of strdup()ed
+ * strings). */
 int vt_layout_alloc(struct vt_layout *layout, uint32_t layer_count, uint32_t entry_count,
                     struct vt_error *err);
 

@@ -155,6 +155,34 @@ static int read_texture(struct ctx *c, json_t *o, const char *where, struct vt_l
     return t->resolved ? 0 : vt_error_set(c->err, VT_ERR_NOMEM, "'%s': out of memory", c->name);
 }
 
+/* "aliases": optional array of non-empty strings (uniqueness is checked with the names). */
+static int read_aliases(struct ctx *c, json_t *arr, const char *where, struct vt_layout_entry *e)
+{
+    if (!arr)
+        return 0;
+    char path[96];
+    snprintf(path, sizeof path, "%s.aliases", where);
+    if (!json_is_array(arr))
+        return bad(c, path, "expected an array of names");
+    size_t n = json_array_size(arr);
+    if (n == 0)
+        return 0;
+    e->aliases = calloc(n, sizeof *e->aliases);
+    if (!e->aliases)
+        return vt_error_set(c->err, VT_ERR_NOMEM, "'%s': out of memory", c->name);
+    for (size_t i = 0; i < n; i++) {
+        json_t *v = json_array_get(arr, i);
+        if (!json_is_string(v) || strlen(json_string_value(v)) != json_string_length(v) ||
+            json_string_length(v) == 0)
+            return bad(c, path, "expected non-empty strings without NUL");
+        e->aliases[i] = strdup(json_string_value(v));
+        if (!e->aliases[i])
+            return vt_error_set(c->err, VT_ERR_NOMEM, "'%s': out of memory", c->name);
+        e->alias_count = (uint32_t)(i + 1);
+    }
+    return 0;
+}
+
 static int read_entry(struct ctx *c, json_t *o, size_t i, const struct vt_layout *l,
                       struct vt_layout_entry *e)
 {
@@ -190,6 +218,9 @@ static int read_entry(struct ctx *c, json_t *o, size_t i, const struct vt_layout
     e->repeat_u = (uint32_t)rep[0], e->repeat_v = (uint32_t)rep[1];
     e->origin_u = (int32_t)org[0], e->origin_v = (int32_t)org[1];
     e->group = (uint32_t)group;
+    rc = read_aliases(c, json_object_get(o, "aliases"), where, e);
+    if (rc)
+        return rc;
     json_t *scale = json_object_get(o, "scale");
     e->scale = 1;
     if (scale) {
@@ -232,6 +263,16 @@ static int read_root(struct ctx *c, json_t *root, const struct vt_layout_limits 
     if (json_array_size(entries) > lim->max_entries)
         return vt_error_set(c->err, VT_ERR_LIMIT, "'%s': %zu entries, more than the limit %u",
                             c->name, json_array_size(entries), lim->max_entries);
+    size_t names = json_array_size(entries);
+    for (size_t i = 0; i < json_array_size(entries); i++) {
+        json_t *a = json_object_get(json_array_get(entries, i), "aliases");
+        names += json_is_array(a) ? json_array_size(a) : 0;
+    }
+    if (names > lim->max_entries)
+        return vt_error_set(
+            c->err, VT_ERR_LIMIT,
+            "'%s': %zu material names (entries and aliases), more than the limit %u", c->name,
+            names, lim->max_entries);
     size_t layer_count = json_is_array(layers) ? json_array_size(layers) : 0;
     if (layer_count == 0 || layer_count > VT_LAYOUT_MAX_LAYERS)
         return bad(c, "layers", "expected an array of 1..16 layers");
@@ -342,17 +383,37 @@ static json_t *entry_json(const struct vt_layout *l, const struct vt_layout_entr
             json_decref(tex);
             return NULL;
         }
-    json_t *o =
-        json_pack("{s:s, s:I, s:I, s:I, s:I, s:o, s:o, s:I, s:I, s:I, s:f, s:o}", "name", e->name,
-                  "x", (json_int_t)e->x, "y", (json_int_t)e->y, "width", (json_int_t)e->width,
-                  "height", (json_int_t)e->height, "repeat", pair(e->repeat_u, e->repeat_v),
-                  "origin", pair(e->origin_u, e->origin_v), "cell_width", (json_int_t)e->cell_width,
-                  "cell_height", (json_int_t)e->cell_height, "alignment", (json_int_t)e->alignment,
-                  "scale", e->scale, "textures", tex);
-    if (o && e->group && json_object_set_new(o, "group", json_integer(e->group))) {
+    json_t *aliases = NULL;
+    if (e->alias_count) {
+        aliases = json_array();
+        for (uint32_t a = 0; aliases && a < e->alias_count; a++)
+            if (json_array_append_new(aliases, json_string(e->aliases[a]))) {
+                json_decref(aliases);
+                json_decref(tex);
+                return NULL;
+            }
+    }
+    /* The name and its aliases first, for the reader of the file. */
+    json_t *o = json_pack("{s:s}", "name", e->name);
+    if (o && aliases && json_object_set_new(o, "aliases", aliases)) {
         json_decref(o);
+        o = NULL;
+    } else if (!o) {
+        json_decref(aliases);
+    }
+    json_t *rest = json_pack(
+        "{s:I, s:I, s:I, s:I, s:o, s:o, s:I, s:I, s:I, s:f, s:o}", "x", (json_int_t)e->x, "y",
+        (json_int_t)e->y, "width", (json_int_t)e->width, "height", (json_int_t)e->height, "repeat",
+        pair(e->repeat_u, e->repeat_v), "origin", pair(e->origin_u, e->origin_v), "cell_width",
+        (json_int_t)e->cell_width, "cell_height", (json_int_t)e->cell_height, "alignment",
+        (json_int_t)e->alignment, "scale", e->scale, "textures", tex);
+    if (!o || !rest || json_object_update(o, rest) ||
+        (e->group && json_object_set_new(o, "group", json_integer(e->group)))) {
+        json_decref(o);
+        json_decref(rest);
         return NULL;
     }
+    json_decref(rest);
     return o;
 }
 

@@ -23,3 +23,17 @@ foreach(case_file ${VT_ATLAS_CLI_CASES})
                    $<TARGET_FILE:vt-atlas-dump>)
   set_tests_properties(cli_vt-atlas_${case} PROPERTIES LABELS quick TIMEOUT 120)
 endforeach()
+
+# End to end with shared entries (materials using the same texture share one cell):
+# vt-atlas -> vt-offset -> vt-tiles --layout -> vt-info --extract 0, every corner's texel checked.
+if(TARGET vt-offset AND TARGET vt-tiles AND TARGET vt-info)
+  add_executable(test_atlas_shared atlas/test_atlas_shared.c)
+  target_include_directories(test_atlas_shared PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  target_link_libraries(test_atlas_shared PRIVATE vtformats vtlib m)
+  vt_target_warnings(test_atlas_shared)
+  add_test(NAME atlas_shared_texels_match
+           COMMAND test_atlas_shared ${CMAKE_CURRENT_BINARY_DIR}/atlas_shared
+                   $<TARGET_FILE:vt-atlas> $<TARGET_FILE:vt-offset> $<TARGET_FILE:vt-tiles>
+                   $<TARGET_FILE:vt-info>)
+  set_tests_properties(atlas_shared_texels_match PROPERTIES LABELS quick TIMEOUT 120)
+endif()

@@ -165,6 +165,168 @@ static int size_entry(struct sizing *z, const char *name, struct vt_error *err)
     return 0;
 }
 
+/* ---- sharing: one entry for materials with the same textures ---- */
+
+#define NO_GROUP       UINT32_MAX
+#define SHARE_ATTEMPTS 64 /* groups with the same key tried before a material opens its own */
+
+/* The materials of one entry: the first names it, the others are its aliases. */
+struct group {
+    uint32_t first, last, count; /* members, linked through next_member[] */
+    uint32_t next_same;          /* the next group with the same hash, or NO_GROUP */
+    uint32_t tail_same;          /* in the first group of a hash: the last one */
+    uint64_t hash;
+    bool has_uv; /* union of the members' texcoord ranges */
+    double umin, umax, vmin, vmax;
+    struct sizing z; /* of the first member, with the union's copies */
+};
+
+static uint64_t mix(uint64_t h, uint64_t v)
+{
+    h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+    return h * 0xff51afd7ed558ccdull;
+}
+
+static uint64_t double_bits(double d)
+{
+    d += 0.0; /* -0 and +0 alike */
+    uint64_t b;
+    memcpy(&b, &d, sizeof b);
+    return b;
+}
+
+/* Hash of what decides sharing: per layer the texture file or the constant, and the scale. */
+static uint64_t share_hash(const struct vt_atlas_material *m, const unsigned *kinds,
+                           uint32_t layer_count, double scale)
+{
+    uint64_t h = 1469598103934665603ull;
+    for (uint32_t k = 0; k < layer_count; k++) {
+        int32_t t = m->texture[kinds[k]];
+        h = mix(h, (uint64_t)(int64_t)t);
+        for (int c = 0; c < 4 && t < 0; c++)
+            h = mix(h, double_bits(m->fill[kinds[k]][c]));
+    }
+    return mix(h, double_bits(scale));
+}
+
+static bool same_content(const struct vt_atlas_material *a, const struct vt_atlas_material *b,
+                         const unsigned *kinds, uint32_t layer_count)
+{
+    for (uint32_t k = 0; k < layer_count; k++) {
+        unsigned kind = kinds[k];
+        if (a->texture[kind] != b->texture[kind])
+            return false;
+        for (int c = 0; c < 4 && a->texture[kind] < 0; c++)
+            if (a->fill[kind][c] != b->fill[kind][c])
+                return false;
+    }
+    return true;
+}
+
+/* Adds material m (sized by zm) to g when the union of their UV ranges needs at most
+ * max_repeat copies per direction and no more copies than the two would apart. */
+static bool try_join(struct group *g, const struct vt_atlas_material *m, const struct sizing *zm,
+                     const struct vt_atlas_place_options *o)
+{
+    if (!zm->textured || !m->has_uv)
+        return true; /* constants have one cell; no texcoords widen nothing */
+    double umin = m->umin, umax = m->umax, vmin = m->vmin, vmax = m->vmax;
+    if (g->has_uv) {
+        umin = fmin(umin, g->umin), umax = fmax(umax, g->umax);
+        vmin = fmin(vmin, g->vmin), vmax = fmax(vmax, g->vmax);
+    }
+    int32_t ou = 0, ov = 0;
+    uint32_t ru = 1, rv = 1;
+    bool outside = umin < -UV_EPS || umax > 1 + UV_EPS || vmin < -UV_EPS || vmax > 1 + UV_EPS;
+    if (outside && (wrap_range(umin, umax, o->max_repeat, &ou, &ru) ||
+                    wrap_range(vmin, vmax, o->max_repeat, &ov, &rv)))
+        return false;
+    if ((uint64_t)ru * rv >
+            (uint64_t)g->z.repeat_u * g->z.repeat_v + (uint64_t)zm->repeat_u * zm->repeat_v ||
+        (uint64_t)g->z.w * ru > UINT32_MAX || (uint64_t)g->z.h * rv > UINT32_MAX)
+        return false;
+    g->has_uv = true;
+    g->umin = umin, g->umax = umax, g->vmin = vmin, g->vmax = vmax;
+    g->z.origin_u = ou, g->z.origin_v = ov;
+    g->z.repeat_u = ru, g->z.repeat_v = rv;
+    return true;
+}
+
+static void open_group(struct group *g, uint32_t i, const struct vt_atlas_material *m,
+                       const struct sizing *z, uint64_t hash, uint32_t self)
+{
+    *g = (struct group){.first = i,
+                        .last = i,
+                        .count = 1,
+                        .next_same = NO_GROUP,
+                        .tail_same = self,
+                        .hash = hash,
+                        .has_uv = z->textured && m->has_uv,
+                        .umin = m->umin,
+                        .umax = m->umax,
+                        .vmin = m->vmin,
+                        .vmax = m->vmax,
+                        .z = *z};
+}
+
+/* Groups the materials into entries (in order of first use); *count gets the number. A material
+ * joins the first (oldest) group with its content that takes it. Without share every material
+ * is its own group. */
+static int group_materials(const struct vt_atlas_scene *scene,
+                           const struct vt_atlas_place_options *o, const unsigned *kinds,
+                           uint32_t layer_count, const struct sizing *z, bool share,
+                           struct group *groups, uint32_t *next_member, uint32_t *count)
+{
+    uint32_t n = scene->material_count, ng = 0;
+    size_t cap = 64;
+    while (cap < 2 * (size_t)n)
+        cap *= 2;
+    uint32_t *table = share ? malloc(cap * sizeof *table) : NULL; /* hash -> first group */
+    if (share && !table)
+        return VT_ERR_NOMEM;
+    if (table)
+        memset(table, 0xff, cap * sizeof *table);
+    for (uint32_t i = 0; i < n; i++) {
+        const struct vt_atlas_material *m = &scene->materials[i];
+        next_member[i] = NO_GROUP;
+        if (!share) {
+            open_group(&groups[ng], i, m, &z[i], 0, ng);
+            ng++;
+            continue;
+        }
+        uint64_t h = share_hash(m, kinds, layer_count, z[i].scale);
+        size_t slot = h & (cap - 1);
+        while (table[slot] != NO_GROUP && groups[table[slot]].hash != h)
+            slot = (slot + 1) & (cap - 1);
+        uint32_t g = table[slot], tries = 0;
+        for (; g != NO_GROUP && tries < SHARE_ATTEMPTS; g = groups[g].next_same, tries++) {
+            struct group *gr = &groups[g];
+            if (gr->z.scale == z[i].scale &&
+                same_content(&scene->materials[gr->first], m, kinds, layer_count) &&
+                try_join(gr, m, &z[i], o)) {
+                next_member[gr->last] = i;
+                gr->last = i;
+                gr->count++;
+                break;
+            }
+        }
+        if (g != NO_GROUP && tries < SHARE_ATTEMPTS)
+            continue; /* joined */
+        open_group(&groups[ng], i, m, &z[i], h, ng);
+        if (table[slot] == NO_GROUP) {
+            table[slot] = ng;
+        } else {
+            struct group *head = &groups[table[slot]];
+            groups[head->tail_same].next_same = ng;
+            head->tail_same = ng;
+        }
+        ng++;
+    }
+    free(table);
+    *count = ng;
+    return 0;
+}
+
 /* ---- the layout ---- */
 
 static int fill_texture(struct vt_layout_texture *t, const struct vt_atlas_scene *scene,
@@ -182,11 +344,29 @@ static int fill_texture(struct vt_layout_texture *t, const struct vt_atlas_scene
     return t->path ? 0 : VT_ERR_NOMEM;
 }
 
+static int set_aliases(struct vt_layout_entry *e, const struct vt_atlas_scene *scene,
+                       const struct group *g, const uint32_t *next_member)
+{
+    if (g->count < 2)
+        return 0;
+    e->aliases = calloc(g->count - 1, sizeof *e->aliases);
+    if (!e->aliases)
+        return VT_ERR_NOMEM;
+    for (uint32_t i = next_member[g->first]; i != NO_GROUP; i = next_member[i]) {
+        e->aliases[e->alias_count] = strdup(scene->materials[i].name);
+        if (!e->aliases[e->alias_count])
+            return VT_ERR_NOMEM;
+        e->alias_count++;
+    }
+    return 0;
+}
+
 static int fill_layout(const struct vt_atlas_scene *scene, const struct vt_atlas_place_options *o,
-                       const unsigned *kinds, uint32_t layer_count, const struct sizing *z,
+                       const unsigned *kinds, uint32_t layer_count, const struct group *groups,
+                       uint32_t group_count, const uint32_t *next_member,
                        const struct vt_atlas_rect *rects, struct vt_layout *l, struct vt_error *err)
 {
-    int rc = vt_layout_alloc(l, layer_count, scene->material_count, err);
+    int rc = vt_layout_alloc(l, layer_count, group_count, err);
     if (rc)
         return rc;
     l->tile_content = o->tile_content;
@@ -200,36 +380,37 @@ static int fill_layout(const struct vt_atlas_scene *scene, const struct vt_atlas
         nomem |= !l->layers[k].name || !l->layers[k].map;
     }
     bool grid = o->grid_rows && o->grid_cols;
-    for (uint32_t i = 0; i < scene->material_count && !nomem; i++) {
-        const struct vt_atlas_material *m = &scene->materials[i];
+    for (uint32_t i = 0; i < group_count && !nomem; i++) {
+        const struct sizing *z = &groups[i].z;
+        const struct vt_atlas_material *m = &scene->materials[groups[i].first];
         struct vt_layout_entry *e = &l->entries[i];
         const struct vt_atlas_rect *r = &rects[grid ? 0 : i];
         e->name = strdup(m->name);
-        e->width = z[i].w;
-        e->height = z[i].h;
-        e->repeat_u = z[i].repeat_u;
-        e->repeat_v = z[i].repeat_v;
-        e->origin_u = z[i].origin_u;
-        e->origin_v = z[i].origin_v;
-        e->scale = z[i].scale;
+        e->width = z->w;
+        e->height = z->h;
+        e->repeat_u = z->repeat_u;
+        e->repeat_v = z->repeat_v;
+        e->origin_u = z->origin_u;
+        e->origin_v = z->origin_v;
+        e->scale = z->scale;
         e->x = r->x;
         e->y = r->y;
         e->cell_width = r->cell_width;
         e->cell_height = r->cell_height;
         e->alignment = r->alignment;
-        if (grid) { /* piece (row, col) of the group, edge to edge */
+        if (grid) { /* piece (row, col) of the group, edge to edge (never shared) */
             uint32_t row = i / o->grid_cols, col = i % o->grid_cols;
-            e->x += col * z[i].w;
-            e->y += row * z[i].h;
-            e->cell_width = z[i].w;
-            e->cell_height = z[i].h;
+            e->x += col * z->w;
+            e->y += row * z->h;
+            e->cell_width = z->w;
+            e->cell_height = z->h;
             uint32_t a = r->alignment;
-            while (a > 1 && (z[i].w % a || z[i].h % a))
+            while (a > 1 && (z->w % a || z->h % a))
                 a >>= 1;
             e->alignment = a;
             e->group = 1;
         }
-        nomem |= !e->name;
+        nomem |= !e->name || set_aliases(e, scene, &groups[i], next_member) != 0;
         for (uint32_t k = 0; k < layer_count && !nomem; k++)
             nomem |= fill_texture(&e->textures[k], scene, m, kinds[k], o->output) != 0;
     }
@@ -307,8 +488,10 @@ int vt_atlas_place(const struct vt_atlas_scene *scene, const struct vt_atlas_pla
         kinds[layer_count++] = VT_ATLAS_DIFFUSE;
     struct sizing *z = calloc(n, sizeof *z);
     struct vt_atlas_rect *rects = calloc(n, sizeof *rects);
+    struct group *groups = calloc(n, sizeof *groups);
+    uint32_t *next_member = calloc(n, sizeof *next_member), ng = 0;
     int rc = 0;
-    if (!z || !rects) {
+    if (!z || !rects || !groups || !next_member) {
         rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory for %u entries", n);
         goto out;
     }
@@ -322,23 +505,32 @@ int vt_atlas_place(const struct vt_atlas_scene *scene, const struct vt_atlas_pla
         vt_error_set(err, rc, "out of memory");
     for (uint32_t i = 0; i < n && !rc; i++)
         rc = size_entry(&z[i], scene->materials[i].name, err);
+    if (!rc &&
+        (rc = group_materials(scene, o, kinds, layer_count, z, !grid, groups, next_member, &ng)))
+        vt_error_set(err, rc, "out of memory");
     if (rc)
         goto out;
-    for (uint32_t i = 0; i < n; i++) {
-        rects[i].width = z[i].w * z[i].repeat_u;
-        rects[i].height = z[i].h * z[i].repeat_v;
-        report->scaled += z[i].scale != 1;
-        report->replicated += z[i].repeat_u * z[i].repeat_v > 1;
-        report->constant += !z[i].textured;
+    report->materials = n;
+    for (uint32_t i = 0; i < ng; i++) {
+        const struct sizing *g = &groups[i].z;
+        rects[i].width = g->w * g->repeat_u;
+        rects[i].height = g->h * g->repeat_v;
+        report->scaled += g->scale != 1;
+        report->replicated += g->repeat_u * g->repeat_v > 1;
+        report->constant += !g->textured;
+        if (groups[i].count > 1) {
+            report->shared += groups[i].count;
+            report->shared_cells++;
+        }
     }
     if (grid) {
         rects[0].width = z[0].w * o->grid_cols;
         rects[0].height = z[0].h * o->grid_rows;
     }
     struct vt_atlas_pack_options po = {.tile_content = o->tile_content, .max_edge = o->max_edge};
-    rc = vt_atlas_pack(rects, grid ? 1 : n, &po, &report->pack, err);
+    rc = vt_atlas_pack(rects, grid ? 1 : ng, &po, &report->pack, err);
     if (!rc)
-        rc = fill_layout(scene, o, kinds, layer_count, z, rects, layout, err);
+        rc = fill_layout(scene, o, kinds, layer_count, groups, ng, next_member, rects, layout, err);
     if (!rc) {
         layout->width = report->pack.width;
         layout->height = report->pack.height;
@@ -346,5 +538,7 @@ int vt_atlas_place(const struct vt_atlas_scene *scene, const struct vt_atlas_pla
 out:
     free(z);
     free(rects);
+    free(groups);
+    free(next_member);
     return rc;
 }

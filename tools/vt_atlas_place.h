@@ -27,9 +27,16 @@ struct vt_atlas_place_report {
     uint32_t scaled;       /* entries with scale != 1 */
     uint32_t replicated;   /* entries with more than one copy */
     uint32_t constant;     /* entries without any texture */
+    uint32_t materials;    /* materials (or list/grid textures) placed */
+    uint32_t shared;       /* materials in an entry with others (name and aliases) */
+    uint32_t shared_cells; /* entries with aliases */
 };
 
-/* Builds *layout (overwritten; release it after success or failure). Returns 0, VT_ERR_BAD_INPUT
+/* Builds *layout (overwritten; release it after success or failure). Materials with the same
+ * texture file in every layer (the same constant where there is none) and the same scale share
+ * one entry, the first used named by it and the others its aliases, unless the union of their UV
+ * ranges would need more than max_repeat copies or more copies than separate entries would
+ * (--grid pieces never share). Returns 0, VT_ERR_BAD_INPUT
  * ("'scene.obj': material 'ground' uses u 0..8, v 0..8 outside [0,1]: use --wrap replicate"),
  * VT_ERR_LIMIT (the atlas does not fit --max-size, too many copies) or VT_ERR_NOMEM. */
 int vt_atlas_place(const struct vt_atlas_scene *scene, const struct vt_atlas_place_options *o,

@@ -77,7 +77,7 @@ static void strmap_release(struct strmap *m)
 }
 
 struct scene_index {
-    struct strmap materials, textures, deps;
+    struct strmap materials, textures, deps, files; /* files: texture id -> texture */
     size_t texture_capacity, dep_capacity;
 };
 
@@ -180,6 +180,14 @@ static int add_texture(struct vt_atlas_scene *s, const char *path, const char *w
         }
         return vt_error_set(err, VT_ERR_IO, "%s", msg);
     }
+    char id[64];
+    snprintf(id, sizeof id, "%llu:%llu", (unsigned long long)st.st_dev,
+             (unsigned long long)st.st_ino);
+    found = strmap_get(&ix->files, id);
+    if (found >= 0) { /* another path to a file already read */
+        *index = (int32_t)found;
+        return add_dep(s, path, err);
+    }
     if (s->texture_count >= o->max_textures)
         return vt_error_set(err, VT_ERR_LIMIT, "%s '%s': more than %u textures (--max-textures)",
                             where, path, o->max_textures);
@@ -193,10 +201,13 @@ static int add_texture(struct vt_atlas_scene *s, const char *path, const char *w
         .width = src.info.width, .height = src.info.height, .channels = src.info.channels};
     vt_source_close(&src);
     t.path = strdup(path);
+    t.id = strdup(id);
     if (grow((void **)&s->textures, &ix->texture_capacity, (size_t)s->texture_count + 1,
              sizeof *s->textures) ||
-        !t.path || strmap_put(&ix->textures, t.path, s->texture_count)) {
+        !t.path || !t.id || strmap_put(&ix->textures, t.path, s->texture_count) ||
+        strmap_put(&ix->files, t.id, s->texture_count)) {
         free(t.path);
+        free(t.id);
         return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
     }
     *index = (int32_t)s->texture_count;
@@ -546,8 +557,10 @@ void vt_atlas_scene_release(struct vt_atlas_scene *scene)
         return;
     for (uint32_t i = 0; i < scene->material_count; i++)
         free(scene->materials[i].name);
-    for (uint32_t i = 0; i < scene->texture_count; i++)
+    for (uint32_t i = 0; i < scene->texture_count; i++) {
         free(scene->textures[i].path);
+        free(scene->textures[i].id);
+    }
     for (size_t i = 0; i < scene->dep_count; i++)
         free(scene->deps[i]);
     struct scene_index *ix = scene->index;
@@ -555,6 +568,7 @@ void vt_atlas_scene_release(struct vt_atlas_scene *scene)
         strmap_release(&ix->materials);
         strmap_release(&ix->textures);
         strmap_release(&ix->deps);
+        strmap_release(&ix->files);
     }
     free(ix);
     free(scene->materials);

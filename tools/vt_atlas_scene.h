@@ -27,8 +27,12 @@ const char *vt_atlas_kind_name(unsigned kind);
 const char *vt_atlas_kind_map(unsigned kind);
 uint32_t vt_atlas_kind_colour(unsigned kind);
 
+/* One texture file. Two paths that name the same file (same device and inode: "tex/a.png" and
+ * "./tex/../tex/a.png", a link, MTL files in two directories) are one texture, so that the
+ * materials using it can share one atlas entry. */
 struct vt_atlas_texture {
-    char *path; /* as read (resolved against the MTL or list file's directory) */
+    char *path; /* as first read (resolved against the MTL or list file's directory) */
+    char *id;   /* "device:inode" of the file */
     uint32_t width, height, channels;
 };
 
@@ -38,7 +42,7 @@ struct vt_atlas_material {
     uint64_t first_line;                  /* of the first face using it */
     bool defined;                         /* found in an MTL (else constant grey) */
     double fill[VT_ATLAS_KIND_COUNT][4];  /* constant of each layer when it has no texture */
-    int32_t texture[VT_ATLAS_KIND_COUNT]; /* index into textures, or -1 */
+    int32_t texture[VT_ATLAS_KIND_COUNT]; /* index into textures (one per file), or -1 */
     bool has_uv;                          /* some face corner has a texcoord */
     double umin, umax, vmin, vmax;        /* texcoord range of its faces */
     double uv_area, world_area;           /* summed over its triangles with texcoords */

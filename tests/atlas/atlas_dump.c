@@ -1,6 +1,6 @@
 /* vt-atlas-dump: reads an atlas.json through vt_layout_read() (so every check of the reader
- * runs) and prints it one line per entry and texture, for the golden vt-atlas CLI cases.
- * usage: vt-atlas-dump atlas.json */
+ * runs) and prints it one line per entry (and its aliases) and texture, for the golden vt-atlas CLI
+ * cases. usage: vt-atlas-dump atlas.json */
 #include <stdio.h>
 
 #include "vt_layout.h"
@@ -28,6 +28,13 @@ int main(int argc, char **argv)
                "scale %g group %u\n",
                e->name, e->x, e->y, e->width, e->height, e->repeat_u, e->repeat_v, e->origin_u,
                e->origin_v, e->cell_width, e->cell_height, e->alignment, e->scale, e->group);
+        if (e->alias_count) { /* each alias must find this entry */
+            printf("  aliases");
+            for (uint32_t a = 0; a < e->alias_count; a++)
+                printf(" '%s'%s", e->aliases[a],
+                       vt_layout_find(&l, e->aliases[a]) == e ? "" : " (NOT FOUND)");
+            printf("\n");
+        }
         for (uint32_t k = 0; k < l.layer_count; k++) {
             const struct vt_layout_texture *t = &e->textures[k];
             if (t->path)

@@ -1,7 +1,7 @@
 /* libFuzzer target for the atlas.json reader (lib/vt_layout_json.c, vt_layout.c). Invariants are
  * checked, not only crashes: a layout that loads has every cell inside the atlas with its copies
- * inside, every entry found by its name, resolved paths for every texture; a failure has a status
- * and a one-line message naming the input. */
+ * inside, every entry found by its name and by each of its aliases, resolved paths for every
+ * texture; a failure has a status and a one-line message naming the input. */
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,6 +21,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (err.status != rc || !strstr(err.message, NAME) || strchr(err.message, '\n'))
             abort();
     } else {
+        uint64_t names = 0;
         for (uint32_t i = 0; i < l.entry_count; i++) {
             const struct vt_layout_entry *e = &l.entries[i];
             if ((uint64_t)e->x + e->cell_width > l.width ||
@@ -30,10 +31,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 abort();
             if (vt_layout_find(&l, e->name) != e)
                 abort();
+            for (uint32_t a = 0; a < e->alias_count; a++)
+                if (!e->aliases[a][0] || vt_layout_find(&l, e->aliases[a]) != e)
+                    abort();
+            names += 1 + (uint64_t)e->alias_count;
             for (uint32_t k = 0; k < l.layer_count; k++)
                 if (!e->textures[k].path != !e->textures[k].resolved)
                     abort();
         }
+        if (names != l.name_count)
+            abort();
     }
     vt_layout_release(&l);
     return 0;

@@ -17,7 +17,8 @@ static char *xstrdup(const char *s)
 }
 
 /* Two layers, three entries: a 300x200 texture in a 512x256 cell, a 100x60 sub-tile texture with
- * a fill for its normal layer, and a 64x64 texture replicated 3x2 from origin (-1, 0). */
+ * a fill for its normal layer (also used by the materials 'tiny' and 'little': aliases), and a
+ * 64x64 texture replicated 3x2 from origin (-1, 0). */
 static void make_layout(struct vt_layout *l)
 {
     VT_CHECK_INT_EQ(vt_layout_alloc(l, 2, 3, NULL), 0);
@@ -32,6 +33,9 @@ static void make_layout(struct vt_layout *l)
     e[1].name = xstrdup("small");
     e[1].x = 512, e[1].width = 100, e[1].height = 60, e[1].cell_width = 128, e[1].cell_height = 64,
     e[1].alignment = 64, e[1].scale = 0.5;
+    e[1].aliases = malloc(2 * sizeof *e[1].aliases);
+    e[1].aliases[0] = xstrdup("tiny"), e[1].aliases[1] = xstrdup("little");
+    e[1].alias_count = 2;
     e[2].name = xstrdup("ground");
     e[2].y = 256, e[2].width = 64, e[2].height = 64, e[2].repeat_u = 3, e[2].repeat_v = 2;
     e[2].origin_u = -1, e[2].cell_width = 256, e[2].cell_height = 128, e[2].alignment = 128;
@@ -72,6 +76,9 @@ static void test_round_trip(void)
         VT_CHECK(a->origin_u == b->origin_u && a->origin_v == b->origin_v);
         VT_CHECK(a->cell_width == b->cell_width && a->cell_height == b->cell_height);
         VT_CHECK(a->alignment == b->alignment && a->scale == b->scale && a->group == b->group);
+        VT_CHECK_INT_EQ(b->alias_count, a->alias_count);
+        for (uint32_t k = 0; k < a->alias_count && k < b->alias_count; k++)
+            VT_CHECK(strcmp(a->aliases[k], b->aliases[k]) == 0);
         for (uint32_t k = 0; k < 2; k++) {
             const struct vt_layout_texture *ta = &a->textures[k], *tb = &b->textures[k];
             VT_CHECK(!ta->path == !tb->path);
@@ -89,12 +96,32 @@ static void test_round_trip(void)
     VT_CHECK(vt_layout_find(&r, "ground") == &r.entries[2]);
     VT_CHECK(vt_layout_find(&r, "brick") == &r.entries[0]);
     VT_CHECK(vt_layout_find(&r, "nope") == NULL);
+    /* Aliases find their entry; the entry's own name too. */
+    VT_CHECK(vt_layout_find(&r, "small") == &r.entries[1]);
+    VT_CHECK(vt_layout_find(&r, "tiny") == &r.entries[1]);
+    VT_CHECK(vt_layout_find(&r, "little") == &r.entries[1]);
+    VT_CHECK(vt_layout_find(&r, "littl") == NULL);
+    VT_CHECK_INT_EQ(r.name_count, 5);
+    /* "aliases" is written for the entry that has some only, right after its name. */
+    FILE *f = fopen("layout_rt.json", "r");
+    char text[8192];
+    size_t len = f ? fread(text, 1, sizeof text - 1, f) : 0;
+    text[len] = 0;
+    if (f)
+        fclose(f);
+    const char *first = strstr(text, "\"aliases\"");
+    VT_CHECK(first != NULL && strstr(first + 1, "\"aliases\"") == NULL);
+    VT_CHECK(
+        strstr(text,
+               "\"name\": \"small\",\n   \"aliases\": [\n    \"tiny\",\n    \"little\"\n   ],") !=
+        NULL);
     VT_CHECK_INT_EQ(vt_layout_layer_index(&r, "normal"), 1);
     VT_CHECK_INT_EQ(vt_layout_layer_index(&r, "specular"), -1);
     vt_layout_release(&r);
     vt_layout_release(&l);
     vt_layout_release(&l); /* twice is harmless */
-    remove("layout_rt.json");
+    if (!getenv("KEEP"))
+        remove("layout_rt.json");
 }
 
 static void test_resolve_against_directory(void)
@@ -153,6 +180,32 @@ static void dup_name(struct vt_layout *l)
     free(l->entries[2].name);
     l->entries[2].name = xstrdup("brick");
 }
+static void alias_is_name(struct vt_layout *l)
+{
+    free(l->entries[1].aliases[1]);
+    l->entries[1].aliases[1] = xstrdup("brick");
+}
+static void alias_is_own_name(struct vt_layout *l)
+{
+    free(l->entries[1].aliases[0]);
+    l->entries[1].aliases[0] = xstrdup("small");
+}
+static void alias_twice(struct vt_layout *l)
+{
+    struct vt_layout_entry *e = &l->entries[2];
+    e->aliases = malloc(sizeof *e->aliases);
+    e->aliases[0] = xstrdup("tiny");
+    e->alias_count = 1;
+}
+static void alias_empty(struct vt_layout *l)
+{
+    l->entries[1].aliases[1][0] = 0;
+}
+static void alias_null(struct vt_layout *l)
+{
+    free(l->entries[1].aliases[0]);
+    l->entries[1].aliases[0] = NULL;
+}
 static void dup_layer(struct vt_layout *l)
 {
     free(l->layers[1].name);
@@ -175,6 +228,12 @@ static void test_validation(void)
     expect_invalid(too_big, "('ground') does not fit in its cell");
     expect_invalid(bad_scale, "('brick') has a scale that is not a power of two");
     expect_invalid(dup_name, "entry 'brick' given twice");
+    expect_invalid(alias_is_name,
+                   "'x.json': name 'brick' given twice (entries 'brick' and 'small')");
+    expect_invalid(alias_is_own_name, "name 'small' given twice (entries 'small' and 'small')");
+    expect_invalid(alias_twice, "name 'tiny' given twice (entries 'small' and 'ground')");
+    expect_invalid(alias_empty, "'x.json': entry 'small' has an empty alias");
+    expect_invalid(alias_null, "'x.json': entry 'small' has an empty alias");
     expect_invalid(dup_layer, "layer 'diffuse' given twice");
     expect_invalid(bad_tile, "content must be a power of two");
     expect_invalid(bad_fill, "fill outside 0..1");
@@ -206,6 +265,45 @@ static void test_overlap_sweep(void)
     l.entries[4096].alignment = 32;
     VT_CHECK_INT_EQ(vt_layout_check(&l, "grid", &err), VT_ERR_BAD_INPUT);
     VT_CHECK_STR_CONTAINS(err.message, "overlap");
+    vt_layout_release(&l);
+}
+
+/* 4096 entries with 3 aliases each: every name and alias is found (binary search over the sorted
+ * names), names between them are not. */
+static void test_find_many_aliases(void)
+{
+    struct vt_layout l;
+    struct vt_error err;
+    const uint32_t n = 4096;
+    VT_CHECK_INT_EQ(vt_layout_alloc(&l, 1, n, NULL), 0);
+    l.width = l.height = 1024, l.tile_content = 256;
+    l.layers[0] = (struct vt_layout_layer){xstrdup("diffuse"), xstrdup("map_Kd"), VTS_COLOUR_SRGB};
+    for (uint32_t i = 0; i < n; i++) {
+        struct vt_layout_entry *e = &l.entries[i];
+        char name[32];
+        snprintf(name, sizeof name, "m%u", (i * 40503u) % 65536u); /* a permutation */
+        e->name = xstrdup(name);
+        e->aliases = malloc(3 * sizeof *e->aliases);
+        for (uint32_t a = 0; a < 3; a++) {
+            snprintf(name, sizeof name, "a%u_%u", i, a);
+            e->aliases[a] = xstrdup(name);
+        }
+        e->alias_count = 3;
+        e->x = (i % 64) * 16, e->y = (i / 64) * 16;
+        e->width = e->height = e->cell_width = e->cell_height = e->alignment = 16;
+        e->textures[0].fill[3] = 1;
+    }
+    VT_CHECK_INT_EQ(vt_layout_check(&l, "many", &err), 0);
+    VT_CHECK_INT_EQ(l.name_count, 4 * n);
+    uint32_t found = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        found += vt_layout_find(&l, l.entries[i].name) == &l.entries[i];
+        for (uint32_t a = 0; a < 3; a++)
+            found += vt_layout_find(&l, l.entries[i].aliases[a]) == &l.entries[i];
+    }
+    VT_CHECK_INT_EQ(found, 4 * n);
+    VT_CHECK(vt_layout_find(&l, "a0_3") == NULL && vt_layout_find(&l, "a") == NULL &&
+             vt_layout_find(&l, "m") == NULL && vt_layout_find(&l, "zz") == NULL);
     vt_layout_release(&l);
 }
 
@@ -258,6 +356,34 @@ static void test_parse_errors(void)
                     VT_ERR_LIMIT);
     VT_CHECK_STR_CONTAINS(err.message, "1 entries, more than the limit 0");
     vt_layout_release(&l);
+    /* aliases: an array of non-empty strings, counted against the entry limit. */
+    const char *entry = "{\"name\":\"a\",\"x\":0,\"y\":0,\"width\":4,\"height\":4,\"cell_width\":4,"
+                        "\"cell_height\":4,\"alignment\":4,\"textures\":[{\"fill\":[0,0,0,1]}],";
+    snprintf(buf, sizeof buf, "%s%s\"aliases\":\"b\"}]}", head, entry);
+    expect_parse_error(buf, "'bad.json': entries[0].aliases: expected an array of names");
+    snprintf(buf, sizeof buf, "%s%s\"aliases\":[\"b\",1]}]}", head, entry);
+    expect_parse_error(buf, "entries[0].aliases: expected non-empty strings without NUL");
+    snprintf(buf, sizeof buf, "%s%s\"aliases\":[\"\"]}]}", head, entry);
+    expect_parse_error(buf, "entries[0].aliases: expected non-empty strings without NUL");
+    snprintf(buf, sizeof buf, "%s%s\"aliases\":[\"b\\u0000c\"]}]}", head, entry);
+    expect_parse_error(buf, "u0000 is not allowed");
+    snprintf(buf, sizeof buf, "%s%s\"aliases\":[\"a\"]}]}", head, entry);
+    expect_parse_error(buf, "'bad.json': name 'a' given twice (entries 'a' and 'a')");
+    snprintf(buf, sizeof buf, "%s%s\"aliases\":[\"b\",\"c\"]}]}", head, entry);
+    lim.max_entries = 2;
+    VT_CHECK_INT_EQ(vt_layout_parse_memory(buf, strlen(buf), "lim.json", &lim, &l, &err),
+                    VT_ERR_LIMIT);
+    VT_CHECK_STR_CONTAINS(
+        err.message, "'lim.json': 3 material names (entries and aliases), more than the limit 2");
+    vt_layout_release(&l);
+    lim.max_entries = 3;
+    VT_CHECK_INT_EQ(vt_layout_parse_memory(buf, strlen(buf), "lim.json", &lim, &l, &err), 0);
+    VT_CHECK(vt_layout_find(&l, "c") == &l.entries[0] && l.entries[0].alias_count == 2);
+    vt_layout_release(&l);
+    snprintf(buf, sizeof buf, "%s%s\"aliases\":[]}]}", head, entry); /* empty: none */
+    VT_CHECK_INT_EQ(vt_layout_parse_memory(buf, strlen(buf), "e.json", NULL, &l, &err), 0);
+    VT_CHECK(l.entries[0].alias_count == 0 && l.entries[0].aliases == NULL);
+    vt_layout_release(&l);
     VT_CHECK_INT_EQ(vt_layout_read("does/not/exist.json", NULL, &l, &err), VT_ERR_IO);
     VT_CHECK_STR_CONTAINS(err.message, "cannot open 'does/not/exist.json'");
 }
@@ -299,6 +425,7 @@ int main(void)
     VT_RUN(test_resolve_against_directory);
     VT_RUN(test_validation);
     VT_RUN(test_overlap_sweep);
+    VT_RUN(test_find_many_aliases);
     VT_RUN(test_parse_errors);
     VT_RUN(test_map_uv);
     return vt_test_main_result();
