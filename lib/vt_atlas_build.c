@@ -265,9 +265,10 @@ static int build_grid(struct vt_atlas_build *b, struct vt_error *err)
     for (int pass = 0; pass < 2; pass++) {
         for (uint32_t e = 0; e < lay->entry_count; e++) {
             const struct vt_layout_entry *en = &lay->entries[e];
-            uint32_t bx0 = en->x >> s, by0 = en->y >> s;
-            uint32_t bx1 = (uint32_t)(((uint64_t)en->x + en->cell_width - 1) >> s);
-            uint32_t by1 = (uint32_t)(((uint64_t)en->y + en->cell_height - 1) >> s);
+            uint32_t ex = vt_layout_cell_x(en), ey = vt_layout_cell_y(en);
+            uint32_t bx0 = ex >> s, by0 = ey >> s;
+            uint32_t bx1 = (uint32_t)(((uint64_t)ex + en->cell_width - 1) >> s);
+            uint32_t by1 = (uint32_t)(((uint64_t)ey + en->cell_height - 1) >> s);
             for (uint32_t by = by0; by <= by1; by++)
                 for (uint32_t bx = bx0; bx <= bx1; bx++) {
                     size_t i = (size_t)by * b->gw + bx;
@@ -323,11 +324,12 @@ static int32_t classify(const struct vt_atlas_build *b, uint32_t L, uint32_t X, 
             size_t i = (size_t)by * b->gw + bx;
             for (uint32_t j = b->goff[i]; j < b->goff[i + 1]; j++) {
                 const struct vt_layout_entry *en = &lay->entries[b->gidx[j]];
-                uint64_t cx1 = (uint64_t)en->x + en->cell_width;
-                uint64_t cy1 = (uint64_t)en->y + en->cell_height;
-                if (en->x >= fx1 || cx1 <= fx0 || en->y >= fy1 || cy1 <= fy0)
+                uint64_t cx0 = vt_layout_cell_x(en), cy0 = vt_layout_cell_y(en);
+                uint64_t cx1 = cx0 + en->cell_width;
+                uint64_t cy1 = cy0 + en->cell_height;
+                if (cx0 >= fx1 || cx1 <= fx0 || cy0 >= fy1 || cy1 <= fy0)
                     continue;
-                if (L <= b->lmax[b->gidx[j]] && en->x <= fx0 && en->y <= fy0 && cx1 >= fx1 &&
+                if (L <= b->lmax[b->gidx[j]] && cx0 <= fx0 && cy0 <= fy0 && cx1 >= fx1 &&
                     cy1 >= fy1) {
                     *run_end = (uint32_t)(cx1 >> L);
                     return (int32_t)b->gidx[j];
@@ -338,7 +340,8 @@ static int32_t classify(const struct vt_atlas_build *b, uint32_t L, uint32_t X, 
     return CLS_EMPTY;
 }
 
-/* Texel of owned entry e at level L, position (X, Y) clamped into the entry's chain. */
+/* Texel of owned entry e at level L, position (X, Y) clamped into the entry's chain: cell
+ * padding and the gutter before x/y repeat the texture's edge. */
 static int owned_texel(struct vt_atlas_build *b, struct worker *w, uint32_t s, uint32_t e,
                        uint32_t L, int64_t X, int64_t Y, const uint8_t **out, struct vt_error *err)
 {

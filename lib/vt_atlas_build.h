@@ -3,9 +3,10 @@
  *
  * Each entry's texture (per layer) becomes a mip chain (vt_mip_chain.h) kept in a bounded,
  * reference-counted LRU cache shared by the workers. A level-L texel whose level-0 footprint lies
- * inside one entry's cell, with the cell aligned at 2^L, is "owned": it reads that entry's chain at
- * level L (clamped into the chain's rectangle, so cell padding and borders on a texture's edge
- * repeat that texture's edge texels, and filtering never mixes textures). A texel whose footprint
+ * inside one entry's cell, with the entry aligned at 2^L, is "owned": it reads that entry's chain
+ * at level L (clamped into the chain's rectangle, so cell padding, the gutter before x/y of a cell
+ * that starts before its texture, and borders on a texture's edge repeat that texture's edge
+ * texels, and filtering never mixes textures). A texel whose footprint
  * touches no cell is empty. Any other texel (coarse levels above an entry's alignment) is "mixed":
  * the coverage-weighted average, in the working space, of its four children one level down. A tile
  * whose content texels are all empty is emitted as empty. Output is 8-bit; the bytes do not depend

@@ -304,7 +304,20 @@ out:
 struct small_ref {
     uint32_t index;
     uint8_t lw, lh;
+    uint32_t gx, gy; /* gutter before the content in x and y */
 };
+
+/* Cell edge (log2) and gutter of one axis of a sub-tile rectangle of edge e. */
+static void small_axis(uint32_t e, uint32_t T, uint32_t G, uint8_t *lg, uint32_t *g)
+{
+    if ((uint64_t)e + 2ull * G <= T) {
+        *lg = (uint8_t)log2_u32(e + 2 * G);
+        *g = G;
+    } else {
+        *lg = (uint8_t)log2_u32(T);
+        *g = 0;
+    }
+}
 
 static int cmp_small_ref(const void *a, const void *b)
 {
@@ -325,6 +338,10 @@ static int check_args(const struct vt_atlas_rect *rects, uint32_t count,
     if (o->max_edge < T)
         return vt_error_set(err, VT_ERR_ARG, "atlas size limit %u is below the tile content %u",
                             o->max_edge, T);
+    if (o->gutter && ((o->gutter & (o->gutter - 1)) || o->gutter >= T))
+        return vt_error_set(err, VT_ERR_ARG,
+                            "gutter %u is not 0 or a power of two below the tile content %u",
+                            o->gutter, T);
     if (count == 0)
         return vt_error_set(err, VT_ERR_ARG, "no texture to pack");
     for (uint32_t i = 0; i < count; i++)
@@ -333,9 +350,123 @@ static int check_args(const struct vt_atlas_rect *rects, uint32_t count,
     return 0;
 }
 
+/* Largest power of two (up to T) dividing every value of v[0..n). */
+static uint32_t common_alignment(const uint32_t *v, size_t n, uint32_t T)
+{
+    uint32_t a = T;
+    for (size_t i = 0; i < n; i++)
+        while (a > 1 && v[i] % a)
+            a >>= 1;
+    return a;
+}
+
+/* ---- sub-tile cells with a gutter: shelves inside tiles ---- */
+
+struct shelf {
+    uint32_t tile, y, h, used;
+};
+
+struct shelf_ref {
+    uint32_t index;
+    uint32_t cw, ch; /* cell size, multiples of the gutter */
+    uint32_t gx, gy;
+};
+
+static int cmp_shelf_ref(const void *a, const void *b)
+{
+    const struct shelf_ref *p = a, *q = b;
+    if (p->ch != q->ch)
+        return p->ch > q->ch ? -1 : 1;
+    if (p->cw != q->cw)
+        return p->cw > q->cw ? -1 : 1;
+    return p->index < q->index ? -1 : p->index > q->index;
+}
+
+/* Cell edge and gutter of one axis with gutter G: edge + 2G rounded up to a multiple of G, or a
+ * whole tile without gutter when that exceeds T (the sides are then tile edges). */
+static void shelf_axis(uint32_t e, uint32_t T, uint32_t G, uint32_t *cell, uint32_t *g)
+{
+    if ((uint64_t)e + 2ull * G <= T) {
+        *cell = (e + 2 * G + G - 1) & ~(G - 1);
+        *g = G;
+    } else {
+        *cell = T;
+        *g = 0;
+    }
+}
+
+/* With a gutter the content sits at a multiple of G whatever the cell, so power-of-two cells
+ * would buy no alignment: cells are edge + 2G rounded up to G, placed on shelves (tallest first;
+ * each cell takes the lowest shelf that fits it, else opens a shelf in the first tile with room,
+ * else a new tile). Every position and size is a multiple of G. */
+static int pack_shelves(struct vt_atlas_rect *rects, uint32_t count, uint32_t T, uint32_t G,
+                        uint32_t *small_tiles, uint32_t *tile_of, struct vt_error *err)
+{
+    size_t n = 0;
+    for (uint32_t i = 0; i < count; i++)
+        n += rects[i].width <= T && rects[i].height <= T;
+    struct shelf_ref *refs = malloc((n ? n : 1) * sizeof *refs);
+    struct shelf *shelves = malloc((n ? n : 1) * sizeof *shelves);
+    uint32_t *tile_top = malloc((n ? n : 1) * sizeof *tile_top);
+    size_t nshelves = 0;
+    uint32_t ntiles = 0;
+    int rc = 0;
+    if (!refs || !shelves || !tile_top) {
+        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory packing %zu cells", n);
+        goto out;
+    }
+    n = 0;
+    for (uint32_t i = 0; i < count; i++)
+        if (rects[i].width <= T && rects[i].height <= T) {
+            struct shelf_ref *f = &refs[n++];
+            f->index = i;
+            shelf_axis(rects[i].width, T, G, &f->cw, &f->gx);
+            shelf_axis(rects[i].height, T, G, &f->ch, &f->gy);
+        }
+    qsort(refs, n, sizeof *refs, cmp_shelf_ref);
+    for (size_t k = 0; k < n; k++) {
+        const struct shelf_ref *f = &refs[k];
+        size_t best = SIZE_MAX;
+        for (size_t j = 0; j < nshelves; j++)
+            if (shelves[j].h >= f->ch && T - shelves[j].used >= f->cw &&
+                (best == SIZE_MAX || shelves[j].h < shelves[best].h))
+                best = j;
+        if (best == SIZE_MAX) {
+            uint32_t t = 0;
+            while (t < ntiles && T - tile_top[t] < f->ch)
+                t++;
+            if (t == ntiles)
+                tile_top[ntiles++] = 0;
+            shelves[nshelves] = (struct shelf){t, tile_top[t], f->ch, 0};
+            tile_top[t] += f->ch;
+            best = nshelves++;
+        }
+        struct shelf *sh = &shelves[best];
+        struct vt_atlas_rect *r = &rects[f->index];
+        r->cell_x = sh->used;
+        r->cell_y = sh->y;
+        r->x = r->cell_x + f->gx;
+        r->y = r->cell_y + f->gy;
+        r->cell_width = f->cw;
+        r->cell_height = f->ch;
+        uint32_t v[6] = {r->x, r->y, r->cell_x, r->cell_y, f->cw, f->ch};
+        r->alignment = common_alignment(v, 6, T);
+        sh->used += f->cw;
+        tile_of[f->index] = sh->tile;
+        if (T - sh->used < 3 * G) /* no cell fits any more: stop scanning it */
+            shelves[best] = shelves[--nshelves];
+    }
+    *small_tiles = ntiles;
+out:
+    free(refs);
+    free(shelves);
+    free(tile_top);
+    return rc;
+}
+
 /* Places the sub-tile cells inside numbered tiles (x, y relative to the tile; tile number kept
  * in alignment until the tiles are placed). */
-static int pack_small(struct vt_atlas_rect *rects, uint32_t count, uint32_t T,
+static int pack_small(struct vt_atlas_rect *rects, uint32_t count, uint32_t T, uint32_t G,
                       uint32_t *small_tiles, uint32_t *tile_of, struct vt_error *err)
 {
     size_t n = 0;
@@ -350,9 +481,12 @@ static int pack_small(struct vt_atlas_rect *rects, uint32_t count, uint32_t T,
     }
     n = 0;
     for (uint32_t i = 0; i < count; i++)
-        if (rects[i].width <= T && rects[i].height <= T)
-            refs[n++] = (struct small_ref){i, (uint8_t)log2_u32(rects[i].width),
-                                           (uint8_t)log2_u32(rects[i].height)};
+        if (rects[i].width <= T && rects[i].height <= T) {
+            struct small_ref *f = &refs[n++];
+            f->index = i;
+            small_axis(rects[i].width, T, G, &f->lw, &f->gx);
+            small_axis(rects[i].height, T, G, &f->lh, &f->gy);
+        }
     qsort(refs, n, sizeof *refs, cmp_small_ref);
     bd->tile_log2 = log2_u32(T);
     for (size_t k = 0; k < n; k++) {
@@ -362,11 +496,18 @@ static int pack_small(struct vt_atlas_rect *rects, uint32_t count, uint32_t T,
             goto out;
         }
         struct vt_atlas_rect *r = &rects[refs[k].index];
-        r->x = blk.x;
-        r->y = blk.y;
+        r->cell_x = blk.x;
+        r->cell_y = blk.y;
+        r->x = blk.x + refs[k].gx;
+        r->y = blk.y + refs[k].gy;
         r->cell_width = 1u << refs[k].lw;
         r->cell_height = 1u << refs[k].lh;
-        r->alignment = r->cell_width < r->cell_height ? r->cell_width : r->cell_height;
+        uint32_t a = r->cell_width < r->cell_height ? r->cell_width : r->cell_height;
+        if (refs[k].gx && refs[k].gx < a)
+            a = refs[k].gx;
+        if (refs[k].gy && refs[k].gy < a)
+            a = refs[k].gy;
+        r->alignment = a;
         tile_of[refs[k].index] = blk.tile;
     }
     *small_tiles = bd->tile_count;
@@ -383,9 +524,16 @@ static void fill_stats(const struct vt_atlas_rect *rects, uint32_t count, uint32
 {
     s->content_area = 0;
     s->cell_area = 0;
+    s->base_cell_area = 0;
     for (uint32_t i = 0; i < count; i++) {
-        s->content_area += (uint64_t)rects[i].width * rects[i].height;
-        s->cell_area += (uint64_t)rects[i].cell_width * rects[i].cell_height;
+        const struct vt_atlas_rect *r = &rects[i];
+        s->content_area += (uint64_t)r->width * r->height;
+        s->cell_area += (uint64_t)r->cell_width * r->cell_height;
+        if (r->width <= T && r->height <= T)
+            s->base_cell_area +=
+                (uint64_t)vt_atlas_next_pow2(r->width) * vt_atlas_next_pow2(r->height);
+        else
+            s->base_cell_area += (uint64_t)r->cell_width * r->cell_height;
     }
     s->tiles_x = (s->width + T - 1) / T;
     s->tiles_y = (s->height + T - 1) / T;
@@ -393,6 +541,7 @@ static void fill_stats(const struct vt_atlas_rect *rects, uint32_t count, uint32
     double atlas = (double)s->width * s->height;
     s->fill_ratio = (double)s->content_area / atlas;
     s->area_over_cells = atlas / (double)s->cell_area;
+    s->area_over_base = atlas / (double)s->base_cell_area;
 }
 
 int vt_atlas_pack(struct vt_atlas_rect *rects, uint32_t count,
@@ -411,7 +560,10 @@ int vt_atlas_pack(struct vt_atlas_rect *rects, uint32_t count,
         rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory packing %u cells", count);
         goto out;
     }
-    rc = pack_small(rects, count, T, &small_tiles, tile_of, err);
+    if (options->gutter)
+        rc = pack_shelves(rects, count, T, options->gutter, &small_tiles, tile_of, err);
+    else
+        rc = pack_small(rects, count, T, 0, &small_tiles, tile_of, err);
     if (rc)
         goto out;
     size_t n = 0;
@@ -452,8 +604,8 @@ int vt_atlas_pack(struct vt_atlas_rect *rects, uint32_t count,
             small_pos[2 * it->index + 1] = it->y;
         } else {
             struct vt_atlas_rect *r = &rects[it->index];
-            r->x = it->x * T;
-            r->y = it->y * T;
+            r->x = r->cell_x = it->x * T;
+            r->y = r->cell_y = it->y * T;
             r->cell_width = it->w * T;
             r->cell_height = it->h * T;
             r->alignment = T;
@@ -464,15 +616,18 @@ int vt_atlas_pack(struct vt_atlas_rect *rects, uint32_t count,
         width = height = 0; /* one tile: shrink to the used corner */
     for (uint32_t i = 0; i < count; i++)
         if (rects[i].width <= T && rects[i].height <= T) {
-            rects[i].x += small_pos[2 * tile_of[i]] * T;
-            rects[i].y += small_pos[2 * tile_of[i] + 1] * T;
+            uint32_t dx = small_pos[2 * tile_of[i]] * T, dy = small_pos[2 * tile_of[i] + 1] * T;
+            rects[i].x += dx;
+            rects[i].y += dy;
+            rects[i].cell_x += dx;
+            rects[i].cell_y += dy;
         }
     if (W == 1 && H == 1)
         for (uint32_t i = 0; i < count; i++) {
-            if (rects[i].x + rects[i].cell_width > width)
-                width = rects[i].x + rects[i].cell_width;
-            if (rects[i].y + rects[i].cell_height > height)
-                height = rects[i].y + rects[i].cell_height;
+            if (rects[i].cell_x + rects[i].cell_width > width)
+                width = rects[i].cell_x + rects[i].cell_width;
+            if (rects[i].cell_y + rects[i].cell_height > height)
+                height = rects[i].cell_y + rects[i].cell_height;
         }
     if (W == 1 && H == 1) {
         width = vt_atlas_next_pow2(width);

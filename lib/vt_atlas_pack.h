@@ -2,10 +2,14 @@
  * docs/atlas-packing.md.
  *
  * Rules. With T the tile content edge (a power of two):
- * - a rectangle with both edges <= T (sub-tile) gets a cell whose edges are the next powers of two
- *   of its edges (x is a multiple of the cell width and y of the cell height, so alignment = the
- *   smaller of the two cell edges holds), packed inside tiles that
- *   hold only sub-tile cells (a guillotine split of power-of-two blocks, i.e. a 2D buddy);
+ * - a rectangle with both edges <= T (sub-tile) shares tiles only with other sub-tile cells.
+ *   With a gutter G > 0 its cell edge is edge + 2G rounded up to a multiple of G, the content
+ *   sits G texels in (x = cell_x + G), cells go on shelves inside the tiles and alignment = G
+ *   (every position and size is a multiple of G); an axis where edge + 2G exceeds T gets a
+ *   T-wide cell without gutter (its sides are tile edges, which tile borders clamp). Without
+ *   gutter the cell edges are the next powers of two of the edges, at a multiple of the cell
+ *   size (a guillotine split of power-of-two blocks, i.e. a 2D buddy; alignment = the smaller
+ *   cell edge) and x = cell_x;
  * - a larger rectangle gets a cell rounded up to whole tiles, at a tile corner (alignment T);
  * - tiles are packed at tile granularity (skyline, tallest first) into an atlas of whole tiles
  *   whose width is chosen among near-square candidates to minimise the area; when everything fits
@@ -25,14 +29,24 @@ extern "C" {
 /* One rectangle to place. */
 struct vt_atlas_rect {
     uint32_t width, height;           /* in: texels needed (all copies), >= 1 */
-    uint32_t x, y;                    /* out: top-left texel of the cell (and of the content) */
-    uint32_t cell_width, cell_height; /* out: the exclusive cell, >= width and height */
-    uint32_t alignment;               /* out: power of two dividing x, y and the cell edges */
+    uint32_t x, y;                    /* out: top-left texel of the content */
+    uint32_t cell_x, cell_y;          /* out: top-left texel of the cell (<= x, y: the gutter) */
+    uint32_t cell_width, cell_height; /* out: the exclusive cell, >= gutter + width, height */
+    uint32_t alignment; /* out: power of two dividing x, y, the cell corner and edges */
 };
+
+/* The default gutter of vt-atlas (--gutter): see docs/atlas-packing.md for its cost. */
+#ifndef VT_ATLAS_DEFAULT_GUTTER
+#define VT_ATLAS_DEFAULT_GUTTER 4
+#endif
 
 struct vt_atlas_pack_options {
     uint32_t tile_content; /* tile content edge, a power of two 1..2^16 */
     uint32_t max_edge;     /* largest atlas width or height in texels (>= tile_content) */
+    uint32_t gutter;       /* texels reserved on each side of a sub-tile rectangle inside its cell
+                              (0 or a power of two below tile_content); an axis where the
+                              rectangle plus two gutters exceeds the tile gets a tile-wide cell
+                              and no gutter (its sides are tile edges) */
 };
 
 /* What the packing achieved. */
@@ -44,8 +58,11 @@ struct vt_atlas_pack_stats {
     uint64_t subtile_tiles;    /* tiles holding sub-tile cells */
     uint64_t content_area;     /* sum of width * height */
     uint64_t cell_area;        /* sum of cell areas (tile-rounded or power-of-two) */
+    uint64_t base_cell_area;   /* the same without gutter: next powers of two of the sub-tile
+                                  rectangles' edges, large ones rounded up to whole tiles */
     double fill_ratio;         /* content_area / (width * height) */
     double area_over_cells;    /* width * height / cell_area (1 = no packing loss) */
+    double area_over_base;     /* width * height / base_cell_area (packing and gutter cost) */
 };
 
 /* Places the count rectangles (fills x, y, cell_width, cell_height, alignment of each) and fills

@@ -78,7 +78,8 @@ static int check_entry(const struct vt_layout *l, uint32_t i, const char *name,
 {
     const struct vt_layout_entry *e = &l->entries[i];
     const char *what = NULL;
-    uint64_t cw = (uint64_t)e->width * e->repeat_u, ch = (uint64_t)e->height * e->repeat_v;
+    uint64_t cw = (uint64_t)e->width * e->repeat_u + e->cell_left,
+             ch = (uint64_t)e->height * e->repeat_v + e->cell_top;
     if (!e->name || !e->name[0])
         what = "has no name";
     else if ((e->alias_count && !e->aliases) || e->alias_count == UINT32_MAX)
@@ -87,12 +88,15 @@ static int check_entry(const struct vt_layout *l, uint32_t i, const char *name,
         what = "has an empty size";
     else if (e->repeat_u == 0 || e->repeat_v == 0 || e->repeat_u > 65536 || e->repeat_v > 65536)
         what = "has a repeat outside 1..65536";
+    else if (e->cell_left > e->x || e->cell_top > e->y)
+        what = "has a cell starting after its texture (cell_x > x or cell_y > y)";
     else if (cw > e->cell_width || ch > e->cell_height)
         what = "does not fit in its cell";
-    else if ((uint64_t)e->x + e->cell_width > l->width ||
-             (uint64_t)e->y + e->cell_height > l->height)
+    else if ((uint64_t)vt_layout_cell_x(e) + e->cell_width > l->width ||
+             (uint64_t)vt_layout_cell_y(e) + e->cell_height > l->height)
         what = "has a cell outside the atlas";
     else if (!is_pow2(e->alignment) || e->x % e->alignment || e->y % e->alignment ||
+             e->cell_left % e->alignment || e->cell_top % e->alignment ||
              e->cell_width % e->alignment || e->cell_height % e->alignment)
         what = "has an alignment that is not a power of two dividing its cell";
     else if (!valid_scale(e->scale))
@@ -129,7 +133,7 @@ struct treap {
 
 static uint32_t key(const struct treap *t, uint32_t n)
 {
-    return t->e[n - 1].y;
+    return vt_layout_cell_y(&t->e[n - 1]);
 }
 
 static uint32_t rot_right(struct treap *t, uint32_t n)
@@ -208,7 +212,8 @@ static const struct vt_layout_entry *cmp_entries;
 
 static int cmp_start(const void *a, const void *b)
 {
-    uint32_t xa = cmp_entries[*(const uint32_t *)a].x, xb = cmp_entries[*(const uint32_t *)b].x;
+    uint32_t xa = vt_layout_cell_x(&cmp_entries[*(const uint32_t *)a]),
+             xb = vt_layout_cell_x(&cmp_entries[*(const uint32_t *)b]);
     return (xa > xb) - (xa < xb);
 }
 
@@ -216,7 +221,8 @@ static int cmp_end(const void *a, const void *b)
 {
     const struct vt_layout_entry *ea = &cmp_entries[*(const uint32_t *)a],
                                  *eb = &cmp_entries[*(const uint32_t *)b];
-    uint64_t xa = (uint64_t)ea->x + ea->cell_width, xb = (uint64_t)eb->x + eb->cell_width;
+    uint64_t xa = (uint64_t)vt_layout_cell_x(ea) + ea->cell_width,
+             xb = (uint64_t)vt_layout_cell_x(eb) + eb->cell_width;
     return (xa > xb) - (xa < xb);
 }
 
@@ -258,10 +264,14 @@ static int check_overlaps(const struct vt_layout *l, const char *name, struct vt
     rc = 0;
     for (uint32_t s = 0, k = 0; s < n; s++) {
         const struct vt_layout_entry *e = &l->entries[start[s]];
-        for (; k < n && (uint64_t)l->entries[end[k]].x + l->entries[end[k]].cell_width <= e->x; k++)
+        uint32_t ex = vt_layout_cell_x(e), ey = vt_layout_cell_y(e);
+        for (;
+             k < n &&
+             (uint64_t)vt_layout_cell_x(&l->entries[end[k]]) + l->entries[end[k]].cell_width <= ex;
+             k++)
             t.root = treap_remove(&t, t.root, end[k] + 1);
-        uint32_t below = treap_below(&t, e->y + e->cell_height);
-        if (below && (uint64_t)key(&t, below) + l->entries[below - 1].cell_height > e->y) {
+        uint32_t below = treap_below(&t, ey + e->cell_height);
+        if (below && (uint64_t)key(&t, below) + l->entries[below - 1].cell_height > ey) {
             rc = vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': the cells of '%s' and '%s' overlap",
                               name, l->entries[below - 1].name, e->name);
             goto out;

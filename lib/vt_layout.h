@@ -14,7 +14,11 @@
  * v = 1 - (j + 0.5) / height lands on the centre of atlas texel (x + i, y + j) when scale is 1
  * and there is one copy. With wrap replication the texture is copied repeat_u x repeat_v times
  * side by side from (x, y), and origin_u/origin_v is the integer part of the smallest u/v the
- * material uses, so its whole UV range [origin, origin + repeat] lands inside the copies. */
+ * material uses, so its whole UV range [origin, origin + repeat] lands inside the copies.
+ *
+ * The entry's cell may start before (x, y) (cell_left/cell_top, "cell_x"/"cell_y" in the file):
+ * vt-atlas --gutter leaves texels around a texture that shares a tile, which the compositor
+ * fills with the texture's own edge so that filtering never reads a neighbour. */
 #ifndef VT_LAYOUT_H
 #define VT_LAYOUT_H
 
@@ -59,9 +63,11 @@ struct vt_layout_entry {
     uint32_t width, height;      /* one copy of the texture in the atlas, in texels (>= 1) */
     uint32_t repeat_u, repeat_v; /* copies side by side (wrap replication); 1 when not wrapped */
     int32_t origin_u, origin_v;  /* integer UV origin of the copies (see the formula above) */
-    uint32_t cell_width;         /* exclusive cell at (x, y): no other entry's cell overlaps it; */
-    uint32_t cell_height;        /* >= width * repeat_u and height * repeat_v */
-    uint32_t alignment;          /* power of two dividing x, y, cell_width and cell_height */
+    uint32_t cell_width;         /* exclusive cell at (x - cell_left, y - cell_top): no other */
+    uint32_t cell_height;        /* entry's cell overlaps it; it holds every copy */
+    uint32_t cell_left;          /* texels of the cell before x and above y: the gutter (0 by */
+    uint32_t cell_top;           /* default; atlas.json "cell_x" = x - cell_left, "cell_y") */
+    uint32_t alignment;          /* power of two dividing x, y, the cell's corner and its size */
     double scale;                /* atlas texels per source pixel: a power of two 2^-16..2^16
                                     (density rescaling; 1 normally). width = ceil(source width *
                                     scale) for scale < 1 (the source's own mip level), source
@@ -137,6 +143,16 @@ void vt_layout_release(struct vt_layout *layout);
 /* The entry named name (its name or one of its aliases), or NULL. O(log n) after
  * vt_layout_read() or vt_layout_index(). */
 const struct vt_layout_entry *vt_layout_find(const struct vt_layout *layout, const char *name);
+
+/* Top-left texel of the entry's cell (x - cell_left, y - cell_top). */
+static inline uint32_t vt_layout_cell_x(const struct vt_layout_entry *e)
+{
+    return e->x - e->cell_left;
+}
+static inline uint32_t vt_layout_cell_y(const struct vt_layout_entry *e)
+{
+    return e->y - e->cell_top;
+}
 
 /* Index of the layer named name, or -1. */
 int vt_layout_layer_index(const struct vt_layout *layout, const char *name);

@@ -191,7 +191,7 @@ static int read_entry(struct ctx *c, json_t *o, size_t i, const struct vt_layout
     if (!json_is_object(o))
         return bad(c, where, "expected an object");
     int64_t rep[2], org[2];
-    uint64_t group;
+    uint64_t group, cell_x = 0, cell_y = 0;
     int rc = get_string(c, o, "name", where, true, &e->name);
     if (!rc)
         rc = get_u32(c, o, "x", where, 0, UINT32_MAX, &e->x);
@@ -213,8 +213,14 @@ static int read_entry(struct ctx *c, json_t *o, size_t i, const struct vt_layout
         rc = get_pair(c, o, "origin", where, -(1 << 30), 1 << 30, 0, org);
     if (!rc)
         rc = get_uint(c, o, "group", where, 0, UINT32_MAX, false, 0, &group);
+    if (!rc)
+        rc = get_uint(c, o, "cell_x", where, 0, e->x, false, e->x, &cell_x);
+    if (!rc)
+        rc = get_uint(c, o, "cell_y", where, 0, e->y, false, e->y, &cell_y);
     if (rc)
         return rc;
+    e->cell_left = e->x - (uint32_t)cell_x;
+    e->cell_top = e->y - (uint32_t)cell_y;
     e->repeat_u = (uint32_t)rep[0], e->repeat_v = (uint32_t)rep[1];
     e->origin_u = (int32_t)org[0], e->origin_v = (int32_t)org[1];
     e->group = (uint32_t)group;
@@ -407,8 +413,12 @@ static json_t *entry_json(const struct vt_layout *l, const struct vt_layout_entr
         pair(e->repeat_u, e->repeat_v), "origin", pair(e->origin_u, e->origin_v), "cell_width",
         (json_int_t)e->cell_width, "cell_height", (json_int_t)e->cell_height, "alignment",
         (json_int_t)e->alignment, "scale", e->scale, "textures", tex);
+    /* cell_x/cell_y only with a gutter: layouts without one read as before. */
     if (!o || !rest || json_object_update(o, rest) ||
-        (e->group && json_object_set_new(o, "group", json_integer(e->group)))) {
+        (e->group && json_object_set_new(o, "group", json_integer(e->group))) ||
+        ((e->cell_left || e->cell_top) &&
+         (json_object_set_new(o, "cell_x", json_integer(vt_layout_cell_x(e))) ||
+          json_object_set_new(o, "cell_y", json_integer(vt_layout_cell_y(e)))))) {
         json_decref(o);
         json_decref(rest);
         return NULL;

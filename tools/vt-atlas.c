@@ -38,6 +38,10 @@ static void usage(FILE *f)
             "      --tile-size N        tile content edge, a power of two 8..16384 (default 256)\n"
             "      --border N           tile border stored in the layout, 0..64 (default 4)\n"
             "      --max-size N         largest atlas edge in texels (default 1048576)\n"
+            "      --gutter N           texels of a texture's own edge around each texture that "
+            "shares\n"
+            "                           a tile: 0 (none) or a power of two below the tile size "
+            "(default 4)\n"
             "      --density            rescale textures to the median texel density (powers "
             "of two)\n"
             "      --max-scale S        density scales within 1/S..S, a power of two 1..65536 "
@@ -61,6 +65,7 @@ static const struct option long_options[] = {{"output", required_argument, 0, 'o
                                              {"tile-size", required_argument, 0, 't'},
                                              {"border", required_argument, 0, 'b'},
                                              {"max-size", required_argument, 0, 'S'},
+                                             {"gutter", required_argument, 0, 'G'},
                                              {"density", no_argument, 0, 'd'},
                                              {"max-scale", required_argument, 0, 's'},
                                              {"wrap", required_argument, 0, 'w'},
@@ -123,6 +128,11 @@ static int parse_option(int c, struct options *o)
         if (vt_parse_u32(optarg, 8, 1u << 24, &o->place.max_edge))
             return vt_usage_error("--max-size must be 8..16777216, not '%s'", optarg);
         break;
+    case 'G':
+        if (vt_parse_u32(optarg, 0, 8192, &o->place.gutter) ||
+            (o->place.gutter && !is_pow2(o->place.gutter)))
+            return vt_usage_error("--gutter must be 0 or a power of two, not '%s'", optarg);
+        break;
     case 'd':
         o->place.density = true;
         break;
@@ -181,6 +191,7 @@ static int parse_options(int argc, char **argv, struct options *o)
     *o = (struct options){.place = {.tile_content = 256,
                                     .border = 4,
                                     .max_edge = 1u << 20,
+                                    .gutter = VT_ATLAS_DEFAULT_GUTTER,
                                     .max_scale = 4,
                                     .max_repeat = 16},
                           .scan = {.max_textures = 1u << 20,
@@ -219,6 +230,9 @@ static int parse_options(int argc, char **argv, struct options *o)
             (unsigned long long)o->place.grid_rows * o->place.grid_cols, o->input_count);
     if (o->place.max_edge < o->place.tile_content)
         return vt_usage_error("--max-size %u is below the tile size %u", o->place.max_edge,
+                              o->place.tile_content);
+    if (o->place.gutter >= o->place.tile_content)
+        return vt_usage_error("--gutter %u is not below the tile size %u", o->place.gutter,
                               o->place.tile_content);
     if (grid)
         o->scan.missing_skip = false; /* a grid needs every piece */

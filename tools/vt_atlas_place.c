@@ -395,17 +395,25 @@ static int fill_layout(const struct vt_atlas_scene *scene, const struct vt_atlas
         e->scale = z->scale;
         e->x = r->x;
         e->y = r->y;
+        e->cell_left = r->x - r->cell_x;
+        e->cell_top = r->y - r->cell_y;
         e->cell_width = r->cell_width;
         e->cell_height = r->cell_height;
         e->alignment = r->alignment;
-        if (grid) { /* piece (row, col) of the group, edge to edge (never shared) */
+        if (grid) { /* piece (row, col) of the group, edge to edge (never shared); the pieces
+                       on the group's outer edge take the gutter and padding of the group cell */
             uint32_t row = i / o->grid_cols, col = i % o->grid_cols;
+            uint32_t gx0 = col ? 0 : e->cell_left, gy0 = row ? 0 : e->cell_top;
+            uint32_t right = r->cell_x + r->cell_width, bottom = r->cell_y + r->cell_height;
             e->x += col * z->w;
             e->y += row * z->h;
-            e->cell_width = z->w;
-            e->cell_height = z->h;
+            e->cell_left = gx0;
+            e->cell_top = gy0;
+            e->cell_width = col + 1 < o->grid_cols ? gx0 + z->w : right - (e->x - gx0);
+            e->cell_height = row + 1 < o->grid_rows ? gy0 + z->h : bottom - (e->y - gy0);
             uint32_t a = r->alignment;
-            while (a > 1 && (z->w % a || z->h % a))
+            while (a > 1 && (e->x % a || e->y % a || gx0 % a || gy0 % a || e->cell_width % a ||
+                             e->cell_height % a))
                 a >>= 1;
             e->alignment = a;
             e->group = 1;
@@ -527,7 +535,8 @@ int vt_atlas_place(const struct vt_atlas_scene *scene, const struct vt_atlas_pla
         rects[0].width = z[0].w * o->grid_cols;
         rects[0].height = z[0].h * o->grid_rows;
     }
-    struct vt_atlas_pack_options po = {.tile_content = o->tile_content, .max_edge = o->max_edge};
+    struct vt_atlas_pack_options po = {
+        .tile_content = o->tile_content, .max_edge = o->max_edge, .gutter = o->gutter};
     rc = vt_atlas_pack(rects, grid ? 1 : ng, &po, &report->pack, err);
     if (!rc)
         rc = fill_layout(scene, o, kinds, layer_count, groups, ng, next_member, rects, layout, err);

@@ -13,6 +13,8 @@
 
 struct vt_atlas_place_options {
     uint32_t tile_content, border, max_edge;
+    uint32_t gutter;    /* texels of the texture's own edge around each sub-tile texture (a power
+                           of two or 0; see vt_atlas_pack_options) */
     bool density;       /* even out texel density (scene mode) */
     uint32_t max_scale; /* density scales within 1/max_scale..max_scale (a power of two) */
     bool wrap_replicate;

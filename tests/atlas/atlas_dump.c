@@ -24,10 +24,12 @@ int main(int argc, char **argv)
                l.layers[k].colour);
     for (uint32_t i = 0; i < l.entry_count; i++) {
         const struct vt_layout_entry *e = &l.entries[i];
-        printf("entry '%s' at %u,%u size %ux%u repeat %ux%u origin %d,%d cell %ux%u align %u "
-               "scale %g group %u\n",
-               e->name, e->x, e->y, e->width, e->height, e->repeat_u, e->repeat_v, e->origin_u,
-               e->origin_v, e->cell_width, e->cell_height, e->alignment, e->scale, e->group);
+        printf("entry '%s' at %u,%u size %ux%u repeat %ux%u origin %d,%d cell %ux%u", e->name, e->x,
+               e->y, e->width, e->height, e->repeat_u, e->repeat_v, e->origin_u, e->origin_v,
+               e->cell_width, e->cell_height);
+        if (e->cell_left || e->cell_top)
+            printf(" at %u,%u", vt_layout_cell_x(e), vt_layout_cell_y(e));
+        printf(" align %u scale %g group %u\n", e->alignment, e->scale, e->group);
         if (e->alias_count) { /* each alias must find this entry */
             printf("  aliases");
             for (uint32_t a = 0; a < e->alias_count; a++)

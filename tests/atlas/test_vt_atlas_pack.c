@@ -199,6 +199,86 @@ static void is_deterministic(void)
     VT_CHECK(memcmp(a, b, sizeof a) == 0);
 }
 
+/* --gutter: every sub-tile content sits G texels inside its cell on each side (or, on an axis
+ * where content + 2G exceeds the tile, fills a tile-wide cell); cells stay inside one tile, apart
+ * from each other and inside the atlas; every position is a multiple of the alignment. */
+static void gutter_cells_surround_subtile_content(void)
+{
+    enum { N = 1200 };
+    const uint32_t T = 128, G = 4;
+    struct vt_atlas_rect *r = calloc(N, sizeof *r);
+    for (uint32_t i = 0; i < N; i++) {
+        r[i].width = 1 + rng() % ((rng() & 1) ? 128 : 600);
+        r[i].height = 1 + rng() % ((rng() & 1) ? 128 : 600);
+    }
+    r[0].width = 128, r[0].height = 64;  /* x: tile-wide, no gutter; y: gutter */
+    r[1].width = 122, r[1].height = 122; /* both tile-wide */
+    struct vt_atlas_pack_options o = {.tile_content = T, .max_edge = 1u << 20, .gutter = G};
+    struct vt_atlas_pack_stats s;
+    VT_CHECK_INT_EQ(vt_atlas_pack(r, N, &o, &s, NULL), 0);
+    int bad_gutter = 0, bad_align = 0, bad_inside = 0, bad_tile = 0, overlaps = 0;
+    for (uint32_t i = 0; i < N; i++) {
+        const struct vt_atlas_rect *a = &r[i];
+        bool small = a->width <= T && a->height <= T;
+        uint32_t gx = a->x - a->cell_x, gy = a->y - a->cell_y;
+        if (a->cell_x > a->x || a->cell_y > a->y) {
+            bad_gutter++;
+            continue;
+        }
+        if (small) {
+            bad_gutter += a->width + 2 * G <= T ? gx != G || a->cell_width < a->width + 2 * G
+                                                : gx != 0 || a->cell_width != T;
+            bad_gutter += a->height + 2 * G <= T ? gy != G || a->cell_height < a->height + 2 * G
+                                                 : gy != 0 || a->cell_height != T;
+            bad_tile += a->cell_x / T != (a->cell_x + a->cell_width - 1) / T ||
+                        a->cell_y / T != (a->cell_y + a->cell_height - 1) / T;
+        } else {
+            bad_gutter += gx || gy || a->alignment != T;
+        }
+        bad_align += !is_pow2(a->alignment) || a->x % a->alignment || a->y % a->alignment ||
+                     a->cell_x % a->alignment || a->cell_y % a->alignment ||
+                     a->cell_width % a->alignment || a->cell_height % a->alignment;
+        bad_inside += a->cell_x + a->cell_width > s.width || a->cell_y + a->cell_height > s.height;
+        for (uint32_t j = i + 1; j < N; j++) {
+            const struct vt_atlas_rect *b = &r[j];
+            overlaps +=
+                a->cell_x < b->cell_x + b->cell_width && b->cell_x < a->cell_x + a->cell_width &&
+                a->cell_y < b->cell_y + b->cell_height && b->cell_y < a->cell_y + a->cell_height;
+        }
+    }
+    VT_CHECK_INT_EQ(bad_gutter, 0);
+    VT_CHECK_INT_EQ(bad_align, 0);
+    VT_CHECK_INT_EQ(bad_inside, 0);
+    VT_CHECK_INT_EQ(bad_tile, 0);
+    VT_CHECK_INT_EQ(overlaps, 0);
+    VT_CHECK(r[0].cell_width == T && r[0].x == r[0].cell_x && r[0].y == r[0].cell_y + G);
+    VT_CHECK(r[1].cell_width == T && r[1].cell_height == T && r[1].alignment == T);
+    VT_CHECK(s.area_over_cells >= 1 && s.area_over_cells < 1.3);
+    VT_CHECK(s.area_over_base > 0 && s.base_cell_area > 0);
+    /* Four 24x24 textures with gutter 4: 32x32 cells on one shelf of the tile. */
+    struct vt_atlas_rect q[4];
+    for (int i = 0; i < 4; i++)
+        q[i] = (struct vt_atlas_rect){.width = 24, .height = 24};
+    o.tile_content = 256;
+    VT_CHECK_INT_EQ(vt_atlas_pack(q, 4, &o, &s, NULL), 0);
+    VT_CHECK(s.width == 128 && s.height == 32); /* one shelf; the atlas shrinks to it */
+    for (int i = 0; i < 4; i++)
+        VT_CHECK(q[i].cell_width == 32 && q[i].x == q[i].cell_x + 4 && q[i].alignment == 4);
+    /* Bad gutters. */
+    struct vt_error err;
+    o.gutter = 3;
+    VT_CHECK_INT_EQ(vt_atlas_pack(q, 4, &o, NULL, &err), VT_ERR_ARG);
+    VT_CHECK_STR_CONTAINS(err.message, "gutter 3 is not 0 or a power of two");
+    o.gutter = 256;
+    VT_CHECK_INT_EQ(vt_atlas_pack(q, 4, &o, NULL, &err), VT_ERR_ARG);
+    /* Without gutter the cell starts at the content. */
+    o.gutter = 0;
+    VT_CHECK_INT_EQ(vt_atlas_pack(q, 4, &o, NULL, NULL), 0);
+    for (int i = 0; i < 4; i++)
+        VT_CHECK(q[i].cell_x == q[i].x && q[i].cell_y == q[i].y && q[i].cell_width == 32);
+    free(r);
+}
+
 int main(void)
 {
     VT_RUN(packs_random_mixed_sizes_without_overlap);
@@ -207,5 +287,6 @@ int main(void)
     VT_RUN(large_cells_round_up_to_whole_tiles);
     VT_RUN(refuses_bad_tile_size_and_too_small_limit);
     VT_RUN(is_deterministic);
+    VT_RUN(gutter_cells_surround_subtile_content);
     return vt_test_main_result();
 }

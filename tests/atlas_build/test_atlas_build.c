@@ -705,6 +705,71 @@ static void test_group_borders_cross_pieces(void)
     vt_image_release(&pieces[1].img);
 }
 
+/* --gutter: four 24x24 textures, each 4 texels inside its 32x32 cell, the cells touching in one
+ * 64x64 tile (as vt-atlas --gutter 4 lays them out; the atlas's second tile is empty). Every texel
+ * of a cell at levels 0 and 1 is the texture's own texel (its mip level 1 at level 1) clamped to
+ * the texture's rectangle: the gutter repeats the texture's edge on all four sides and holds
+ * nothing of a neighbour. */
+static void test_gutter_repeats_edges(void)
+{
+    enum { N = 4, G = 4, S = 24, C = 32 };
+    struct tex t[N];
+    struct vt_image m1[N];
+    static const char *names[N] = {"gutA", "gutB", "gutC", "gutD"};
+    struct vt_layout l;
+    struct vt_error err;
+    VT_CHECK_INT_EQ(vt_layout_alloc(&l, 1, N, &err), 0);
+    l.width = 128, l.height = 64, l.tile_content = 64, l.border = 4; /* 2 levels */
+    l.layers[0] = (struct vt_layout_layer){xstrdup("diffuse"), xstrdup("map_Kd"), VTS_COLOUR_SRGB};
+    for (uint32_t i = 0; i < N; i++) {
+        make_texture(&t[i], names[i], S, S, 3, 30 + i);
+        reduce_expected(&t[i].img, 1, &m1[i]);
+        struct vt_layout_entry *e = &l.entries[i];
+        e->name = xstrdup(names[i]);
+        e->x = (i % 2) * C + G, e->y = (i / 2) * C + G, e->width = e->height = S;
+        e->cell_left = e->cell_top = G, e->cell_width = e->cell_height = C, e->alignment = G;
+        e->textures[0].path = xstrdup(t[i].path);
+        e->textures[0].width = e->textures[0].height = S;
+    }
+    char path[600], store[600], args[2048];
+    snprintf(path, sizeof path, "%s/gutter.json", dir);
+    snprintf(store, sizeof store, "%s/gutter.vts", dir);
+    VT_CHECK_INT_EQ(vt_layout_write(path, &l, &err), 0);
+    vt_layout_release(&l);
+    snprintf(args, sizeof args, "--layout %s -o %s --codec png -q", path, store);
+    VT_CHECK_INT_EQ(run_tool(args), 0);
+    struct reader r;
+    if (reader_open(&r, store, 0)) {
+        for (uint32_t L = 0; L <= 1; L++) {
+            uint32_t bad = 0, gutter = 0;
+            for (uint32_t i = 0; i < N; i++) {
+                const struct vt_image *src = L ? &m1[i] : &t[i].img;
+                uint32_t cx = (i % 2) * C >> L, cy = (i / 2) * C >> L, g = G >> L;
+                for (uint32_t y = 0; y < (uint32_t)C >> L; y++)
+                    for (uint32_t x = 0; x < (uint32_t)C >> L; x++) {
+                        int64_t u = (int64_t)x - g, v = (int64_t)y - g;
+                        bool edge = u < 0 || v < 0 || u >= src->width || v >= src->height;
+                        u = u < 0 ? 0 : u >= src->width ? src->width - 1 : u;
+                        v = v < 0 ? 0 : v >= src->height ? src->height - 1 : v;
+                        const uint8_t *got = reader_texel(&r, L, cx + x, cy + y);
+                        bad +=
+                            !got || memcmp(got, vt_image_at(src, (uint32_t)u, (uint32_t)v), 3) != 0;
+                        gutter += edge;
+                    }
+            }
+            if (bad)
+                fprintf(stderr, "gutter level %u: %u texels differ\n", L, bad);
+            VT_CHECK_INT_EQ(bad, 0);
+            VT_CHECK_INT_EQ(gutter, L ? N * (16 * 16 - 12 * 12) : N * (32 * 32 - 24 * 24));
+        }
+        reader_close(&r);
+    }
+    for (uint32_t i = 0; i < N; i++) {
+        vt_image_release(&t[i].img);
+        vt_image_release(&m1[i]);
+    }
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 3) {
@@ -739,6 +804,7 @@ int main(int argc, char **argv)
     VT_RUN(test_single_layer_store);
     VT_RUN(test_mixed_coarse_texels);
     VT_RUN(test_group_borders_cross_pieces);
+    VT_RUN(test_gutter_repeats_edges);
     for (int i = 0; i < T_COUNT; i++)
         vt_image_release(&texs[i].img);
     return vt_test_main_result();

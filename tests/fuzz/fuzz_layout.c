@@ -24,10 +24,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         uint64_t names = 0;
         for (uint32_t i = 0; i < l.entry_count; i++) {
             const struct vt_layout_entry *e = &l.entries[i];
-            if ((uint64_t)e->x + e->cell_width > l.width ||
-                (uint64_t)e->y + e->cell_height > l.height ||
-                (uint64_t)e->width * e->repeat_u > e->cell_width ||
-                (uint64_t)e->height * e->repeat_v > e->cell_height)
+            if (e->cell_left > e->x || e->cell_top > e->y ||
+                (uint64_t)vt_layout_cell_x(e) + e->cell_width > l.width ||
+                (uint64_t)vt_layout_cell_y(e) + e->cell_height > l.height ||
+                (uint64_t)e->width * e->repeat_u + e->cell_left > e->cell_width ||
+                (uint64_t)e->height * e->repeat_v + e->cell_top > e->cell_height)
                 abort();
             if (vt_layout_find(&l, e->name) != e)
                 abort();

@@ -419,6 +419,105 @@ static void test_map_uv(void)
     vt_layout_release(&l);
 }
 
+/* Gutters: cell_left/cell_top round-trip as "cell_x"/"cell_y" (written only when non-zero), the
+ * cell rectangle (not x, y) is what must stay inside the atlas and apart from other cells, the
+ * copies must fit after the gutter, and the alignment must divide the gutter too. */
+static void add_gutter(struct vt_layout *l)
+{
+    struct vt_layout_entry *e = &l->entries[1]; /* 100x60 at (512, 0), cell 128x64 */
+    e->x = 516, e->y = 4, e->cell_left = 4, e->cell_top = 4, e->cell_width = 112,
+    e->cell_height = 72, e->alignment = 4;
+}
+static void gutter_overlap(struct vt_layout *l)
+{
+    add_gutter(l);
+    l->entries[1].x = 520, l->entries[1].cell_left = 12; /* cell from 508: inside brick's */
+}
+static void gutter_before_atlas(struct vt_layout *l)
+{
+    add_gutter(l);
+    l->entries[1].y = 0; /* cell_top 4 > y */
+}
+static void gutter_too_small(struct vt_layout *l)
+{
+    add_gutter(l);
+    l->entries[1].cell_width = 100 + 3; /* the copy ends past the cell */
+}
+static void gutter_misaligned(struct vt_layout *l)
+{
+    add_gutter(l);
+    l->entries[1].alignment = 8; /* divides x 516? no */
+    l->entries[1].x = 520, l->entries[1].cell_left = 8, l->entries[1].cell_top = 2,
+    l->entries[1].y = 2;
+}
+static void gutter_outside(struct vt_layout *l)
+{
+    add_gutter(l);
+    l->entries[1].cell_width = 1024 - 512 + 4; /* ends past the atlas */
+}
+static void test_gutter_fields(void)
+{
+    struct vt_layout l, r;
+    struct vt_error err;
+    make_layout(&l);
+    add_gutter(&l);
+    VT_CHECK_INT_EQ(vt_layout_check(&l, "g.json", &err), 0);
+    VT_CHECK_INT_EQ(vt_layout_cell_x(&l.entries[1]), 512);
+    VT_CHECK_INT_EQ(vt_layout_cell_y(&l.entries[1]), 0);
+    VT_CHECK_INT_EQ(vt_layout_write("layout_gutter.json", &l, &err), 0);
+    VT_CHECK_INT_EQ(vt_layout_read("layout_gutter.json", NULL, &r, &err), 0);
+    for (uint32_t i = 0; i < 3; i++) {
+        const struct vt_layout_entry *a = &l.entries[i], *b = &r.entries[i];
+        VT_CHECK(a->x == b->x && a->y == b->y && a->cell_left == b->cell_left &&
+                 a->cell_top == b->cell_top && a->cell_width == b->cell_width &&
+                 a->cell_height == b->cell_height && a->alignment == b->alignment);
+    }
+    vt_layout_release(&r);
+    /* Only the entry with a gutter carries cell_x/cell_y. */
+    FILE *f = fopen("layout_gutter.json", "rb");
+    char text[8192];
+    size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
+    if (f)
+        fclose(f);
+    text[n] = 0;
+    const char *p = strstr(text, "\"cell_x\": 512");
+    VT_CHECK(p != NULL);
+    VT_CHECK(p && strstr(p + 1, "\"cell_x\"") == NULL);
+    VT_CHECK(strstr(text, "\"cell_y\": 0") != NULL);
+    vt_layout_release(&l);
+    expect_invalid(gutter_overlap, "the cells of 'brick' and 'small' overlap");
+    expect_invalid(gutter_before_atlas, "('small') has a cell starting after its texture");
+    expect_invalid(gutter_too_small, "('small') does not fit in its cell");
+    expect_invalid(gutter_misaligned, "('small') has an alignment that is not a power of two");
+    expect_invalid(gutter_outside, "('small') has a cell outside the atlas");
+    /* Reader: cell_x defaults to x, must not exceed it. */
+    const char *head = "{\"format\":\"vtpipe-atlas\",\"version\":1,\"width\":256,\"height\":256,"
+                       "\"tile_content\":256,\"border\":2,\"layers\":[{\"name\":\"diffuse\","
+                       "\"map\":\"map_Kd\",\"colour\":\"srgb\"}],\"entries\":[";
+    char buf[1024];
+    snprintf(
+        buf, sizeof buf,
+        "%s{\"name\":\"a\",\"x\":4,\"y\":4,\"width\":4,\"height\":4,\"cell_width\":12,"
+        "\"cell_height\":12,\"alignment\":4,\"cell_x\":8,\"textures\":[{\"fill\":[0,0,0,1]}]}]}",
+        head);
+    expect_parse_error(buf, "entries[0].cell_x: expected an integer 0..4");
+    snprintf(buf, sizeof buf,
+             "%s{\"name\":\"a\",\"x\":4,\"y\":4,\"width\":4,\"height\":4,\"cell_width\":12,"
+             "\"cell_height\":12,\"alignment\":4,\"cell_x\":0,\"cell_y\":0,"
+             "\"textures\":[{\"fill\":[0,0,0,1]}]}]}",
+             head);
+    VT_CHECK_INT_EQ(vt_layout_parse_memory(buf, strlen(buf), "g.json", NULL, &r, &err), 0);
+    VT_CHECK(r.entries[0].cell_left == 4 && r.entries[0].cell_top == 4);
+    vt_layout_release(&r);
+    snprintf(buf, sizeof buf,
+             "%s{\"name\":\"a\",\"x\":4,\"y\":4,\"width\":4,\"height\":4,\"cell_width\":8,"
+             "\"cell_height\":8,\"alignment\":4,\"textures\":[{\"fill\":[0,0,0,1]}]}]}",
+             head);
+    VT_CHECK_INT_EQ(vt_layout_parse_memory(buf, strlen(buf), "g.json", NULL, &r, &err), 0);
+    VT_CHECK(r.entries[0].cell_left == 0 && r.entries[0].cell_top == 0);
+    vt_layout_release(&r);
+}
+
 int main(void)
 {
     VT_RUN(test_round_trip);
@@ -428,5 +527,6 @@ int main(void)
     VT_RUN(test_find_many_aliases);
     VT_RUN(test_parse_errors);
     VT_RUN(test_map_uv);
+    VT_RUN(test_gutter_fields);
     return vt_test_main_result();
 }
