@@ -16,458 +16,7 @@
 #include "tool_common.h"
 #include "vt_atomic_file.h"
 #include "vt_error.h"
-#include "vt_png_file.h"
-
-/* ---- 5x7 bitmap font: 7 rows of 5 columns, '1' = ink ---- */
-
-struct glyph {
-    char c;
-    const char *rows; /* 35 characters */
-};
-
-static const struct glyph font[] = {
-    {'0', "01110100011001110101110011000101110"}, {'1', "00100011000010000100001000010001110"},
-    {'2', "01110100010000100010001000100011111"}, {'3', "11111000100010000010000011000101110"},
-    {'4', "00010001100101010010111110001000010"}, {'5', "11111100001111000001000011000101110"},
-    {'6', "00110010001000011110100011000101110"}, {'7', "11111000010001000100010000100001000"},
-    {'8', "01110100011000101110100011000101110"}, {'9', "01110100011000101111000010001001100"},
-    {'A', "01110100011000111111100011000110001"}, {'B', "11110100011000111110100011000111110"},
-    {'C', "01110100011000010000100001000101110"}, {'D', "11100100101000110001100011001011100"},
-    {'E', "11111100001000011110100001000011111"}, {'F', "11111100001000011110100001000010000"},
-    {'G', "01110100011000010111100011000101111"}, {'H', "10001100011000111111100011000110001"},
-    {'I', "01110001000010000100001000010001110"}, {'J', "00111000100001000010000101001001100"},
-    {'K', "10001100101010011000101001001010001"}, {'L', "10000100001000010000100001000011111"},
-    {'M', "10001110111010110101100011000110001"}, {'N', "10001100011100110101100111000110001"},
-    {'O', "01110100011000110001100011000101110"}, {'P', "11110100011000111110100001000010000"},
-    {'Q', "01110100011000110001101011001001101"}, {'R', "11110100011000111110101001001010001"},
-    {'S', "01111100001000001110000010000111110"}, {'T', "11111001000010000100001000010000100"},
-    {'U', "10001100011000110001100011000101110"}, {'V', "10001100011000110001100010101000100"},
-    {'W', "10001100011000110101101011010101010"}, {'X', "10001100010101000100010101000110001"},
-    {'Y', "10001100010101000100001000010000100"}, {'Z', "11111000010001000100010001000011111"},
-    {'-', "00000000000000011111000000000000000"}, {'_', "00000000000000000000000000000011111"},
-    {'.', "00000000000000000000000000110001100"}, {' ', "00000000000000000000000000000000000"},
-};
-
-#define GLYPH_W       5
-#define GLYPH_H       7
-#define GLYPH_ADVANCE 6 /* one blank column between glyphs */
-
-static const char *glyph_rows(char c)
-{
-    if (c >= 'a' && c <= 'z')
-        c = (char)(c - 'a' + 'A');
-    for (size_t i = 0; i < sizeof(font) / sizeof(font[0]); i++)
-        if (font[i].c == c)
-            return font[i].rows;
-    return font[sizeof(font) / sizeof(font[0]) - 1].rows; /* unknown: blank */
-}
-
-/* ---- images ---- */
-
-struct img {
-    uint32_t w, h, ch;
-    uint8_t *px;
-};
-
-static int img_alloc(struct img *im, uint32_t w, uint32_t h, uint32_t ch)
-{
-    im->w = w;
-    im->h = h;
-    im->ch = ch;
-    im->px = calloc((size_t)w * h, ch); /* sizes are ours (at most 2000x1000x4) */
-    return im->px ? 0 : -1;
-}
-
-static uint8_t *img_at(struct img *im, uint32_t x, uint32_t y)
-{
-    return im->px + ((size_t)y * im->w + x) * im->ch;
-}
-
-static void img_set(struct img *im, int64_t x, int64_t y, const uint8_t *value)
-{
-    if (x < 0 || y < 0 || x >= im->w || y >= im->h)
-        return;
-    memcpy(img_at(im, (uint32_t)x, (uint32_t)y), value, im->ch);
-}
-
-static void img_fill_rect(struct img *im, int64_t x0, int64_t y0, int64_t w, int64_t h,
-                          const uint8_t *value)
-{
-    for (int64_t y = y0; y < y0 + h; y++)
-        for (int64_t x = x0; x < x0 + w; x++)
-            img_set(im, x, y, value);
-}
-
-static int64_t text_width(const char *text, int64_t scale)
-{
-    size_t n = strlen(text);
-    return n ? (int64_t)(n * GLYPH_ADVANCE - 1) * scale : 0;
-}
-
-/* Draws text with its top-left corner at (x0, y0), each font pixel a scale x scale square. */
-static void draw_text(struct img *im, int64_t x0, int64_t y0, int64_t scale, const char *text,
-                      const uint8_t *value)
-{
-    for (size_t i = 0; text[i]; i++) {
-        const char *rows = glyph_rows(text[i]);
-        for (int gy = 0; gy < GLYPH_H; gy++)
-            for (int gx = 0; gx < GLYPH_W; gx++)
-                if (rows[gy * GLYPH_W + gx] == '1')
-                    img_fill_rect(im, x0 + ((int64_t)i * GLYPH_ADVANCE + gx) * scale,
-                                  y0 + gy * scale, scale, scale, value);
-    }
-}
-
-/* The label: the texture's name in big letters, its size below in smaller ones, white on a dark
- * box in the middle of the image. ink/box are ch-channel values. With a mask image (1 channel),
- * only the box and the text are drawn into it as box_mask/ink_mask. */
-struct label_box {
-    int64_t x, y, w, h;
-    int64_t scale1, scale2;
-};
-
-static struct label_box label_place(uint32_t w, uint32_t h, const char *line1, const char *line2)
-{
-    struct label_box b = {0};
-    int64_t s1 = (int64_t)(0.6 * w) / (text_width(line1, 1) + 1);
-    int64_t s1h = (int64_t)(0.3 * h) / GLYPH_H;
-    if (s1h < s1)
-        s1 = s1h;
-    if (s1 < 1)
-        s1 = 1;
-    int64_t s2 = s1 / 2;
-    int64_t s2w = (int64_t)(0.9 * w) / (text_width(line2, 1) + 1);
-    if (s2w < s2)
-        s2 = s2w;
-    if (s2 < 1 && s1 >= 2)
-        s2 = 1;
-    b.scale1 = s1;
-    b.scale2 = s2;
-    int64_t pad = s1 > 2 ? s1 : 2;
-    int64_t tw = text_width(line1, s1);
-    if (s2 > 0 && text_width(line2, s2) > tw)
-        tw = text_width(line2, s2);
-    b.w = tw + 2 * pad;
-    b.h = GLYPH_H * s1 + (s2 > 0 ? (GLYPH_H + 3) * s2 : 0) + 2 * pad;
-    b.x = ((int64_t)w - b.w) / 2;
-    b.y = ((int64_t)h - b.h) / 2;
-    return b;
-}
-
-static void label_draw(struct img *im, const struct label_box *b, const char *line1,
-                       const char *line2, const uint8_t *box, const uint8_t *ink)
-{
-    img_fill_rect(im, b->x, b->y, b->w, b->h, box);
-    int64_t pad = b->scale1 > 2 ? b->scale1 : 2;
-    draw_text(im, b->x + (b->w - text_width(line1, b->scale1)) / 2, b->y + pad, b->scale1, line1,
-              ink);
-    if (b->scale2 > 0)
-        draw_text(im, b->x + (b->w - text_width(line2, b->scale2)) / 2,
-                  b->y + pad + GLYPH_H * b->scale1 + 3 * b->scale2, b->scale2, line2, ink);
-}
-
-/* ---- texture content ---- */
-
-enum tex_kind {
-    TEX_FACADE, /* opaque RGB: wall with a window grid, frame and corner marks */
-    TEX_ALPHA,  /* RGBA: a round cut-out (tree crown) with soft edges */
-    TEX_MASK,   /* 1 channel: map_d fence mask with holes */
-    TEX_NORMAL, /* RGB normal map (tangent space, +Y up) of rivets and the raised label */
-    TEX_TILING, /* RGB paving that tiles seamlessly (used with UVs 0..8) */
-};
-
-struct tex_spec {
-    const char *file; /* under textures/ */
-    const char *label;
-    uint32_t w, h;
-    enum tex_kind kind;
-};
-
-/* 44 textures: t00..t40 colour (t36..t38 with alpha), n41 normal, g42 tiling, m43 alpha mask. */
-static const struct tex_spec textures[] = {
-    {"t00.png", "T00", 1024, 1024, TEX_FACADE},
-    {"t01.png", "T01", 512, 256, TEX_FACADE},
-    {"t02.png", "T02", 300, 200, TEX_FACADE},
-    {"t03.png", "T03", 100, 60, TEX_FACADE},
-    {"t04.png", "T04", 64, 64, TEX_FACADE},
-    {"t05.png", "T05", 2000, 1000, TEX_FACADE},
-    {"t06.png", "T06", 256, 256, TEX_FACADE},
-    {"t07.png", "T07", 128, 128, TEX_FACADE},
-    {"t08.png", "T08", 512, 512, TEX_FACADE},
-    {"t09.png", "T09", 200, 300, TEX_FACADE},
-    {"t10.png", "T10", 640, 480, TEX_FACADE},
-    {"t11.png", "T11", 96, 96, TEX_FACADE},
-    {"t12.png", "T12", 256, 128, TEX_FACADE},
-    {"t13.png", "T13", 128, 256, TEX_FACADE},
-    {"t14.png", "T14", 1000, 500, TEX_FACADE},
-    {"t15.png", "T15", 333, 222, TEX_FACADE},
-    {"t16.png", "T16", 150, 150, TEX_FACADE},
-    {"t17.png", "T17", 80, 120, TEX_FACADE},
-    {"t18.png", "T18", 512, 384, TEX_FACADE},
-    {"t19.png", "T19", 64, 128, TEX_FACADE},
-    {"t20.png", "T20", 720, 360, TEX_FACADE},
-    {"t21.png", "T21", 240, 240, TEX_FACADE},
-    {"t22.png", "T22", 48, 48, TEX_FACADE},
-    {"t23.png", "T23", 400, 100, TEX_FACADE},
-    {"t24.png", "T24", 100, 400, TEX_FACADE},
-    {"t25.png", "T25", 257, 129, TEX_FACADE},
-    {"t26.png", "T26", 160, 90, TEX_FACADE},
-    {"t27.png", "T27", 384, 384, TEX_FACADE},
-    {"t28.png", "T28", 192, 64, TEX_FACADE},
-    {"t29.png", "T29", 200, 200, TEX_FACADE},
-    {"t30.png", "T30", 768, 512, TEX_FACADE},
-    {"t31.png", "T31", 64, 48, TEX_FACADE},
-    {"t32.png", "T32", 120, 80, TEX_FACADE},
-    {"t33.png", "T33", 256, 64, TEX_FACADE},
-    {"t34.png", "T34", 500, 500, TEX_FACADE},
-    {"t35.png", "T35", 350, 175, TEX_FACADE},
-    {"t36_alpha.png", "T36", 256, 256, TEX_ALPHA},
-    {"t37_alpha.png", "T37", 200, 300, TEX_ALPHA},
-    {"t38_alpha.png", "T38", 128, 128, TEX_ALPHA},
-    {"t39.png", "T39", 300, 150, TEX_FACADE},
-    {"t40.png", "T40", 512, 512, TEX_FACADE},
-    {"n41_normal.png", "N41", 512, 512, TEX_NORMAL},
-    {"g42_tiling.png", "G42", 128, 128, TEX_TILING},
-    {"m43_mask.png", "M43", 300, 150, TEX_MASK},
-};
-#define TEXTURE_COUNT (sizeof(textures) / sizeof(textures[0]))
-
-static uint32_t hash32(uint32_t x)
-{
-    x ^= x >> 16;
-    x *= 0x7feb352dU;
-    x ^= x >> 15;
-    x *= 0x846ca68bU;
-    x ^= x >> 16;
-    return x;
-}
-
-/* A saturated colour for texture index i (hues spread by the golden ratio). */
-static void base_colour(uint32_t i, double rgb[3])
-{
-    double hue = fmod(i * 0.6180339887, 1.0) * 6.0;
-    double f = hue - floor(hue);
-    double v = 0.85, s = 0.65;
-    double p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
-    switch ((int)hue) {
-    case 0:
-        rgb[0] = v, rgb[1] = t, rgb[2] = p;
-        break;
-    case 1:
-        rgb[0] = q, rgb[1] = v, rgb[2] = p;
-        break;
-    case 2:
-        rgb[0] = p, rgb[1] = v, rgb[2] = t;
-        break;
-    case 3:
-        rgb[0] = p, rgb[1] = q, rgb[2] = v;
-        break;
-    case 4:
-        rgb[0] = t, rgb[1] = p, rgb[2] = v;
-        break;
-    default:
-        rgb[0] = v, rgb[1] = p, rgb[2] = q;
-        break;
-    }
-}
-
-static uint8_t to_u8(double v)
-{
-    if (v <= 0)
-        return 0;
-    if (v >= 1)
-        return 255;
-    return (uint8_t)(v * 255.0 + 0.5);
-}
-
-/* Facade: gradient background, a grid of windows, a light frame, red mark at the top-left corner
- * and blue at the bottom-right (orientation checks), then the label. ch is 3 or 4. */
-static void paint_facade(struct img *im, uint32_t index)
-{
-    double rgb[3];
-    base_colour(index, rgb);
-    uint32_t m = im->w < im->h ? im->w : im->h;
-    uint32_t cell = m / 6 > 8 ? m / 6 : 8;
-    uint32_t frame = m / 64 > 1 ? m / 64 : 1;
-    for (uint32_t y = 0; y < im->h; y++) {
-        double shade = 0.75 + 0.25 * (double)y / im->h;
-        for (uint32_t x = 0; x < im->w; x++) {
-            uint8_t *p = img_at(im, x, y);
-            uint32_t cx = x % cell, cy = y % cell;
-            bool window =
-                cx > cell / 4 && cx < cell - cell / 4 && cy > cell / 5 && cy < cell - cell / 3;
-            double k =
-                window ? 0.35 + 0.15 * (hash32(index * 7919u + (x / cell) * 131u + (y / cell)) & 1)
-                       : shade;
-            for (int c = 0; c < 3; c++)
-                p[c] = to_u8(rgb[c] * k);
-            if (im->ch == 4)
-                p[3] = 255;
-            if (x < frame || y < frame || x >= im->w - frame || y >= im->h - frame)
-                p[0] = p[1] = p[2] = 235;
-        }
-    }
-    uint8_t red[4] = {220, 30, 30, 255}, blue[4] = {30, 30, 220, 255};
-    int64_t mark = m / 10 > 2 ? m / 10 : 2;
-    img_fill_rect(im, frame, frame, mark, mark, red);
-    img_fill_rect(im, (int64_t)im->w - frame - mark, (int64_t)im->h - frame - mark, mark, mark,
-                  blue);
-}
-
-static void paint_alpha(struct img *im, uint32_t index)
-{
-    double rgb[3];
-    base_colour(index, rgb);
-    double cx = im->w / 2.0, cy = im->h / 2.0, rx = im->w * 0.48, ry = im->h * 0.48;
-    for (uint32_t y = 0; y < im->h; y++)
-        for (uint32_t x = 0; x < im->w; x++) {
-            uint8_t *p = img_at(im, x, y);
-            double dx = (x + 0.5 - cx) / rx, dy = (y + 0.5 - cy) / ry;
-            double d = sqrt(dx * dx + dy * dy);                  /* 1 on the ellipse */
-            double edge = (1.0 - d) * (rx < ry ? rx : ry) / 2.0; /* ~2 px soft edge */
-            double leaf = 0.7 + 0.3 * ((hash32(index * 31u + (x / 6) * 977u + y / 6) & 3) / 3.0);
-            for (int c = 0; c < 3; c++)
-                p[c] = to_u8(rgb[c] * leaf);
-            p[3] = to_u8(edge + 0.5);
-        }
-}
-
-static void paint_mask(struct img *im)
-{
-    /* Diamond holes on a 20-pixel lattice: 0 in the holes, 255 on the wire. */
-    uint32_t period = im->w / 15 > 8 ? im->w / 15 : 8;
-    for (uint32_t y = 0; y < im->h; y++)
-        for (uint32_t x = 0; x < im->w; x++) {
-            int64_t dx = (int64_t)(x % period) - (int64_t)period / 2;
-            int64_t dy = (int64_t)(y % period) - (int64_t)period / 2;
-            bool hole = llabs(dx) + llabs(dy) < (int64_t)period * 2 / 5;
-            img_at(im, x, y)[0] = hole ? 0 : 255;
-        }
-}
-
-/* Seamless paving: rectangular stones (period = image size), grout lines, per-stone shade. */
-static void paint_tiling(struct img *im, uint32_t index)
-{
-    double rgb[3] = {0.62, 0.58, 0.50};
-    uint32_t sx = im->w / 4, sy = im->h / 8;
-    if (sx < 2)
-        sx = 2;
-    if (sy < 2)
-        sy = 2;
-    for (uint32_t y = 0; y < im->h; y++) {
-        uint32_t row = y / sy;
-        uint32_t off = (row & 1) ? sx / 2 : 0; /* running bond; w is a multiple of sx */
-        for (uint32_t x = 0; x < im->w; x++) {
-            uint32_t xs = (x + off) % im->w;
-            uint32_t stone = (xs / sx) + 16 * row;
-            bool grout = xs % sx == 0 || y % sy == 0;
-            double k = grout ? 0.35 : 0.8 + 0.2 * ((hash32(index + stone * 2654435761u) & 7) / 7.0);
-            uint8_t *p = img_at(im, x, y);
-            for (int c = 0; c < 3; c++)
-                p[c] = to_u8(rgb[c] * k);
-        }
-    }
-}
-
-/* Normal map from a height field: rivets on a lattice plus the raised label, by central
- * differences (wrapping at the edges). +X right, +Y up (OpenGL convention), encoded n * 0.5 + 0.5.
- */
-static int paint_normal(struct img *im, const char *line1, const char *line2)
-{
-    struct img height;
-    if (img_alloc(&height, im->w, im->h, 1) < 0)
-        return -1;
-    uint32_t period = im->w / 8 > 8 ? im->w / 8 : 8;
-    for (uint32_t y = 0; y < im->h; y++)
-        for (uint32_t x = 0; x < im->w; x++) {
-            double dx = (double)(x % period) - period / 2.0 + 0.5;
-            double dy = (double)(y % period) - period / 2.0 + 0.5;
-            double r = sqrt(dx * dx + dy * dy) / (period * 0.3);
-            img_at(&height, x, y)[0] = r < 1 ? to_u8(sqrt(1 - r * r) * 0.6) : 0;
-        }
-    struct label_box b = label_place(im->w, im->h, line1, line2);
-    uint8_t flat = 0, raised = 255;
-    label_draw(&height, &b, line1, line2, &flat, &raised);
-    const double strength = 4.0 / 255.0;
-    for (uint32_t y = 0; y < im->h; y++)
-        for (uint32_t x = 0; x < im->w; x++) {
-            uint32_t xl = (x + im->w - 1) % im->w, xr = (x + 1) % im->w;
-            uint32_t yu = (y + im->h - 1) % im->h, yd = (y + 1) % im->h;
-            double dhx = (img_at(&height, xr, y)[0] - img_at(&height, xl, y)[0]) * strength / 2;
-            /* rows go down, +Y goes up */
-            double dhy = (img_at(&height, x, yu)[0] - img_at(&height, x, yd)[0]) * strength / 2;
-            double nx = -dhx, ny = -dhy, nz = 1.0;
-            double len = sqrt(nx * nx + ny * ny + nz * nz);
-            uint8_t *p = img_at(im, x, y);
-            p[0] = to_u8(nx / len * 0.5 + 0.5);
-            p[1] = to_u8(ny / len * 0.5 + 0.5);
-            p[2] = to_u8(nz / len * 0.5 + 0.5);
-        }
-    free(height.px);
-    return 0;
-}
-
-static int write_png(const char *path, struct img *im, struct vt_error *err)
-{
-    struct vt_png_file_writer *w = vt_png_file_writer_create(path, im->w, im->h, im->ch, 8, err);
-    if (!w)
-        return err->status;
-    int rc = vt_png_file_writer_rows(w, im->px, im->h, (size_t)im->w * im->ch, err);
-    if (rc == 0)
-        rc = vt_png_file_writer_finish(w, err);
-    vt_png_file_writer_destroy(w);
-    return rc;
-}
-
-static int make_texture(const char *dir, uint32_t index, uint32_t shrink, struct vt_error *err)
-{
-    const struct tex_spec *t = &textures[index];
-    uint32_t w = t->w / shrink > 8 ? t->w / shrink : 8;
-    uint32_t h = t->h / shrink > 8 ? t->h / shrink : 8;
-    static const uint32_t channels[] = {3, 4, 1, 3, 3};
-    struct img im;
-    if (img_alloc(&im, w, h, channels[t->kind]) < 0)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory for texture '%s'", t->file);
-    char size_text[32];
-    snprintf(size_text, sizeof(size_text), "%uX%u", w, h);
-    struct label_box b = label_place(w, h, t->label, size_text);
-    uint8_t box[4] = {20, 20, 20, 255}, ink[4] = {255, 255, 255, 255};
-    int rc = 0;
-    switch (t->kind) {
-    case TEX_FACADE:
-        paint_facade(&im, index);
-        label_draw(&im, &b, t->label, size_text, box, ink);
-        break;
-    case TEX_ALPHA:
-        paint_alpha(&im, index);
-        label_draw(&im, &b, t->label, size_text, box, ink);
-        break;
-    case TEX_MASK: {
-        paint_mask(&im);
-        uint8_t opaque = 255, hole = 0;
-        label_draw(&im, &b, t->label, size_text, &opaque, &hole);
-        break;
-    }
-    case TEX_NORMAL:
-        if (paint_normal(&im, t->label, size_text) < 0)
-            rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory for texture '%s'", t->file);
-        break;
-    case TEX_TILING: {
-        paint_tiling(&im, index);
-        /* the label stays inside the image, so the edges still tile */
-        struct label_box small = label_place(w, h, t->label, "TILES");
-        label_draw(&im, &small, t->label, "TILES", box, ink);
-        break;
-    }
-    }
-    if (rc == 0) {
-        char path[VT_PATH_MAX];
-        snprintf(path, sizeof(path), "%s/textures/%s", dir, t->file);
-        rc = write_png(path, &im, err);
-    }
-    free(im.px);
-    return rc;
-}
+#include "vt_sample_textures.h"
 
 /* ---- text output ---- */
 
@@ -545,24 +94,24 @@ static void write_mtl(struct text *m)
         char name[32];
         snprintf(name, sizeof(name), "bld_%02u", i);
         mtl_material(m, name, "building");
-        text_printf(m, "map_Kd textures/%s" EOL, textures[i].file);
+        text_printf(m, "map_Kd textures/%s" EOL, vt_sample_textures[i].file);
     }
     mtl_material(m, "kiosk", "shares t10.png with bld_10");
-    text_printf(m, "map_Kd textures/%s" EOL, textures[10].file);
+    text_printf(m, "map_Kd textures/%s" EOL, vt_sample_textures[10].file);
     for (uint32_t i = 36; i <= 38; i++) {
         char name[32];
         snprintf(name, sizeof(name), "tree_%u", i - 36);
         mtl_material(m, name, "alpha in the RGBA diffuse map");
-        text_printf(m, "map_Kd textures/%s" EOL, textures[i].file);
+        text_printf(m, "map_Kd textures/%s" EOL, vt_sample_textures[i].file);
     }
     mtl_material(m, "fence", "RGB diffuse map + a separate map_d alpha mask");
-    text_printf(m, "map_Kd textures/%s" EOL "map_d textures/%s" EOL, textures[39].file,
-                textures[43].file);
+    text_printf(m, "map_Kd textures/%s" EOL "map_d textures/%s" EOL, vt_sample_textures[39].file,
+                vt_sample_textures[43].file);
     mtl_material(m, "wall", "diffuse + tangent-space normal map");
-    text_printf(m, "map_Kd textures/%s" EOL "norm textures/%s" EOL, textures[40].file,
-                textures[41].file);
+    text_printf(m, "map_Kd textures/%s" EOL "norm textures/%s" EOL, vt_sample_textures[40].file,
+                vt_sample_textures[41].file);
     mtl_material(m, "ground", "tiling texture, UVs 0..8");
-    text_printf(m, "map_Kd textures/%s" EOL, textures[42].file);
+    text_printf(m, "map_Kd textures/%s" EOL, vt_sample_textures[42].file);
     text_printf(m, EOL "# no texture: a constant colour" EOL "newmtl plain_grey" EOL
                        "Kd 0.5 0.5 0.5" EOL "illum 1" EOL);
 }
@@ -678,7 +227,7 @@ static void write_obj(struct text *o)
     s.v = s.vt = 9;
     /* Buildings: one per grid cell, each its own object and material. */
     for (uint32_t i = 0; i < GRID * GRID; i++) {
-        uint32_t gx = i % GRID, gz = i / GRID, h = hash32(i + 1000);
+        uint32_t gx = i % GRID, gz = i / GRID, h = vt_sample_textures_hash32(i + 1000);
         double foot = 4.0 + (h & 3), height = 5.0 + ((h >> 4) % 26);
         double cx = gx * BLOCK + BLOCK / 2, cz = gz * BLOCK + BLOCK / 2;
         char name[32], mtl[32];
@@ -718,7 +267,7 @@ static void usage(FILE *f)
             "in OUTDIR/textures/ (PNG, each labelled with its name and size). Deterministic.\n"
             "  --shrink N   divide every texture edge by N (1..16, default 1; at least 8 px)\n"
             "  -q           print errors only\n",
-            (unsigned)TEXTURE_COUNT);
+            (unsigned)VT_SAMPLE_TEXTURES_COUNT);
 }
 
 /* mkdir -p: creates path and every missing parent. */
@@ -753,12 +302,12 @@ static int run(const char *dir, uint32_t shrink)
     if (make_dir(dir) < 0 || make_dir(path) < 0)
         return VT_EXIT_BAD_INPUT;
     uint64_t texels = 0;
-    for (uint32_t i = 0; i < TEXTURE_COUNT; i++) {
-        if (make_texture(dir, i, shrink, &err) < 0) {
+    for (uint32_t i = 0; i < VT_SAMPLE_TEXTURES_COUNT; i++) {
+        if (vt_sample_textures_make(dir, i, shrink, &err) < 0) {
             vt_log(VT_LOG_ERROR, "%s", err.message);
             return VT_EXIT_BAD_INPUT;
         }
-        texels += (uint64_t)textures[i].w * textures[i].h;
+        texels += (uint64_t)vt_sample_textures[i].w * vt_sample_textures[i].h;
     }
     struct text mtl = {0}, obj = {0};
     write_mtl(&mtl);
@@ -777,7 +326,7 @@ static int run(const char *dir, uint32_t shrink)
         return VT_EXIT_BAD_INPUT;
     }
     vt_log(VT_LOG_INFO, "wrote '%s': %u textures (%.1f Mtexels before --shrink)", path,
-           (unsigned)TEXTURE_COUNT, texels / 1e6);
+           (unsigned)VT_SAMPLE_TEXTURES_COUNT, texels / 1e6);
     return VT_EXIT_OK;
 }
 

@@ -1,0 +1,85 @@
+/* The state of one vt-offset rewrite, shared by pass 1 (vt_offset_scan.c) and pass 2
+ * (vt_offset_write.c), and its buffered output (internal to lib/vt_offset*.c). */
+#ifndef VT_OFFSET_RUN_H
+#define VT_OFFSET_RUN_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vt_error.h"
+#include "vt_layout.h"
+#include "vt_offset.h"
+#include "vt_offset_src.h"
+
+#define VT_OFFSET_OUT_CHUNK   ((size_t)1 << 20)
+#define VT_OFFSET_NONE        UINT32_MAX       /* no material / no extra */
+#define VT_OFFSET_MAT_NONE    UINT32_MAX       /* before any usemtl */
+#define VT_OFFSET_MAT_MISSING (UINT32_MAX - 1) /* usemtl of a material the layout lacks */
+
+struct vt_offset_extra {
+    uint32_t mat;  /* entry index */
+    uint32_t next; /* next extra of the same vt, or VT_OFFSET_NONE */
+};
+
+struct vt_offset_repl {
+    size_t s, e; /* bytes of the line to replace */
+    int64_t value;
+};
+
+struct vt_offset_run {
+    const struct vt_layout *layout;
+    const struct vt_offset_options *opt;
+    const struct vt_offset_sink *out;
+    struct vt_offset_src src;
+    unsigned digits;
+    /* pass 1 */
+    uint64_t nv, nvn;
+    uint32_t nvt, cap;
+    double *uv;          /* u v per vt */
+    uint32_t *first;     /* entry index of the first material using the vt, or VT_OFFSET_NONE */
+    uint32_t *head;      /* its first extra material, or VT_OFFSET_NONE */
+    uint32_t *new_index; /* 0-based index of its first copy in the output */
+    struct vt_offset_extra *extra;
+    uint32_t extra_count, extra_cap;
+    uint32_t mat; /* current material (entry index, VT_OFFSET_MAT_NONE or VT_OFFSET_MAT_MISSING) */
+    char *mat_name;    /* name on the current usemtl line */
+    uint64_t mat_line; /* its line */
+    bool any_mtllib;
+    char *clean; /* a line as vt_obj sees it (usemtl, mtllib) */
+    size_t clean_cap;
+    /* pass 2 */
+    uint32_t in_vt;  /* vt statements copied so far */
+    uint64_t out_vt; /* vt lines written so far */
+    bool mtllib_written;
+    struct vt_offset_repl *repl;
+    size_t repl_cap;
+    unsigned char *obuf;
+    size_t olen;
+    struct vt_offset_stats stats;
+};
+
+/* Writes the buffered output (r->obuf) to r->out. */
+int vt_offset_run_flush(struct vt_offset_run *r, struct vt_error *err);
+
+/* Appends n bytes to the output (buffered in VT_OFFSET_OUT_CHUNK pieces). */
+int vt_offset_run_put(struct vt_offset_run *r, const void *data, size_t n, struct vt_error *err);
+
+/* Appends a string to the output. */
+int vt_offset_run_str(struct vt_offset_run *r, const char *s, struct vt_error *err);
+
+/* The name on a usemtl (or mtllib) line as vt_obj reads it (the rest of the line, trimmed) in
+ * *name, which points into r->clean and stays valid until the next call. */
+int vt_offset_run_usemtl_name(struct vt_offset_run *r, const unsigned char *line, size_t n,
+                              char **name, struct vt_error *err);
+
+/* The entry index of material name in the layout, or VT_OFFSET_MAT_MISSING. */
+uint32_t vt_offset_run_material(const struct vt_offset_run *r, const char *name);
+
+/* True when every layer of e is a constant fill (see vt_offset_run.c). */
+bool vt_offset_run_constant_entry(const struct vt_layout *l, const struct vt_layout_entry *e);
+
+/* VT_ERR_IO: the file changed between the passes (at the current line). */
+int vt_offset_run_changed_error(struct vt_offset_run *r, struct vt_error *err);
+
+#endif

@@ -1,0 +1,287 @@
+/* Pass 1 of vt-offset (see vt_offset_scan.h). */
+#include "vt_offset_scan.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "vt_checked.h"
+#include "vt_offset_tok.h"
+#include "vt_uv_text.h"
+
+static int grow_vt(struct vt_offset_run *r, struct vt_error *err)
+{
+    if (r->nvt >= r->opt->limits.max_vertices || r->nvt >= UINT32_MAX - 1)
+        return vt_error_set(err, VT_ERR_LIMIT, "'%s':%llu: more than %lu texcoords (the limit)",
+                            r->src.name, (unsigned long long)r->src.line,
+                            (unsigned long)r->opt->limits.max_vertices);
+    if (r->nvt < r->cap)
+        return 0;
+    uint64_t cap = r->cap ? (uint64_t)r->cap * 2 : 4096;
+    if (cap > UINT32_MAX - 1)
+        cap = UINT32_MAX - 1;
+    size_t uv_bytes, idx_bytes;
+    if (!vt_size_mul((size_t)cap, 2 * sizeof(double), &uv_bytes) ||
+        !vt_size_mul((size_t)cap, sizeof(uint32_t), &idx_bytes))
+        return vt_error_set(err, VT_ERR_LIMIT, "'%s': too many texcoords", r->src.name);
+    double *uv = realloc(r->uv, uv_bytes);
+    if (uv)
+        r->uv = uv;
+    uint32_t *first = uv ? realloc(r->first, idx_bytes) : NULL;
+    if (first)
+        r->first = first;
+    uint32_t *head = first ? realloc(r->head, idx_bytes) : NULL;
+    if (!head)
+        return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory for texcoords", r->src.name);
+    r->head = head;
+    r->cap = (uint32_t)cap;
+    return 0;
+}
+
+static int count_vertex(struct vt_offset_run *r, uint64_t *count, const char *what,
+                        struct vt_error *err)
+{
+    if (*count >= r->opt->limits.max_vertices)
+        return vt_error_set(err, VT_ERR_LIMIT, "'%s':%llu: more than %lu %s (the limit)",
+                            r->src.name, (unsigned long long)r->src.line,
+                            (unsigned long)r->opt->limits.max_vertices, what);
+    (*count)++;
+    return 0;
+}
+
+static int pass1_vt(struct vt_offset_run *r, const unsigned char *cur, const unsigned char *end,
+                    struct vt_error *err)
+{
+    double vals[3] = {0, 0, 0};
+    int n = 0;
+    struct vt_offset_tok t;
+    char text[64];
+    while (vt_offset_tok_next(&cur, end, &t)) {
+        if (n == 3)
+            return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: 'vt' needs 1 to 3 numbers",
+                                r->src.name, (unsigned long long)r->src.line);
+        if (!vt_uv_parse((const char *)t.s, (size_t)(t.e - t.s), &vals[n]))
+            return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: bad number '%s' in 'vt'",
+                                r->src.name, (unsigned long long)r->src.line,
+                                vt_offset_tok_text(&t, text));
+        n++;
+    }
+    if (n == 0)
+        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: 'vt' needs 1 to 3 numbers",
+                            r->src.name, (unsigned long long)r->src.line);
+    int rc = grow_vt(r, err);
+    if (rc < 0)
+        return rc;
+    r->uv[2 * (size_t)r->nvt] = vals[0];
+    r->uv[2 * (size_t)r->nvt + 1] = vals[1];
+    r->first[r->nvt] = VT_OFFSET_NONE;
+    r->head[r->nvt] = VT_OFFSET_NONE;
+    r->nvt++;
+    return 0;
+}
+
+/* Checks that vt i lies in what material m covers. */
+static int check_covered(struct vt_offset_run *r, uint32_t i, uint32_t m, struct vt_error *err)
+{
+    const struct vt_layout_entry *e = &r->layout->entries[m];
+    if (vt_offset_run_constant_entry(r->layout, e))
+        return 0;
+    double u = r->uv[2 * (size_t)i], v = r->uv[2 * (size_t)i + 1];
+    if (vt_layout_uv_covered(e, u, v))
+        return 0;
+    return vt_error_set(err, VT_ERR_BAD_INPUT,
+                        "'%s':%llu: vt %lu (%.9g %.9g) is outside the UV range of material '%s' "
+                        "in '%s' (u %ld..%ld, v %ld..%ld)",
+                        r->src.name, (unsigned long long)r->src.line, (unsigned long)i + 1, u, v,
+                        e->name, r->opt->layout_name, (long)e->origin_u,
+                        (long)e->origin_u + (long)e->repeat_u, (long)e->origin_v,
+                        (long)e->origin_v + (long)e->repeat_v);
+}
+
+/* Records that the current material uses vt i. */
+static int use_vt(struct vt_offset_run *r, uint32_t i, struct vt_error *err)
+{
+    uint32_t m = r->mat;
+    if (m == VT_OFFSET_MAT_NONE)
+        return vt_error_set(err, VT_ERR_BAD_INPUT,
+                            "'%s':%llu: face with texture coordinates before any usemtl",
+                            r->src.name, (unsigned long long)r->src.line);
+    if (m == VT_OFFSET_MAT_MISSING)
+        return vt_error_set(err, VT_ERR_BAD_INPUT,
+                            "'%s':%llu: material '%s' (usemtl on line %llu) is not in '%s'",
+                            r->src.name, (unsigned long long)r->src.line, r->mat_name,
+                            (unsigned long long)r->mat_line, r->opt->layout_name);
+    if (r->first[i] == m)
+        return 0;
+    if (r->first[i] == VT_OFFSET_NONE) {
+        int rc = check_covered(r, i, m, err);
+        if (rc == 0)
+            r->first[i] = m;
+        return rc;
+    }
+    uint32_t prev = VT_OFFSET_NONE;
+    for (uint32_t k = r->head[i]; k != VT_OFFSET_NONE; prev = k, k = r->extra[k].next)
+        if (r->extra[k].mat == m)
+            return 0;
+    int rc = check_covered(r, i, m, err);
+    if (rc < 0)
+        return rc;
+    if (r->extra_count == r->extra_cap) {
+        if (r->extra_cap >= UINT32_MAX / 2)
+            return vt_error_set(err, VT_ERR_LIMIT, "'%s': too many shared texcoords", r->src.name);
+        uint32_t cap = r->extra_cap ? r->extra_cap * 2 : 256;
+        struct vt_offset_extra *grown = realloc(r->extra, (size_t)cap * sizeof *grown);
+        if (!grown)
+            return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory for shared texcoords",
+                                r->src.name);
+        r->extra = grown;
+        r->extra_cap = cap;
+    }
+    uint32_t at = r->extra_count++;
+    r->extra[at] = (struct vt_offset_extra){m, VT_OFFSET_NONE};
+    if (prev == VT_OFFSET_NONE)
+        r->head[i] = at;
+    else
+        r->extra[prev].next = at;
+    return 0;
+}
+
+/* One face corner: v, v/vt, v//vn or v/vt/vn, checked like vt_obj; *vt gets the 0-based texture
+ * index or VT_OFFSET_NONE. */
+static int pass1_corner(struct vt_offset_run *r, const struct vt_offset_tok *t, uint32_t *vt,
+                        struct vt_error *err)
+{
+    static const char *const names[3] = {"vertex", "texture", "normal"};
+    static const char *const plural[3] = {"vertices", "texcoords", "normals"};
+    const uint64_t counts[3] = {r->nv, r->nvt, r->nvn};
+    char text[64];
+    const unsigned char *s = t->s;
+    *vt = VT_OFFSET_NONE;
+    for (int kind = 0; kind < 3; kind++) {
+        const unsigned char *e = memchr(s, '/', (size_t)(t->e - s));
+        if (!e)
+            e = t->e;
+        if (e > s || kind == 0) {
+            int64_t idx;
+            if (!vt_offset_tok_index(s, e, &idx))
+                return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: bad %s index '%s'",
+                                    r->src.name, (unsigned long long)r->src.line, names[kind],
+                                    vt_offset_tok_text(t, text));
+            if (idx == 0)
+                return vt_error_set(err, VT_ERR_BAD_INPUT,
+                                    "'%s':%llu: %s index 0 in '%s' (OBJ indices start at 1)",
+                                    r->src.name, (unsigned long long)r->src.line, names[kind],
+                                    vt_offset_tok_text(t, text));
+            int64_t abs_idx = idx > 0 ? idx - 1 : (int64_t)counts[kind] + idx;
+            if (abs_idx < 0 || abs_idx >= (int64_t)counts[kind])
+                return vt_error_set(
+                    err, VT_ERR_BAD_INPUT,
+                    "'%s':%llu: %s index %lld in '%s' out of range (%llu %s defined)", r->src.name,
+                    (unsigned long long)r->src.line, names[kind], (long long)idx,
+                    vt_offset_tok_text(t, text), (unsigned long long)counts[kind], plural[kind]);
+            if (kind == 1)
+                *vt = (uint32_t)abs_idx;
+        }
+        if (e == t->e)
+            return 0;
+        s = e + 1;
+    }
+    return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: bad face corner '%s'", r->src.name,
+                        (unsigned long long)r->src.line, vt_offset_tok_text(t, text));
+}
+
+static int pass1_face(struct vt_offset_run *r, const unsigned char *cur, const unsigned char *end,
+                      struct vt_error *err)
+{
+    struct vt_offset_tok t;
+    uint64_t corners = 0;
+    bool any_vt = false;
+    while (vt_offset_tok_next(&cur, end, &t)) {
+        uint32_t vt;
+        int rc = pass1_corner(r, &t, &vt, err);
+        if (rc < 0)
+            return rc;
+        if (vt != VT_OFFSET_NONE) {
+            any_vt = true;
+            rc = use_vt(r, vt, err);
+            if (rc < 0)
+                return rc;
+        }
+        corners++;
+    }
+    if (corners < 3)
+        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: face with %lu corners (needs 3)",
+                            r->src.name, (unsigned long long)r->src.line, (unsigned long)corners);
+    r->stats.faces++;
+    if (!any_vt)
+        r->stats.faces_without_vt++;
+    return 0;
+}
+
+int vt_offset_scan_line(struct vt_offset_run *r, const unsigned char *line, size_t n,
+                        struct vt_error *err)
+{
+    const unsigned char *cur = line, *end = line + n;
+    struct vt_offset_tok kw;
+    if (!vt_offset_tok_next(&cur, end, &kw))
+        return 0;
+    switch (vt_offset_tok_keyword(&kw)) {
+    case VT_OFFSET_KW_V:
+        return count_vertex(r, &r->nv, "vertices", err);
+    case VT_OFFSET_KW_VN:
+        return count_vertex(r, &r->nvn, "normals", err);
+    case VT_OFFSET_KW_VT:
+        return pass1_vt(r, cur, end, err);
+    case VT_OFFSET_KW_F:
+        return pass1_face(r, cur, end, err);
+    case VT_OFFSET_KW_USEMTL: {
+        char *name;
+        int rc = vt_offset_run_usemtl_name(r, line, n, &name, err);
+        if (rc < 0)
+            return rc;
+        char *copy = strdup(name);
+        if (!copy)
+            return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory", r->src.name);
+        free(r->mat_name);
+        r->mat_name = copy;
+        r->mat_line = r->src.line;
+        r->mat = vt_offset_run_material(r, name);
+        return 0;
+    }
+    case VT_OFFSET_KW_MTLLIB: {
+        char *name;
+        int rc = vt_offset_run_usemtl_name(r, line, n, &name, err);
+        if (rc < 0)
+            return rc;
+        if (!*name)
+            return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: mtllib without a file name",
+                                r->src.name, (unsigned long long)r->src.line);
+        r->any_mtllib = true;
+        return 0;
+    }
+    default:
+        return 0;
+    }
+}
+
+/* Output indices: vt i's first copy is new_index[i], its k-th extra material new_index[i] + k. */
+int vt_offset_scan_number_outputs(struct vt_offset_run *r, struct vt_error *err)
+{
+    size_t bytes;
+    if (!vt_size_mul((size_t)r->nvt + 1, sizeof(uint32_t), &bytes))
+        return vt_error_set(err, VT_ERR_LIMIT, "'%s': too many texcoords", r->src.name);
+    r->new_index = malloc(bytes);
+    if (!r->new_index)
+        return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory for texcoords", r->src.name);
+    uint64_t next = 0;
+    for (uint32_t i = 0; i < r->nvt; i++) {
+        r->new_index[i] = (uint32_t)next;
+        next++;
+        for (uint32_t k = r->head[i]; k != VT_OFFSET_NONE; k = r->extra[k].next)
+            next++;
+        if (next > UINT32_MAX - 1)
+            return vt_error_set(err, VT_ERR_LIMIT,
+                                "'%s': more than %lu texcoords once shared ones are duplicated",
+                                r->src.name, (unsigned long)UINT32_MAX - 1);
+    }
+    return 0;
+}

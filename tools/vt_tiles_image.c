@@ -1,0 +1,322 @@
+/* vt-tiles INPUT -o OUT.vts: the single-image build (see vt_tiles_image.h). */
+#include "vt_tiles_image.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "tool_common.h"
+#include "vt_codec.h"
+#include "vt_image_input.h"
+#include "vt_pool.h"
+#include "vt_pyramid.h"
+#include "vt_shard.h"
+#include "vt_version.h"
+#include "vts_writer.h"
+
+struct run {
+    const struct vt_tiles_image_options *o;
+    const struct vt_codec *codec;
+    struct vt_codec_params params;
+    struct vts_writer *writer;
+    unsigned char **bufs; /* one encode buffer per worker */
+    size_t cap;
+    uint32_t carry_level, payload_px, border, content; /* shards: the carried level's tiles */
+    struct vt_progress progress;
+};
+
+static int emit_tile(void *user, unsigned worker, uint32_t level, uint32_t tx, uint32_t ty,
+                     const struct vt_image *payload, struct vt_error *err)
+{
+    struct run *r = user;
+    size_t len = 0;
+    if (payload) {
+        struct vt_error cerr = {0};
+        int rc = r->codec->encode(payload, &r->params, r->bufs[worker], r->cap, &len, &cerr);
+        if (rc)
+            return vt_error_set(err, rc, "cannot encode tile %u,%u of level %u: %s", tx, ty, level,
+                                cerr.message);
+    }
+    return vts_writer_put(r->writer, 0, level, tx, ty, r->bufs[worker], len, err);
+}
+
+/* A shard's carried texels: one tile of the extra layer (vt_shard.h) per first-pass block. */
+static int carry_tile(void *user, unsigned worker, uint32_t x, uint32_t y, uint32_t width,
+                      uint32_t height, uint32_t channels, const float *texels, size_t stride,
+                      struct vt_error *err)
+{
+    struct run *r = user;
+    vt_shard_pack(r->bufs[worker], r->payload_px, r->border, texels, width, height, channels,
+                  stride);
+    size_t len = (size_t)r->payload_px * r->payload_px * channels * 4;
+    return vts_writer_put(r->writer, 1, r->carry_level, x / r->content, y / r->content,
+                          r->bufs[worker], len, err);
+}
+
+/* Shard metadata (after the single build's): shard=I/N, what the merge needs, the input's id. */
+static int set_shard_metadata(struct vts_writer *w, const struct vt_tiles_image_options *o,
+                              const struct vt_shard_build *b, struct vt_error *err)
+{
+    char value[256];
+    struct stat st;
+    if (stat(o->input, &st) != 0)
+        return vt_error_set(err, VT_ERR_IO, "'%s': cannot stat the input", o->input);
+    snprintf(value, sizeof value, "%u/%u", o->shard, o->shard_count);
+    int rc = vts_writer_set_meta(w, VT_SHARD_KEY, value, err);
+    vt_shard_build_format(b, value, sizeof value);
+    if (rc == 0)
+        rc = vts_writer_set_meta(w, VT_SHARD_BUILD_KEY, value, err);
+    snprintf(value, sizeof value, "size=%lld mtime=%lld", (long long)st.st_size,
+             (long long)st.st_mtime);
+    return rc ? rc : vts_writer_set_meta(w, VT_SHARD_INPUT_KEY, value, err);
+}
+
+static int show_progress(void *user, uint64_t done, uint64_t total)
+{
+    struct run *r = user;
+    (void)total;
+    vt_progress_update(&r->progress, done);
+    return 0;
+}
+
+/* Picks codec, output channels and sample for the input; logs what it decided. */
+static const struct vt_codec *choose_codec(const struct vt_tiles_image_options *o,
+                                           const struct vt_source_info *in, uint32_t colour,
+                                           bool keep_alpha, uint32_t *out_sample)
+{
+    const char *name = o->codec_name;
+    bool is_float = in->sample == VTS_SAMPLE_F16 || in->sample == VTS_SAMPLE_F32;
+    if (strcmp(name, "auto") == 0)
+        name = is_float ? "raw"
+               : in->sample == VTS_SAMPLE_U16 || keep_alpha || colour == VTS_COLOUR_NORMAL ||
+                       colour == VTS_COLOUR_DATA
+                   ? "png"
+                   : "jpeg";
+    const struct vt_codec *codec = vt_codec_find(name);
+    if (!codec) {
+        vt_usage_error("codec '%s' is not available (raw, png, jpeg, bc1, bc3, auto)", name);
+        return NULL;
+    }
+    *out_sample = in->sample;
+    if (codec->fourcc == VTS_CODEC_PNG && is_float)
+        *out_sample = VTS_SAMPLE_U16;
+    else if (codec->fourcc != VTS_CODEC_RAW && codec->fourcc != VTS_CODEC_PNG)
+        *out_sample = VTS_SAMPLE_U8;
+    if (*out_sample != in->sample)
+        vt_log(VT_LOG_WARN, "'%s': %s samples stored as %s for codec %s", o->input,
+               vts_sample_name(in->sample), vts_sample_name(*out_sample), codec->name);
+    return codec;
+}
+
+static int open_sources(const struct vt_tiles_image_options *o, struct vt_source *src, unsigned n,
+                        struct vt_error *err)
+{
+    struct vt_input_limits limits = {o->max_pixels};
+    int rc = vt_image_input_open(o->input, &limits, &src[0], err);
+    for (unsigned i = 1; rc == 0 && !src[0].info.sequential && i < n; i++)
+        rc = vt_image_input_open(o->input, &limits, &src[i], err);
+    return rc;
+}
+
+static int set_metadata(struct vts_writer *w, const struct vt_tiles_image_options *o,
+                        const char *codec, struct vt_error *err)
+{
+    char quality[16];
+    snprintf(quality, sizeof quality, "%u", o->quality);
+    if (strcmp(codec, "jpeg") != 0) /* the only codec with a quality */
+        snprintf(quality, sizeof quality, "-");
+    const char *pairs[][2] = {{"tool", "vt-tiles"},        {"tool.version", VT_VERSION_STRING},
+                              {"source", o->input},        {"filter", vt_filter_name(o->filter)},
+                              {"filtering", o->filtering}, {"codec", codec},
+                              {"quality", quality},        {"wrap", o->wrap ? "yes" : "no"}};
+    for (size_t i = 0; i < sizeof pairs / sizeof pairs[0]; i++) {
+        int rc = vts_writer_set_meta(w, pairs[i][0], pairs[i][1], err);
+        if (rc)
+            return rc;
+    }
+    return 0;
+}
+
+/* Border and tile geometry from the options; returns 0 or a usage exit status. */
+static int make_geometry(struct vt_tiles_image_options *o, const struct vt_source_info *in,
+                         const struct vt_codec *codec, struct vts_geometry *g)
+{
+    bool bc = codec->fourcc == VTS_CODEC_BC1 || codec->fourcc == VTS_CODEC_BC3;
+    if (!o->border_set) {
+        o->border = o->aniso <= 1 ? o->aniso + 1 : o->aniso / 2;
+        if (bc && o->border < 4)
+            o->border = 4;
+    }
+    uint32_t content = o->keep_content ? o->tile_size : o->tile_size - 2 * o->border;
+    if (!o->keep_content && o->tile_size <= 2 * o->border)
+        return vt_usage_error("--tile-size %u leaves no content with --border %u", o->tile_size,
+                              o->border);
+    if (o->border > content)
+        return vt_usage_error("--border %u is larger than the tile content %u", o->border, content);
+    *g = (struct vts_geometry){in->width,
+                               in->height,
+                               content,
+                               o->border,
+                               content + 2 * o->border,
+                               0,
+                               1,
+                               o->wrap ? VTS_STORE_WRAP_X | VTS_STORE_WRAP_Y : 0};
+    if (g->tile_payload_px > VTS_MAX_PAYLOAD_PX)
+        return vt_usage_error("tile payload %u exceeds %u", g->tile_payload_px, VTS_MAX_PAYLOAD_PX);
+    g->level_count = vts_full_level_count(g->width, g->height, g->tile_content_px);
+    return 0;
+}
+
+static int build(struct run *r, struct vt_source *src, const struct vt_pyramid_options *po,
+                 struct vt_error *err)
+{
+    struct vt_source *ptrs[256];
+    for (unsigned i = 0; i < po->threads; i++)
+        ptrs[i] = src[0].info.sequential ? NULL : &src[i];
+    ptrs[0] = &src[0];
+    vt_progress_start(&r->progress, "tiling", "tiles", vt_pyramid_tile_count(po));
+    uint32_t pp = po->tile_content_px + 2 * po->border_px;
+    r->progress.megapixels_per_unit = (double)pp * pp / 1e6;
+    int rc = vt_pyramid_build(ptrs, po, err);
+    vt_progress_end(&r->progress);
+    return rc;
+}
+
+int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
+{
+    struct vt_tiles_image_options copy = *opt; /* make_geometry() settles the border */
+    struct vt_tiles_image_options *o = &copy;
+    struct vt_source src[256];
+    memset(src, 0, sizeof src);
+    struct vt_error err = {0};
+    struct run r = {.o = o};
+    struct vts_geometry g;
+    int status = VT_EXIT_BAD_INPUT, rc = 0;
+    struct stat in_stat;
+    if (o->shard && (stat(o->input, &in_stat) != 0 || !S_ISREG(in_stat.st_mode))) {
+        rc = vt_error_set(&err, VT_ERR_BAD_INPUT,
+                          "'%s': --shard needs INPUT to be a regular file (every shard reads it)",
+                          o->input);
+        goto out;
+    }
+    rc = open_sources(o, src, o->threads, &err);
+    if (rc)
+        goto out;
+    const struct vt_source_info *in = &src[0].info;
+    uint32_t colour = o->colour_set ? o->colour : in->colour;
+    bool opaque = true;
+    if (in->has_alpha && (rc = vt_source_alpha_opaque(&src[0], &opaque, &err)) != 0)
+        goto out;
+    bool keep_alpha = in->has_alpha && !opaque;
+    uint32_t out_sample;
+    r.codec = choose_codec(o, in, colour, keep_alpha, &out_sample);
+    if (!r.codec) {
+        status = VT_EXIT_USAGE;
+        goto out;
+    }
+    status = make_geometry(o, in, r.codec, &g);
+    if (status != 0)
+        goto out;
+    status = VT_EXIT_BAD_INPUT;
+    uint32_t channels = in->channels - (in->has_alpha && !keep_alpha);
+    if ((rc = r.codec->check(g.tile_payload_px, channels, out_sample, &err)) != 0)
+        goto out;
+    struct vts_layer layer = {
+        r.codec->fourcc, (uint8_t)channels, (uint8_t)out_sample, (uint8_t)colour, 0, 0, {0}};
+    layer.codec_param = r.codec->fourcc == VTS_CODEC_JPEG ? o->quality : 0;
+    if (keep_alpha && in->premultiplied)
+        layer.flags |= VTS_LAYER_PREMULTIPLIED;
+    snprintf(layer.name, sizeof layer.name, "%s", o->name);
+    r.params = (struct vt_codec_params){(int)o->quality,
+                                        o->best ? (r.codec->fourcc == VTS_CODEC_PNG ? 9 : 1) : 0,
+                                        (int)o->subsampling};
+    r.cap = r.codec->encoded_bound(g.tile_payload_px, g.tile_payload_px, channels, out_sample);
+    struct vts_layer layers[2] = {layer,
+                                  {VTS_CODEC_RAW, (uint8_t)in->channels, VTS_SAMPLE_F32,
+                                   (uint8_t)colour, 0, 0, VT_SHARD_LAYER_NAME}};
+    if (o->shard) { /* + the carried texels: payload_px^2 floats, beside the layer (vt_shard.h) */
+        g.layer_count = 2;
+        size_t carry = (size_t)g.tile_payload_px * g.tile_payload_px * in->channels * 4;
+        r.cap = carry > r.cap ? carry : r.cap;
+        r.payload_px = g.tile_payload_px;
+        r.border = g.border_px;
+        r.content = g.tile_content_px;
+    }
+    r.bufs = calloc(o->threads, sizeof *r.bufs);
+    for (unsigned i = 0; r.bufs && i < o->threads; i++)
+        if (!(r.bufs[i] = malloc(r.cap))) {
+            rc = vt_error_set(&err, VT_ERR_NOMEM, "out of memory for encode buffers");
+            goto out;
+        }
+    if (!(r.writer = vts_writer_create(o->output, &g, layers, &err))) {
+        rc = err.status;
+        goto out;
+    }
+    vts_writer_set_max_bytes(r.writer, o->max_store);
+    struct vt_pyramid_options po = {.width = g.width,
+                                    .height = g.height,
+                                    .tile_content_px = g.tile_content_px,
+                                    .border_px = g.border_px,
+                                    .level_count = g.level_count,
+                                    .filter = o->filter,
+                                    .colour = colour,
+                                    .wrap = o->wrap,
+                                    .out_channels = channels,
+                                    .out_sample = out_sample,
+                                    .threads = o->threads,
+                                    .temp_dir = o->temp_dir,
+                                    .emit = emit_tile,
+                                    .progress = show_progress,
+                                    .user = &r};
+    char dir[4096];
+    if (!po.temp_dir) {
+        const char *slash = strrchr(o->output, '/');
+        snprintf(dir, sizeof dir, "%.*s",
+                 slash ? (int)(slash - o->output) + (slash == o->output) : 1,
+                 slash ? o->output : ".");
+        po.temp_dir = dir;
+    }
+    struct vt_pyramid_plan plan;
+    vt_pyramid_plan(&po, &plan);
+    struct vt_shard_build sb = {plan.levels_per_pass, in->channels,   in->has_alpha,
+                                in->premultiplied,    o->subsampling, (uint32_t)r.params.effort};
+    if (o->shard) {
+        po.part = true;
+        po.carry = carry_tile;
+        r.carry_level = plan.levels_per_pass;
+        vt_pyramid_part(&plan, o->shard - 1, o->shard_count, &po.part_x0, &po.part_y0, &po.part_x1,
+                        &po.part_y1);
+        vt_log(VT_LOG_INFO, "shard %u/%u: first-pass blocks %u..%u x %u..%u of %ux%u%s", o->shard,
+               o->shard_count, po.part_x0, po.part_x1, po.part_y0, po.part_y1, plan.blocks_x,
+               plan.blocks_y, po.part_x0 < po.part_x1 && po.part_y0 < po.part_y1 ? "" : " (empty)");
+    }
+    rc = build(&r, src, &po, &err);
+    if (rc == 0)
+        rc = set_metadata(r.writer, o, r.codec->name, &err);
+    if (rc == 0 && o->shard)
+        rc = set_shard_metadata(r.writer, o, &sb, &err);
+    if (rc == 0)
+        rc = vts_writer_finish(r.writer, &err);
+    if (rc == 0) {
+        struct vts_writer_stats st;
+        vts_writer_stats(r.writer, &st);
+        vt_log(VT_LOG_INFO,
+               "wrote '%s': %ux%u, %u levels, %llu tiles stored (%llu shared), "
+               "%llu empty, %llu payload bytes",
+               o->output, g.width, g.height, g.level_count, (unsigned long long)st.tiles_stored,
+               (unsigned long long)st.tiles_shared, (unsigned long long)st.tiles_empty,
+               (unsigned long long)st.unique_bytes);
+        status = VT_EXIT_OK;
+    }
+out:
+    if (rc)
+        vt_log(VT_LOG_ERROR, "%s", err.message);
+    vts_writer_destroy(r.writer);
+    for (unsigned i = 0; r.bufs && i < o->threads; i++)
+        free(r.bufs[i]);
+    free(r.bufs);
+    for (unsigned i = 0; i < o->threads; i++)
+        vt_source_close(&src[i]);
+    return status;
+}
