@@ -30,3 +30,12 @@ foreach(tool vt-tiles vt-convert vt-merge vt-offset)
     set_tests_properties(faults_${tool} PROPERTIES LABELS long TIMEOUT 600)
   endif()
 endforeach()
+# vt-tiles --layout on the sample scene (vt-atlas first).
+if(TARGET vt-sample-scene AND TARGET vt-atlas)
+  add_test(NAME faults_vt-tiles-layout
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/robust/tool_faults.sh
+                   ${CMAKE_CURRENT_BINARY_DIR}/faults/vt-tiles-layout vt-tiles-layout
+                   $<TARGET_FILE_DIR:vt-tiles> $<TARGET_FILE:vt-synth> $<TARGET_FILE:vt-synth-image>
+                   $<TARGET_FILE:vt-sample-scene>)
+  set_tests_properties(faults_vt-tiles-layout PROPERTIES LABELS long TIMEOUT 600)
+endif()

@@ -5,9 +5,11 @@
 # After each: the output name holds either the previous output, intact, or a complete new one that
 # verifies; no hidden temporary file is left after SIGINT/SIGTERM or a failure; failures exit 1
 # with one line naming the file.
-# usage: tool_faults.sh WORKDIR TOOL_NAME BIN_DIR SYNTH SYNTH_IMAGE
+# usage: tool_faults.sh WORKDIR TOOL_NAME BIN_DIR SYNTH SYNTH_IMAGE [SAMPLE_SCENE]
+# TOOL_NAME vt-tiles-layout is vt-tiles --layout on the sample scene (SAMPLE_SCENE: the
+# vt-sample-scene generator).
 set -uo pipefail
-work=$1 name=$2 bin=$3 synth=$4 synth_image=$5
+work=$1 name=$2 bin=$3 synth=$4 synth_image=$5 sample_scene=${6:-}
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 info="$bin/vt-info"
 out=out.vts
@@ -20,6 +22,11 @@ vt-tiles)
   "$synth_image" in.png --format png --size 3000x3000 --photo >/dev/null || exit 1
   cmd=("$bin/vt-tiles" in.png -o out.vts -q -j 1 --codec png --mode best)
   dir_cmd=("$bin/vt-tiles" indir -o out.vts -q) ;;
+vt-tiles-layout)
+  "$sample_scene" -q scene >/dev/null || exit 1
+  "$bin/vt-atlas" scene/scene.obj -o atlas.json --wrap replicate -q || exit 1
+  cmd=("$bin/vt-tiles" --layout atlas.json -o out.vts -q -j 1 --codec png --mode best)
+  dir_cmd=("$bin/vt-tiles" --layout indir -o out.vts -q) ;;
 vt-convert)
   "$synth" in.vts --size 3000x3000 --tile 256 --codec raw --channels 3 >/dev/null || exit 1
   cmd=("$bin/vt-convert" in.vts -o out.vts -q -j 1 --codec png --mode best)
