@@ -95,6 +95,9 @@ static void frame_view(struct app *a, uint64_t frame, struct vtv_view *v)
     }
     v->trilinear = a->trilinear;
     v->debug = a->debug;
+    /* 3D: cut-out textures (alpha) are cut out, as a renderer's alpha test would; 2D shows the
+     * texels as they are. */
+    v->alpha_test = a->three_d ? 0.5f : 0.0f;
 }
 
 static void apply_input(struct app *a, const struct vtv_input *in)

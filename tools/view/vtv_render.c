@@ -285,6 +285,7 @@ uint64_t vtv_render_vt(struct vtv_render *r, const struct vtv_view *v)
     glUniform1f(glGetUniformLocation(p, "u_border"), r->border);
     glUniform1f(glGetUniformLocation(p, "u_payload"), r->payload);
     glUniform1i(glGetUniformLocation(p, "u_debug"), v->debug);
+    glUniform1f(glGetUniformLocation(p, "u_alpha_test"), v->alpha_test);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, r->tex_phys);
     draw(r);
@@ -351,6 +352,7 @@ GLuint vtv_render_reference_begin(struct vtv_render *r, const struct vtv_view *v
     glUniform2f(glGetUniformLocation(p, "u_jitter"), 0.0f, 0.0f);
     glUniform1i(glGetUniformLocation(p, "u_tex"), 0);
     glUniform1i(glGetUniformLocation(p, "u_mode"), 1);
+    glUniform1f(glGetUniformLocation(p, "u_alpha_test"), v->alpha_test);
     glActiveTexture(GL_TEXTURE0);
     return p;
 }

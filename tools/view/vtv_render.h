@@ -38,7 +38,8 @@ struct vtv_render {
 struct vtv_view {
     float mvp[16]; /* column-major */
     bool trilinear;
-    int debug; /* 0 none, 1 levels, 2 tiles */
+    int debug;        /* 0 none, 1 levels, 2 tiles */
+    float alpha_test; /* fragments with a lower alpha are discarded (0: none) */
 };
 
 int vtv_render_init(struct vtv_render *r, uint32_t width, uint32_t height, uint32_t fb_width,
