@@ -27,8 +27,9 @@ endforeach()
 # End to end with shared entries (materials using the same texture share one cell):
 # vt-atlas -> vt-offset -> vt-tiles --layout -> vt-info --extract 0, every corner's texel checked.
 if(TARGET vt-offset AND TARGET vt-tiles AND TARGET vt-info)
-  add_executable(test_atlas_shared atlas/test_atlas_shared.c)
-  target_include_directories(test_atlas_shared PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  add_executable(test_atlas_shared atlas/test_atlas_shared.c pipeline/vt_test_corners.c)
+  target_include_directories(test_atlas_shared PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}
+                                                       ${CMAKE_CURRENT_SOURCE_DIR}/pipeline)
   target_link_libraries(test_atlas_shared PRIVATE vtformats vtlib m)
   vt_target_warnings(test_atlas_shared)
   add_test(NAME atlas_shared_texels_match

@@ -1,7 +1,7 @@
 # End-to-end proof of the atlas pipeline: vt-atlas -> vt-offset -> vt-tiles --layout, every face
 # corner's texel compared with the original texture's (tests/pipeline/test_pipeline.c).
 if(TARGET vt-atlas AND TARGET vt-offset)
-  add_executable(test_pipeline pipeline/test_pipeline.c)
+  add_executable(test_pipeline pipeline/test_pipeline.c pipeline/vt_test_corners.c)
   target_include_directories(test_pipeline PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
   target_link_libraries(test_pipeline PRIVATE vtformats vtlib m)
   vt_target_warnings(test_pipeline)

@@ -13,9 +13,9 @@
 #include <string.h>
 
 #include "vt_layout.h"
-#include "vt_obj.h"
 #include "vt_png_file.h"
 #include "vt_test.h"
+#include "vt_test_corners.h"
 
 struct tex {
     const char *file;
@@ -107,51 +107,6 @@ static void write_scene(void)
     fclose(obj);
 }
 
-struct corners {
-    uint32_t count, cap;
-    int *material;
-    double *uv;
-};
-
-static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_face *f,
-                   struct vt_error *err)
-{
-    (void)err;
-    struct corners *c = user;
-    int m = -1;
-    for (int k = 0; k < MAT_COUNT; k++)
-        if (strcmp(f->material, mats[k].name) == 0)
-            m = k;
-    for (uint32_t k = 0; k < f->corner_count; k++) {
-        if (c->count == c->cap) {
-            c->cap = c->cap ? c->cap * 2 : 256;
-            c->material = realloc(c->material, c->cap * sizeof *c->material);
-            c->uv = realloc(c->uv, c->cap * 2 * sizeof *c->uv);
-        }
-        const double *vt = vt_obj_texcoords(obj) + 3 * (size_t)f->corners[k].vt;
-        c->material[c->count] = m;
-        c->uv[2 * c->count] = vt[0];
-        c->uv[2 * c->count + 1] = vt[1];
-        c->count++;
-    }
-    return 0;
-}
-
-static void read_corners(const char *file, struct corners *c)
-{
-    struct vt_error err;
-    struct vt_obj *obj = vt_obj_create(NULL, &err);
-    struct vt_obj_callbacks cb = {.face = on_face, .user = c};
-    VT_CHECK_INT_EQ(vt_obj_read(obj, file, &cb, &err), 0);
-    vt_obj_destroy(obj);
-}
-
-static int run(const char *cmd)
-{
-    fprintf(stderr, "+ %s\n", cmd);
-    return system(cmd);
-}
-
 /* The layout: two entries, each shared by two materials, each found by both names. */
 static void check_layout(struct vt_layout *l)
 {
@@ -180,7 +135,7 @@ int main(int argc, char **argv)
     work = argv[1];
     char cmd[8192];
     snprintf(cmd, sizeof cmd, "rm -rf '%s' && mkdir -p '%s/tex'", work, work);
-    VT_CHECK(run(cmd) == 0);
+    VT_CHECK(vt_test_run(cmd) == 0);
     for (uint32_t t = 0; t < 2; t++)
         write_texture(t);
     write_scene();
@@ -190,13 +145,17 @@ int main(int argc, char **argv)
              "'%s' --layout atlas.json -o scene.vts --codec png -q && "
              "'%s' --extract 0 -o level0.png scene.vts",
              work, argv[2], argv[3], argv[4], argv[5]);
-    VT_CHECK(run(cmd) == 0);
+    VT_CHECK(vt_test_run(cmd) == 0);
     struct vt_layout l = {0};
     check_layout(&l);
 
-    struct corners a = {0}, b = {0};
-    read_corners(path("scene.obj"), &a);
-    read_corners(path("scene.vt.obj"), &b);
+    const char *names[MAT_COUNT];
+    for (int m = 0; m < MAT_COUNT; m++)
+        names[m] = mats[m].name;
+    struct vt_test_corners a, b;
+    struct vt_error rerr;
+    VT_CHECK_INT_EQ(vt_test_corners_read(path("scene.obj"), names, MAT_COUNT, &a, &rerr), 0);
+    VT_CHECK_INT_EQ(vt_test_corners_read(path("scene.vt.obj"), NULL, 0, &b, &rerr), 0);
     VT_CHECK_INT_EQ(a.count, 3 * 30 * MAT_COUNT + 6);
     VT_CHECK_INT_EQ(b.count, a.count);
     struct vt_image atlas = {0};
@@ -236,6 +195,7 @@ int main(int argc, char **argv)
     VT_CHECK(per_mat[0] == 93 && per_mat[1] == 93 && per_mat[2] == 90 && per_mat[3] == 90);
     vt_image_release(&atlas);
     vt_layout_release(&l);
-    free(a.material), free(a.uv), free(b.material), free(b.uv);
+    vt_test_corners_release(&a);
+    vt_test_corners_release(&b);
     return vt_test_main_result();
 }

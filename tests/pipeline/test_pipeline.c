@@ -13,9 +13,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "vt_obj.h"
 #include "vt_png_file.h"
 #include "vt_test.h"
+#include "vt_test_corners.h"
 
 struct tex {
     const char *name;
@@ -124,52 +124,6 @@ static void write_scene(void)
     fclose(obj);
 }
 
-/* Faces of a read OBJ, flattened: per corner the material index and the texcoord. */
-struct corners {
-    uint32_t count, cap;
-    int *material;
-    double *uv;
-};
-
-static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_face *f,
-                   struct vt_error *err)
-{
-    (void)err;
-    struct corners *c = user;
-    int m = -1;
-    for (uint32_t t = 0; t < TEX_COUNT; t++)
-        if (strncmp(f->material, "m_", 2) == 0 && strcmp(f->material + 2, texs[t].name) == 0)
-            m = (int)t;
-    for (uint32_t k = 0; k < f->corner_count; k++) {
-        if (c->count == c->cap) {
-            c->cap = c->cap ? c->cap * 2 : 256;
-            c->material = realloc(c->material, c->cap * sizeof *c->material);
-            c->uv = realloc(c->uv, c->cap * 2 * sizeof *c->uv);
-        }
-        const double *vt = vt_obj_texcoords(obj) + 3 * (size_t)f->corners[k].vt;
-        c->material[c->count] = m;
-        c->uv[2 * c->count] = vt[0];
-        c->uv[2 * c->count + 1] = vt[1];
-        c->count++;
-    }
-    return 0;
-}
-
-static void read_corners(const char *file, struct corners *c)
-{
-    struct vt_error err;
-    struct vt_obj *obj = vt_obj_create(NULL, &err);
-    struct vt_obj_callbacks cb = {.face = on_face, .user = c};
-    VT_CHECK_INT_EQ(vt_obj_read(obj, file, &cb, &err), 0);
-    vt_obj_destroy(obj);
-}
-
-static int run(const char *cmd)
-{
-    fprintf(stderr, "+ %s\n", cmd);
-    return system(cmd);
-}
-
 int main(int argc, char **argv)
 {
     if (argc != 6) {
@@ -179,7 +133,7 @@ int main(int argc, char **argv)
     work = argv[1];
     char cmd[8192];
     snprintf(cmd, sizeof cmd, "rm -rf '%s' && mkdir -p '%s/tex'", work, work);
-    VT_CHECK(run(cmd) == 0);
+    VT_CHECK(vt_test_run(cmd) == 0);
     for (uint32_t t = 0; t < TEX_COUNT; t++)
         write_texture(t);
     write_scene();
@@ -189,15 +143,23 @@ int main(int argc, char **argv)
              "'%s' --layout atlas.json -o scene.vts --codec png -q && "
              "'%s' --extract 0 -o level0.png scene.vts",
              work, argv[2], argv[3], argv[4], argv[5]);
-    VT_CHECK(run(cmd) == 0);
+    VT_CHECK(vt_test_run(cmd) == 0);
 
-    struct corners a = {0}, b = {0};
-    read_corners(path("scene.obj"), &a);
-    read_corners(path("scene.vt.obj"), &b);
+    /* Material names "m_<texture>": corner materials index texs[]. */
+    static char names[TEX_COUNT][32];
+    const char *name_ptrs[TEX_COUNT];
+    for (uint32_t t = 0; t < TEX_COUNT; t++) {
+        snprintf(names[t], sizeof names[t], "m_%s", texs[t].name);
+        name_ptrs[t] = names[t];
+    }
+    struct vt_test_corners a, b;
+    struct vt_error err;
+    VT_CHECK_INT_EQ(vt_test_corners_read(path("scene.obj"), name_ptrs, TEX_COUNT, &a, &err), 0);
+    /* The rewritten scene has one material: its corners keep the order, not the names. */
+    VT_CHECK_INT_EQ(vt_test_corners_read(path("scene.vt.obj"), NULL, 0, &b, &err), 0);
     VT_CHECK_INT_EQ(a.count, 3 * 40 * TEX_COUNT + 6);
     VT_CHECK_INT_EQ(b.count, a.count);
     struct vt_image atlas = {0}, tex[TEX_COUNT] = {{0}};
-    struct vt_error err;
     VT_CHECK_INT_EQ(vt_png_file_read(path("level0.png"), &atlas, &err), 0);
     for (uint32_t t = 0; t < TEX_COUNT; t++) {
         char name[64];
@@ -238,6 +200,7 @@ int main(int argc, char **argv)
     vt_image_release(&atlas);
     for (uint32_t t = 0; t < TEX_COUNT; t++)
         vt_image_release(&tex[t]);
-    free(a.material), free(a.uv), free(b.material), free(b.uv);
+    vt_test_corners_release(&a);
+    vt_test_corners_release(&b);
     return vt_test_main_result();
 }
