@@ -1,0 +1,78 @@
+/* Per-tile compositing of an atlas (private to lib/, used by vt_atlas_build.c): which entry owns
+ * each texel of a level (the owner rule), the coverage-weighted average of texels that several
+ * cells or empty space share (mixed texels), and the payload of one tile with its borders. */
+#ifndef VT_ATLAS_TILE_H
+#define VT_ATLAS_TILE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "vt_atlas_build.h"
+#include "vt_atlas_cache.h"
+#include "vts.h"
+
+#define VT_ATLAS_TILE_EMPTY (-1) /* texel class: no entry covers it */
+#define VT_ATLAS_TILE_MIXED (-2) /* texel class: covered in part, or by several entries */
+
+/* One layer being built: its layout layer, pixel format and the value of empty texels. */
+struct vt_atlas_tile_slot {
+    uint32_t layer;
+    struct vt_atlas_layer_format fmt;
+    struct vt_pixel_mode mode;
+    uint8_t empty_px[4];
+};
+
+/* Scratch of one worker: its pinned chains, the classes of the current tile's content texels
+ * (content x content) and one payload image per slot. */
+struct vt_atlas_tile_worker {
+    struct vt_atlas_cache_pins pins;
+    int32_t *cls;
+    struct vt_image payload[VT_LAYOUT_MAX_LAYERS];
+};
+
+/* What the compositor reads: the layout, its level sizes, the entry grid and the chain cache
+ * (keyed entry * nslots + slot). Filled by vt_atlas_build.c; the grid by _build_grid. */
+struct vt_atlas_tile {
+    const struct vt_layout *lay;
+    struct vt_atlas_tile_slot slots[VT_LAYOUT_MAX_LAYERS];
+    uint32_t nslots;
+    uint32_t content, border, payload;
+    uint32_t lw[VTS_MAX_LEVELS + 1],
+        lh[VTS_MAX_LEVELS + 1]; /* + 1: keeps GCC's bounds check quiet */
+    uint8_t *lmax;              /* per entry: log2(alignment) */
+    /* grid over level 0: buckets of 2^gshift texels listing the entries whose cell meets them */
+    uint32_t gshift, gw, gh;
+    uint32_t *goff, *gidx, *gsat;
+    struct vt_atlas_cache cache;
+    uint64_t texels_mixed; /* updated atomically */
+};
+
+/* Builds the entry grid of t->lay. 0 or VT_ERR_NOMEM; free with vt_atlas_tile_release_grid. */
+int vt_atlas_tile_build_grid(struct vt_atlas_tile *t, struct vt_error *err);
+
+/* Frees the grid (NULL pointers allowed). */
+void vt_atlas_tile_release_grid(struct vt_atlas_tile *t);
+
+/* Class of texel (X, Y) of level L: the owning entry (>= 0), VT_ATLAS_TILE_EMPTY or
+ * VT_ATLAS_TILE_MIXED. For an owned texel, *run_end is the first X of the row past the owner's
+ * cell. Thread safe. */
+int32_t vt_atlas_tile_classify(const struct vt_atlas_tile *t, uint32_t L, uint32_t X, uint32_t Y,
+                               uint32_t *run_end);
+
+/* Writes the value (slot s, u8) of texel (X, Y) of level L whose class is k into o. */
+int vt_atlas_tile_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, uint32_t s,
+                        uint32_t L, uint32_t X, uint32_t Y, int32_t k, uint8_t *o,
+                        struct vt_error *err);
+
+/* Classes of the content texels of the tile at (cx0, cy0), cw x chh, into w->cls; returns
+ * whether any is not empty. */
+bool vt_atlas_tile_classify_content(const struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w,
+                                    uint32_t L, uint32_t cx0, uint32_t cy0, uint32_t cw,
+                                    uint32_t chh);
+
+/* Fills w->payload[s] (content plus borders) of that tile, after _classify_content. */
+int vt_atlas_tile_fill_payload(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, uint32_t s,
+                               uint32_t L, uint32_t cx0, uint32_t cy0, uint32_t cw, uint32_t chh,
+                               struct vt_error *err);
+
+#endif
