@@ -189,24 +189,6 @@ static int obj_vertex(struct obj_parse *p, const char *kw, char *cur, struct vt_
     return rc;
 }
 
-/* A signed decimal index occupying [s, e); false on junk or overflow. */
-static bool parse_index(const char *s, const char *e, int64_t *out)
-{
-    bool neg = false;
-    if (s < e && (*s == '-' || *s == '+'))
-        neg = *s++ == '-';
-    if (s == e)
-        return false;
-    int64_t v = 0;
-    for (; s < e; s++) {
-        if (*s < '0' || *s > '9' || v > (INT64_C(1) << 40))
-            return false;
-        v = v * 10 + (*s - '0');
-    }
-    *out = neg ? -v : v;
-    return true;
-}
-
 static const char *const index_names[3] = {"vertex", "texture", "normal"};
 
 /* Resolves one OBJ index (1-based, or negative counting back from the latest) into 0-based. */
@@ -242,7 +224,7 @@ static int obj_corner(struct obj_parse *p, const char *tok, struct vt_obj_corner
             e = s + strlen(s);
         if (e > s || kind == 0) {
             int64_t idx;
-            if (!parse_index(s, e, &idx))
+            if (!vt_text_index(s, e, &idx))
                 return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: bad %s index '%s'",
                                     p->src->name, (unsigned long long)cur_line(p),
                                     index_names[kind], tok);

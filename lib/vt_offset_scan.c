@@ -6,6 +6,7 @@
 
 #include "vt_checked.h"
 #include "vt_offset_tok.h"
+#include "vt_text.h"
 #include "vt_uv_text.h"
 
 static int grow_vt(struct vt_offset_run *r, struct vt_error *err)
@@ -162,7 +163,7 @@ static int pass1_corner(struct vt_offset_run *r, const struct vt_offset_tok *t, 
             e = t->e;
         if (e > s || kind == 0) {
             int64_t idx;
-            if (!vt_offset_tok_index(s, e, &idx))
+            if (!vt_text_index((const char *)s, (const char *)e, &idx))
                 return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: bad %s index '%s'",
                                     r->src.name, (unsigned long long)r->src.line, names[kind],
                                     vt_offset_tok_text(t, text));

@@ -22,24 +22,6 @@ enum vt_offset_keyword vt_offset_tok_keyword(const struct vt_offset_tok *t)
     }
 }
 
-/* A signed decimal index in [s, e) (vt_obj's rules); false on junk or overflow. */
-bool vt_offset_tok_index(const unsigned char *s, const unsigned char *e, int64_t *out)
-{
-    bool neg = false;
-    if (s < e && (*s == '-' || *s == '+'))
-        neg = *s++ == '-';
-    if (s == e)
-        return false;
-    int64_t v = 0;
-    for (; s < e; s++) {
-        if (*s < '0' || *s > '9' || v > (INT64_C(1) << 40))
-            return false;
-        v = v * 10 + (*s - '0');
-    }
-    *out = neg ? -v : v;
-    return true;
-}
-
 /* Copies a token into buf for a message (cut at 63 bytes). */
 const char *vt_offset_tok_text(const struct vt_offset_tok *t, char buf[64])
 {

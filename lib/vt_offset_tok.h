@@ -72,9 +72,6 @@ enum vt_offset_keyword {
 /* The statement keyword of t (VT_OFFSET_KW_OTHER for any other). */
 enum vt_offset_keyword vt_offset_tok_keyword(const struct vt_offset_tok *t);
 
-/* A signed decimal index in [s, e) (vt_obj's rules); false on junk or overflow. */
-bool vt_offset_tok_index(const unsigned char *s, const unsigned char *e, int64_t *out);
-
 /* Copies a token into buf for a message (cut at 63 bytes); returns buf. */
 const char *vt_offset_tok_text(const struct vt_offset_tok *t, char buf[64]);
 

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "vt_offset_tok.h"
+#include "vt_text.h"
 #include "vt_uv_text.h"
 
 static const char *line_ending(const unsigned char *line, size_t n)
@@ -172,7 +173,7 @@ static int pass2_indices(struct vt_offset_run *r, const unsigned char *line, siz
             continue;
         int64_t idx, abs_idx;
         uint32_t out_idx;
-        bool ok = vt_offset_tok_index(a, b, &idx) && idx != 0;
+        bool ok = vt_text_index((const char *)a, (const char *)b, &idx) && idx != 0;
         if (ok) {
             abs_idx = idx > 0 ? idx - 1 : (int64_t)r->in_vt + idx;
             ok = abs_idx >= 0 && abs_idx < (int64_t)r->in_vt &&

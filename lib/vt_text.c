@@ -209,3 +209,20 @@ int vt_text_numbers(char **cur, double *out, int max, const char **bad)
     }
     return n;
 }
+
+bool vt_text_index(const char *s, const char *e, int64_t *out)
+{
+    bool neg = false;
+    if (s < e && (*s == '-' || *s == '+'))
+        neg = *s++ == '-';
+    if (s == e)
+        return false;
+    int64_t v = 0;
+    for (; s < e; s++) {
+        if (*s < '0' || *s > '9' || v > (INT64_C(1) << 40))
+            return false;
+        v = v * 10 + (*s - '0');
+    }
+    *out = neg ? -v : v;
+    return true;
+}

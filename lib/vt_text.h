@@ -52,4 +52,8 @@ int vt_text_numbers(char **cur, double *out, int max, const char **bad);
 
 bool vt_text_is_space(char c);
 
+/* Parses a signed decimal OBJ index occupying [s, e) (an optional sign, digits, at most ~2^40);
+ * false on junk or overflow. Shared by the OBJ reader and vt-offset so both accept the same. */
+bool vt_text_index(const char *s, const char *e, int64_t *out);
+
 #endif
