@@ -1,7 +1,9 @@
 # vt-offset: the rewriting engine (lib/vt_offset.c), its exact number text (lib/vt_uv_text.c) and
 # the tool. See docs/cli/vt-offset.md.
 vt_add_unit_test(test_vt_uv_text offset/test_vt_uv_text.c LIBS vtlib)
-vt_add_unit_test(test_vt_offset offset/test_vt_offset.c LIBS vtlib)
+vt_add_unit_test(test_vt_offset offset/test_vt_offset.c offset/offset_fixture.c LIBS vtlib)
+vt_add_unit_test(test_vt_offset_numerics offset/test_vt_offset_numerics.c offset/offset_fixture.c
+                 LIBS vtlib)
 
 # Inputs for the CLI cases and the benchmark (scripts/bench/offset-throughput); not a test.
 add_executable(vt-offset-gen offset/vt_offset_gen.c)
