@@ -1,6 +1,6 @@
 /* vt-offset: rewrites the texture coordinates of an OBJ scene onto the atlas of a layout
  * (atlas.json), writing OUT.obj and OUT.mtl with one material that names the store. Reference:
- * docs/cli/vt-offset.md; the engine is lib/vt_offset.c. */
+ * docs/cli/vt-offset.md; the engine is lib/offset/vt_offset.c. */
 #include <limits.h>
 #include <stdlib.h>
 #include <string.h>

@@ -1,13 +1,12 @@
-/* libFuzzer target for image input (formats/vt_image_input.c and the TIFF, PNG, JPEG and OpenEXR
- * readers, scripts/fuzz). vt_image_input_open() takes a path, so each input is written to one
- * temporary file per process (reused) and opened with max_pixels = 2^22, so that huge headers are
- * refused before anything is decoded. An image that opens is read whole when small, else its four
- * corners and a middle band, top-down (how the pyramid reads sequential sources).
- * Inputs whose magic is not TIFF, PNG, JPEG or EXR are skipped: the OpenImageIO fallback is not
- * exercised here (it costs ~0.4 s to load).
- * Invariants, not only crashes: open and every read return 0 or a negative status with a one-line
- * message naming the file; an opened image has 1..4 channels, a known sample type and a size
- * within the limit.
+/* libFuzzer target for image input (formats/input/vt_image_input.c and the TIFF, PNG, JPEG and
+ * OpenEXR readers, scripts/fuzz). vt_image_input_open() takes a path, so each input is written to
+ * one temporary file per process (reused) and opened with max_pixels = 2^22, so that huge headers
+ * are refused before anything is decoded. An image that opens is read whole when small, else its
+ * four corners and a middle band, top-down (how the pyramid reads sequential sources). Inputs whose
+ * magic is not TIFF, PNG, JPEG or EXR are skipped: the OpenImageIO fallback is not exercised here
+ * (it costs ~0.4 s to load). Invariants, not only crashes: open and every read return 0 or a
+ * negative status with a one-line message naming the file; an opened image has 1..4 channels, a
+ * known sample type and a size within the limit.
  *
  * Built with -DVT_FUZZ_NO_ENTRY, the file gives fuzz_image_input_one() to the regression test. */
 #include <stdint.h>

@@ -1,6 +1,6 @@
-/* libFuzzer target for the atlas.json reader (lib/vt_layout_json.c, vt_layout.c). Invariants are
- * checked, not only crashes: a layout that loads has every cell inside the atlas with its copies
- * inside, every entry found by its name and by each of its aliases, resolved paths for every
+/* libFuzzer target for the atlas.json reader (lib/layout/vt_layout_json.c, vt_layout.c). Invariants
+ * are checked, not only crashes: a layout that loads has every cell inside the atlas with its
+ * copies inside, every entry found by its name and by each of its aliases, resolved paths for every
  * texture; a failure has a status and a one-line message naming the input. */
 #include <stdint.h>
 #include <stdlib.h>

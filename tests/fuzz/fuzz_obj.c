@@ -1,7 +1,7 @@
-/* libFuzzer target for the OBJ/MTL reader (lib/vt_obj.c): parses the input from memory as an OBJ
- * and as an MTL file. Invariants are checked, not only crashes: every face corner must index the
- * arrays read so far, every failure must give a reader status with a message naming the input, and
- * every map of a material read must have both a file and a resolved path or neither. */
+/* libFuzzer target for the OBJ/MTL reader (lib/obj/vt_obj.c): parses the input from memory as an
+ * OBJ and as an MTL file. Invariants are checked, not only crashes: every face corner must index
+ * the arrays read so far, every failure must give a reader status with a message naming the input,
+ * and every map of a material read must have both a file and a resolved path or neither. */
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>

@@ -1,8 +1,8 @@
 /* The reader never allocates much more than the file it opens: a tiny hostile file must not make
  * it ask for hundreds of megabytes (memory amplification, and allocation failures in a process
  * that opens many stores). Linked with -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc
- * (tests/robust.cmake), so every allocation of the reader is seen here; the largest single request
- * while opening must stay below the file size plus a small constant. */
+ * (tests/robust/CMakeLists.txt), so every allocation of the reader is seen here; the largest single
+ * request while opening must stay below the file size plus a small constant. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

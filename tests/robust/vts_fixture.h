@@ -1,6 +1,6 @@
 /* Valid .vts stores for the robustness tests and the fuzz seed corpus, file helpers, and the
  * re-sealing of CRCs after a deliberate corruption (so that structural checks, not only checksums,
- * are reached). Layout knowledge comes from lib/vts_format.h. */
+ * are reached). Layout knowledge comes from lib/store/vts_format.h. */
 #ifndef VTS_FIXTURE_H
 #define VTS_FIXTURE_H
 

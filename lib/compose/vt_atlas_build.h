@@ -1,0 +1,104 @@
+/* Atlas compositing for vt-tiles --layout: the tiles of every level of an atlas
+ * (lib/layout/vt_layout.h) computed from the source textures on demand, without ever holding a
+ * whole level.
+ *
+ * Each entry's texture (per layer) becomes a mip chain (vt_mip_chain.h) kept in a bounded,
+ * reference-counted LRU cache shared by the workers. A level-L texel whose level-0 footprint lies
+ * inside one entry's cell, with the entry aligned at 2^L, is "owned": it reads that entry's chain
+ * at level L (clamped into the chain's rectangle, so cell padding, the gutter before x/y of a cell
+ * that starts before its texture, and borders on a texture's edge repeat that texture's edge
+ * texels, and filtering never mixes textures). A texel whose footprint
+ * touches no cell is empty. Any other texel (coarse levels above an entry's alignment) is "mixed":
+ * the coverage-weighted average, in the working space, of its four children one level down. A tile
+ * whose content texels are all empty is emitted as empty. Output is 8-bit; the bytes do not depend
+ * on the number of threads or on the cache size. Details in docs/atlas-build.md. */
+#ifndef VT_ATLAS_BUILD_H
+#define VT_ATLAS_BUILD_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "vt_error.h"
+#include "vt_filter.h"
+#include "vt_image.h"
+#include "vt_layout.h"
+#include "vt_source.h"
+
+/* Opens the texture file at path (a layout texture's resolved path) as a source. lib/ does not
+ * read image files itself: tools pass vt_image_input_open() through this. Called from worker
+ * threads at once (each call opens an independent source). Fills err naming the file on failure. */
+typedef int (*vt_atlas_open_fn)(void *user, const char *path, struct vt_source *out,
+                                struct vt_error *err);
+
+/* Receives the payload of one tile of one built layer (slot 0 .. layer_count-1), or NULL for an
+ * empty tile. Called from worker threads, each (slot, level, tx, ty) exactly once. */
+typedef int (*vt_atlas_emit_fn)(void *user, unsigned worker, uint32_t slot, uint32_t level,
+                                uint32_t tx, uint32_t ty, const struct vt_image *payload,
+                                struct vt_error *err);
+
+/* Progress: tile positions done of total; non-zero cancels. Called on the calling thread. */
+typedef int (*vt_atlas_progress_fn)(void *user, uint64_t done, uint64_t total);
+
+struct vt_atlas_build_options {
+    const struct vt_layout *layout; /* read and checked (vt_layout_read); must outlive the build */
+    const uint32_t *layers;         /* layout layer indices to build, in store order */
+    uint32_t layer_count;           /* 1..VT_LAYOUT_MAX_LAYERS */
+    uint32_t level_count;           /* 0 = every level (down to one tile) */
+    enum vt_filter_kind filter;     /* mip filter of the textures' chains */
+    unsigned threads;               /* 1..256 */
+    uint64_t cache_bytes;           /* decoded chains kept; 0 = 1 GiB */
+    uint64_t max_pixels;            /* per texture (its copies together); 0 = 2^34 */
+    vt_atlas_open_fn open;
+    void *open_user;
+    vt_atlas_progress_fn progress; /* optional, for the texture scan of create() too */
+    void *progress_user;
+};
+
+/* Output format of one built layer: 8-bit samples, colour_channels (1 when every texture of the
+ * layer is grey, else 3) plus alpha when some texture of the layer is not opaque. */
+struct vt_atlas_layer_format {
+    uint32_t channels;
+    uint32_t colour_channels;
+    bool alpha;
+    uint32_t colour;    /* enum vts_colour, the layout layer's */
+    uint32_t converted; /* textures that are not 8-bit (converted) */
+};
+
+struct vt_atlas_build;
+
+/* Opens every texture of the built layers once (in parallel): checks that it exists, that its
+ * size is the one the layout records, and scans alpha channels to decide the layer formats.
+ * Returns NULL and fills err ("'wood.png': ...") on failure. Free with vt_atlas_build_destroy(). */
+struct vt_atlas_build *vt_atlas_build_create(const struct vt_atlas_build_options *o,
+                                             struct vt_error *err);
+
+void vt_atlas_build_format(const struct vt_atlas_build *b, uint32_t slot,
+                           struct vt_atlas_layer_format *out);
+
+/* Levels the build emits, and tile positions per layer (for progress). */
+uint32_t vt_atlas_build_level_count(const struct vt_atlas_build *b);
+uint64_t vt_atlas_build_tile_count(const struct vt_atlas_build *b);
+
+/* Computes and emits every tile of every built layer, on the option's threads. Returns 0, the
+ * first error (lowest tile) or VT_ERR_CANCELLED. */
+int vt_atlas_build_tiles(struct vt_atlas_build *b, vt_atlas_emit_fn emit, void *user,
+                         struct vt_error *err);
+
+/* Texels [x, x + dst->width) x [y, y + dst->height) of level `level` of slot into dst (8-bit, the
+ * slot's channels), as the tiles' content holds them (empty space: zero, a flat normal for normal
+ * layers). Single-threaded; for --export-atlas. */
+int vt_atlas_build_render(struct vt_atlas_build *b, uint32_t slot, uint32_t level, uint32_t x,
+                          uint32_t y, struct vt_image *dst, struct vt_error *err);
+
+struct vt_atlas_build_stats {
+    uint64_t chains_built; /* texture decodes (a texture evicted and needed again counts again) */
+    uint64_t cache_peak;   /* most chain bytes held at once */
+    uint64_t tiles_empty;  /* tile positions emitted empty (per layer) */
+    uint64_t texels_mixed; /* coarse texels computed from several cells */
+};
+void vt_atlas_build_stats(const struct vt_atlas_build *b, struct vt_atlas_build_stats *out);
+
+/* Frees everything. Accepts NULL. */
+void vt_atlas_build_destroy(struct vt_atlas_build *b);
+
+#endif

@@ -1,0 +1,298 @@
+#!/usr/bin/env bash
+# One vt-view test case (tests/e2e/view/CMakeLists.txt): builds its stores with vtv_make_store, renders them
+# headless (EGL surfaceless, Mesa llvmpipe) and checks screenshots and statistics with vtv_check.
+# usage: run_view_test.sh CASE VT_VIEW MAKE_STORE CHECK WORKDIR [VT_TILES VT_SYNTH_IMAGE]
+# The scene cases take VT_ATLAS, VT_OFFSET, VT_TILES, VTV_MAKE_SCENE (and VT_SAMPLE_SCENE) from
+# the environment (tests/e2e/view/CMakeLists.txt).
+set -euo pipefail
+case_name=$1 view=$2 make_store=$3 check=$4 work=$5 vt_tiles=${6:-} synth_image=${7:-}
+atlas=${VT_ATLAS:-} offset=${VT_OFFSET:-} layout_tiles=${VT_TILES:-} make_scene=${VTV_MAKE_SCENE:-}
+sample_scene=${VT_SAMPLE_SCENE:-}
+rm -rf "$work"
+mkdir -p "$work"
+cd "$work"
+export MESA_SHADER_CACHE_DISABLE=true EGL_LOG_LEVEL=fatal
+
+# 512x512 RGB store, 64 px tiles, border 4 (4 levels: 512, 256, 128, 64).
+store() { "$make_store" "$@"; }
+# Cameras (centre x, centre y, screen pixels per texel) on a 256x256 frame.
+echo "200.3 180.7 2.37" >mag.cam  # magnified, off the texel grid
+echo "137.2 301.9 0.73" >mid.cam  # slightly minified: levels 0 and 1
+echo "256.5 256.5 0.41" >min.cam  # minified: levels 1 and 2
+echo "128 128 1" >one.cam         # 1:1, level 0 only, tiles 0..3 x 0..3
+vt() { "$view" "$@" --headless --size 256x256; }
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+# PSNR of the converged virtual texture against --reference on store $1 for filter $2 and camera $3.
+compare() {
+  local s=$1 f=$2 cam=$3 op=$4 limit=$5 tag=$1_$2_$3
+  vt "$s" --camera "$cam.cam" --frames 16 --sync --filtering "$f" --screenshot "vt_$tag.png" \
+    --stats "vt_$tag.json"
+  vt "$s" --camera "$cam.cam" --frames 1 --reference --filtering "$f" --screenshot "ref_$tag.png"
+  "$check" psnr "vt_$tag.png" "ref_$tag.png" "$op" "$limit" || fail "$tag: PSNR $op $limit"
+}
+
+case $case_name in
+psnr_bilinear | psnr_trilinear)
+  f=${case_name#psnr_}
+  limit=40
+  [ "$f" = trilinear ] && limit=35
+  store good.vts
+  for cam in mag mid min; do
+    compare good.vts "$f" $cam --min $limit
+    "$check" stat "vt_good.vts_${f}_$cam.json" fallback_pixels == 0 || fail "fallback after convergence"
+    "$check" stat "vt_good.vts_${f}_$cam.json" failed == 0 || fail "failed tiles"
+  done
+  ;;
+bad_borders)
+  # Borders not copied from the neighbours must show: the same comparisons fail by a clear margin
+  # (each border sample pushed >= 128 away from the right value; 32 px tiles so that more pixels
+  # sit next to a tile edge), while the same store with correct borders passes them.
+  store good32.vts --tile 32
+  store bad.vts --tile 32 --bad-borders
+  for cam in mag mid; do
+    compare good32.vts bilinear $cam --min 40
+    compare good32.vts trilinear $cam --min 35
+    compare bad.vts bilinear $cam --max 35
+    compare bad.vts trilinear $cam --max 30
+  done
+  ;;
+small_cache)
+  # 6 slots for a view that needs ~20 tiles: still renders, counts fallbacks, never errors.
+  store good.vts
+  for mode in --sync ""; do
+    vt good.vts --camera min.cam --frames 24 $mode --cache 6 --screenshot small.png --stats small.json
+    "$check" stat small.json resident == 6 || fail "cache not full"
+    "$check" stat small.json fallback_pixels '>' 0 || fail "no fallback counted"
+    "$check" stat small.json failed == 0 || fail "failed tiles"
+    "$check" dark small.png 0 || fail "unrendered pixels"
+  done
+  vt good.vts --camera min.cam --frames 1 --reference --screenshot ref.png
+  "$check" psnr small.png ref.png --min 20 || fail "small cache shows garbage"
+  ;;
+empty_tiles)
+  # Level-0 tiles (1,1) and (2,0) stored with length 0: their 64x64 pixels show level 1.
+  store good.vts
+  store empty.vts --empty 1,1 --empty 2,0
+  vt empty.vts --camera one.cam --frames 24 --sync --screenshot empty.png --stats empty.json
+  "$check" stat empty.json fallback_pixels == 8192 || fail "fallback pixels"
+  "$check" stat empty.json empty == 2 || fail "empty tiles"
+  "$check" stat empty.json failed == 0 || fail "failed tiles"
+  "$check" dark empty.png 0 || fail "black (garbage) pixels"
+  vt good.vts --camera one.cam --frames 1 --reference --screenshot ref.png
+  "$check" psnr empty.png ref.png --min 30 || fail "empty tiles do not show the coarser level"
+  ;;
+corrupt_tile)
+  # Four bytes of one level-0 payload overwritten: that tile fails its CRC, is reported once and
+  # shows its ancestor; the run still succeeds.
+  store corrupt.vts
+  size=$(stat -c %s corrupt.vts)
+  printf '\377\377\377\377' | dd of=corrupt.vts bs=1 seek=$((size - 100)) conv=notrunc status=none
+  echo "256 256 1" >full.cam
+  "$view" corrupt.vts --headless --size 512x512 --camera full.cam --frames 16 --sync \
+    --stats corrupt.json --screenshot corrupt.png 2>err.txt || fail "exit status"
+  "$check" stat corrupt.json failed == 1 || fail "failed tiles"
+  "$check" stat corrupt.json fallback_pixels == 4096 || fail "fallback pixels"
+  [ "$(grep -c 'bad checksum' err.txt)" = 1 ] || fail "warning: $(cat err.txt)"
+  grep -q "^vt-view: 'corrupt.vts': tile [0-9]*,[0-9]* of level 0 of layer 0 has a bad checksum (its ancestor is shown)$" err.txt ||
+    fail "message: $(cat err.txt)"
+  "$check" dark corrupt.png 0 || fail "black pixels"
+  ;;
+sync_stats)
+  # --sync: the statistics of a fixed camera path are exact and repeatable.
+  store good.vts
+  printf '256 256 0.5\n200 180 1.3\n300 320 2.1\n100 400 0.9\n' >path.cam
+  for run in 1 2; do
+    vt good.vts --camera path.cam --frames 12 --sync --uploads 4 --filtering trilinear \
+      --stats run$run.json --screenshot run$run.png
+  done
+  "$check" frames-equal run1.json run2.json || fail "stats differ between runs"
+  grep -o '"uploads": [0-9]*' run1.json | awk '$2 > 4 { bad = 1 } END { exit bad }' ||
+    fail "more than --uploads 4 tiles uploaded in a frame"
+  grep -q '"uploads": 4' run1.json || fail "the upload budget was never reached"
+  cmp run1.png run2.png || fail "screenshots differ between runs"
+  vt good.vts --camera mag.cam --frames 6 --sync --stats mag.json
+  "$check" stat mag.json requested == 10 || fail "requested"
+  "$check" stat mag.json resident == 10 || fail "resident"
+  "$check" stat mag.json uploads == 0 || fail "uploads"
+  "$check" stat mag.json fallback_pixels == 0 || fail "fallback"
+  grep -q '{"requested": 10, "loaded": 9, "resident": 10, "uploads": 9, "fallback_pixels": 0' \
+    mag.json || fail "frame 1 of mag.json: $(sed -n 13p mag.json)"
+  grep -q '{"requested": 10, "loaded": 0, "resident": 1, "uploads": 0, "fallback_pixels": 65536' \
+    mag.json || fail "frame 0 of mag.json"
+  ;;
+async)
+  # Loader threads: the cache fills from the background and the frame converges.
+  store good.vts
+  vt good.vts --camera mid.cam --frames 200 --threads 2 --stats async.json --screenshot async.png
+  "$check" stat async.json resident '>' 1 || fail "nothing loaded"
+  "$check" stat async.json failed == 0 || fail "failed tiles"
+  ;;
+debug_views)
+  store good.vts
+  vt good.vts --camera mid.cam --frames 24 --sync --screenshot plain.png
+  vt good.vts --camera mid.cam --frames 24 --sync --debug levels --screenshot levels.png
+  vt good.vts --camera mid.cam --frames 24 --sync --debug tiles --screenshot tiles.png
+  "$check" psnr levels.png plain.png --max 20 || fail "levels view looks plain"
+  "$check" psnr tiles.png plain.png --max 30 || fail "tiles view looks plain"
+  ;;
+vt_tiles_store)
+  # A store made by the real pipeline: vt-tiles (box mips in linear light, sRGB layer) from a
+  # generated photo-like PNG; sRGB textures on both sides.
+  "$synth_image" img.png --format png --size 512x512 --channels 3 --photo
+  "$vt_tiles" img.png -o tiles.vts --tile-size 72 --border 4 --codec png --filter box -q
+  for cam in mag min; do
+    compare tiles.vts bilinear $cam --min 40
+    compare tiles.vts trilinear $cam --min 35
+    "$check" stat "vt_tiles.vts_trilinear_$cam.json" fallback_pixels == 0 || fail "fallback"
+  done
+  ;;
+bc_upload)
+  # BC1 tiles: blocks uploaded as stored into a compressed physical texture (S3TC on llvmpipe)
+  # give the same picture as CPU decoding (--bc-upload off) and as the reference.
+  store bc1.vts --codec bc1
+  for m in auto off; do
+    vt bc1.vts --camera mid.cam --frames 16 --sync --bc-upload $m --screenshot bc_$m.png \
+      --stats bc_$m.json
+    "$check" stat bc_$m.json fallback_pixels == 0 || fail "$m: fallback"
+    "$check" stat bc_$m.json failed == 0 || fail "$m: failed tiles"
+  done
+  grep -q '"physical_format": "bc"' bc_auto.json || fail "auto did not upload compressed"
+  grep -q '"physical_format": "rgba8"' bc_off.json || fail "off did not decode"
+  "$check" psnr bc_auto.png bc_off.png --min 45 || fail "GL S3TC decode differs from the CPU's"
+  vt bc1.vts --camera mid.cam --frames 1 --reference --screenshot bc_ref.png
+  "$check" psnr bc_auto.png bc_ref.png --min 40 || fail "compressed path against the reference"
+  ;;
+scene_3d)
+  # 3D: a plane carrying the whole texture, 16-frame orbit; the virtual texture matches the plain
+  # GL texture drawn through the same OBJ, and a camera file drives the 3D camera.
+  store good.vts
+  printf 'v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\nf 1/1 2/2 3/3 4/4\n' \
+    >plane.vt.obj
+  for f in bilinear trilinear; do
+    vt good.vts plane.vt.obj --orbit 16 --frames 40 --sync --filtering $f --screenshot vt_$f.png \
+      --stats vt_$f.json
+    vt good.vts plane.vt.obj --orbit 16 --frames 40 --reference --filtering $f --screenshot ref_$f.png
+    "$check" psnr vt_$f.png ref_$f.png --min 35 || fail "3D $f PSNR"
+    # the camera moves every frame: the requests of one frame are served the next
+    "$check" stat vt_$f.json fallback_pixels '<' 655 || fail "3D $f fallback above 1%"
+  done
+  echo "0 1.5 2.5 0 0 0 50" >view3d.cam
+  vt good.vts plane.vt.obj --camera view3d.cam --frames 20 --sync --screenshot cam3d.png \
+    --stats cam3d.json
+  "$check" stat cam3d.json fallback_pixels == 0 || fail "3D static camera fallback"
+  vt good.vts plane.vt.obj --camera view3d.cam --frames 1 --reference --screenshot cam3d_ref.png
+  "$check" psnr cam3d.png cam3d_ref.png --min 35 || fail "3D camera file"
+  ;;
+scene_reference)
+  # --reference-scene: a generated scene (tests/e2e/view/vtv_make_scene.c: textured quads, one wrapped
+  # material with UVs in [-1, 2], one with turned UVs, one Kd-only) through vt-atlas -> vt-offset
+  # -> vt-tiles --layout (lossless png tiles), compared with the ORIGINAL OBJ drawn with its own
+  # textures: proves the atlas offsets, borders and wrap replication end to end.
+  mkdir tex
+  "$make_scene" .
+  "$atlas" scene.obj -o atlas.json --wrap replicate --tile-size 64 --border 4 -q
+  "$offset" scene.obj atlas.json -o scene.vt.obj -q
+  "$layout_tiles" --layout atlas.json -o scene.vts --codec png -q
+  # Fixed camera in front of the wall: textures magnified or near 1:1, the floor at a slant.
+  echo "0 1.0 2.6 0 0.75 0.3 50" >fix.cam
+  for f in bilinear trilinear; do
+    limit=40
+    [ $f = trilinear ] && limit=35
+    vt scene.vts scene.vt.obj --camera fix.cam --frames 20 --sync --filtering $f \
+      --screenshot vt_$f.png --stats vt_$f.json
+    vt scene.vts scene.vt.obj --camera fix.cam --frames 1 --reference --reference-scene scene.obj \
+      --filtering $f --screenshot ref_$f.png
+    "$check" psnr vt_$f.png ref_$f.png --min $limit || fail "$f: against the original scene"
+    "$check" stat vt_$f.json fallback_pixels == 0 || fail "$f: fallback after convergence"
+    "$check" stat vt_$f.json failed == 0 || fail "$f: failed tiles"
+    # an orbit (the camera moves every frame, so the cache trails it by one frame)
+    vt scene.vts scene.vt.obj --orbit 16 --frames 40 --sync --filtering $f --screenshot vo_$f.png \
+      --stats vo_$f.json
+    vt scene.vts scene.vt.obj --orbit 16 --frames 40 --reference --reference-scene scene.obj \
+      --filtering $f --screenshot ro_$f.png
+    "$check" psnr vo_$f.png ro_$f.png --min 35 || fail "$f orbit: against the original scene"
+    "$check" stat vo_$f.json fallback_pixels '<' 655 || fail "$f orbit: fallback above 1%"
+  done
+  # The comparison has teeth: texture coordinates 2 atlas texels off must fail it.
+  w=$(sed -n 's/^ "width": \([0-9]*\),$/\1/p' atlas.json)
+  [ -n "$w" ] || fail "no atlas width in atlas.json"
+  awk -v w="$w" '$1 == "vt" { $2 = $2 + 2 / w } { print }' scene.vt.obj >shifted.vt.obj
+  vt scene.vts shifted.vt.obj --camera fix.cam --frames 20 --sync --screenshot shifted.png
+  "$check" psnr shifted.png ref_bilinear.png --max 30 || fail "shifted offsets not detected"
+  ;;
+reference_scene_cli)
+  mkdir tex
+  "$make_scene" .
+  "$atlas" scene.obj -o atlas.json --wrap replicate --tile-size 64 -q
+  "$offset" scene.obj atlas.json -o scene.vt.obj -q
+  "$layout_tiles" --layout atlas.json -o scene.vts --codec png -q
+  set +e
+  "$view" scene.vts scene.vt.obj --headless --reference-scene scene.obj 2>err.txt
+  [ $? -eq 2 ] || fail "--reference-scene without --reference: exit 2"
+  grep -q 'vt-view: --reference-scene needs --reference and a scene' err.txt || fail "$(cat err.txt)"
+  "$view" scene.vts --headless --reference --reference-scene scene.obj 2>/dev/null
+  [ $? -eq 2 ] || fail "--reference-scene without a scene: exit 2"
+  vt scene.vts scene.vt.obj --frames 1 --reference --reference-scene missing.obj 2>err.txt
+  [ $? -eq 1 ] || fail "missing OBJ: exit 1"
+  grep -q "missing.obj" err.txt || fail "message names the OBJ: $(cat err.txt)"
+  rm tex/d.png
+  vt scene.vts scene.vt.obj --frames 1 --reference --reference-scene scene.obj 2>err.txt
+  [ $? -eq 1 ] || fail "missing texture: exit 1"
+  grep -q "tex/d.png" err.txt || fail "message names the texture: $(cat err.txt)"
+  set -e
+  ;;
+sample_scene)
+  # The sample scene (samples/gen_scene.c, half size): 44 materials, NPOT textures, RGBA cut-outs,
+  # a ground with UVs 0..8, a Kd-only antenna; the camera stands at a street corner close to
+  # building_00 (its faces at levels 0..2, the ground magnified).
+  "$sample_scene" -q --shrink 2 src
+  cd src
+  "$atlas" scene.obj -o atlas.json --wrap replicate -q
+  "$offset" scene.obj atlas.json -o scene.vt.obj -q
+  "$layout_tiles" --layout atlas.json -o scene.vts --codec png -q
+  echo "10 2 10 4 3.5 4 60" >corner.cam
+  for f in bilinear trilinear; do
+    limit=40
+    [ $f = trilinear ] && limit=35
+    vt scene.vts scene.vt.obj --camera corner.cam --frames 24 --sync --filtering $f \
+      --screenshot vt_$f.png --stats vt_$f.json
+    vt scene.vts scene.vt.obj --camera corner.cam --frames 1 --reference --reference-scene \
+      scene.obj --filtering $f --screenshot ref_$f.png
+    "$check" psnr vt_$f.png ref_$f.png --min $limit || fail "$f: against the original scene"
+    "$check" stat vt_$f.json fallback_pixels == 0 || fail "$f: fallback after convergence"
+  done
+  # The whole city from the orbit: far, strongly minified textures, where the atlas's coarse
+  # levels mix neighbouring entries and NPOT textures are filtered differently; a looser bound.
+  vt scene.vts scene.vt.obj --orbit 16 --frames 40 --sync --filtering trilinear \
+    --screenshot vo.png
+  vt scene.vts scene.vt.obj --orbit 16 --frames 40 --reference --reference-scene scene.obj \
+    --filtering trilinear --screenshot ro.png
+  "$check" psnr vo.png ro.png --min 25 || fail "orbit against the original scene"
+  ;;
+window)
+  store good.vts
+  # glfwTerminate unloads Mesa's GLX driver, and LeakSanitizer then reports two 56-byte llvmpipe
+  # objects from an unknown module (the EGL path avoids it by not calling eglTerminate). Sanitizer
+  # builds run this case without leak detection; the other cases cover the rest of the code.
+  ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0 \
+    xvfb-run -a "$view" good.vts --frames 3 --size 256x256 || fail "window run"
+  ;;
+cli)
+  "$view" --help | grep -q 'usage: vt-view' || fail "--help"
+  "$view" --version >/dev/null || fail "--version"
+  set +e
+  "$view" 2>err.txt; [ $? -eq 2 ] || fail "no argument: exit 2"
+  grep -q 'vt-view: missing STORE.vts' err.txt || fail "message: $(cat err.txt)"
+  "$view" x.vts --bogus 2>/dev/null; [ $? -eq 2 ] || fail "unknown option: exit 2"
+  "$view" x.vts --headless --frames 0 2>/dev/null; [ $? -eq 2 ] || fail "--frames 0 headless"
+  "$view" x.vts --headless --feedback-scale 1/0 2>/dev/null; [ $? -eq 2 ] || fail "bad scale"
+  "$view" missing.vts --headless 2>err.txt; [ $? -eq 1 ] || fail "missing store: exit 1"
+  grep -q "missing.vts" err.txt || fail "message names the store: $(cat err.txt)"
+  set -e
+  ;;
+*)
+  fail "unknown case $case_name"
+  ;;
+esac
+echo "ok: $case_name"

@@ -1,0 +1,330 @@
+/* vt-tiles: out-of-core mip pyramid + bordered tiles from one image into a .vts store. Option
+ * parsing and main; the single-image build is tools/vt-tiles/vt_tiles_image.c, the atlas build
+ * (--layout) tools/vt-tiles/vt_tiles_layout.c. */
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tool_common.h"
+#include "vt_atomic_file.h"
+#include "vt_image_input.h"
+#include "vt_pool.h"
+#include "vt_shard.h"
+#include "vt_tiles_image.h"
+#include "vt_tiles_layout.h"
+#include "vts_writer.h"
+
+struct options {
+    const char *input, *output, *codec_name, *name, *temp_dir;
+    uint32_t tile_size, border, quality, threads, colour, aniso, subsampling;
+    bool border_set, colour_set, keep_content, wrap, best, tile_size_set;
+    const char *layout, *layer,
+        *export_atlas; /* --layout build (tools/vt-tiles/vt_tiles_layout.c) */
+    enum vt_filter_kind filter;
+    const char *filtering; /* bilinear, trilinear, anisoN */
+    uint64_t max_pixels, max_store, cache_bytes;
+    uint32_t shard, shard_count; /* --shard I/N (docs/sharding.md); 0 = whole build */
+};
+
+static void usage(FILE *f)
+{
+    fprintf(
+        f,
+        "usage: vt-tiles INPUT -o OUT.vts [options]\n"
+        "Builds every mip level of INPUT, cut into bordered tiles, into one .vts store.\n"
+        "INPUT: TIFF/BigTIFF (tiled or striped), PNG, JPEG, EXR; other formats through "
+        "OpenImageIO.\n\n"
+        "  -o, --output FILE        the store to write (replaced atomically)\n"
+        "      --tile-size N        tile payload edge in texels, 8..16384 (default 256)\n"
+        "      --keep payload|content  which edge is the given size: payload (content =\n"
+        "                           size - 2*border, default) or content (payload grows)\n"
+        "      --border N           border texels per side, 0..64 (default: from --filtering\n"
+        "                           and the codec: bilinear 1, trilinear 2, anisoN N/2;\n"
+        "                           at least 4 for bc1/bc3)\n"
+        "      --filtering MODE     bilinear | trilinear | aniso2..aniso16 (default "
+        "trilinear)\n"
+        "      --filter NAME        mip filter: box | triangle | lanczos3 | kaiser (default "
+        "box)\n"
+        "      --colour SPACE       srgb | linear | normal | data (default: srgb for 8/16-bit\n"
+        "                           images, linear for float)\n"
+        "      --wrap               tiling texture: borders and filters wrap around\n"
+        "      --codec NAME         raw | png | jpeg | bc1 | bc3 | auto (default auto: jpeg for\n"
+        "                           opaque 8-bit colour, png for alpha, 16-bit, normal or "
+        "data,\n"
+        "                           raw for float)\n"
+        "      --quality Q          jpeg quality 1..100 (default 85)\n"
+        "      --subsampling S      jpeg chroma subsampling 420 | 444 (default 420)\n"
+        "      --mode fast|best     bc1/bc3 encoder, png compression (default fast)\n"
+        "      --name NAME          layer name (default diffuse)\n"
+        "      --max-pixels N       refuse inputs with more texels (default 2^34)\n"
+        "      --max-store-size S   refuse to write more tile bytes than S (suffix K, M, G, T;\n"
+        "                           default 2T)\n"
+        "      --cache-size S       --layout: decoded textures kept in memory (default 1G)\n"
+        "      --temp-dir DIR       where pass images go (default: the output's directory)\n"
+        "      --shard I/N          build part I of N (N a power of two) for vt-merge to join\n"
+        "      --layout FILE        instead of INPUT: build the atlas FILE (vt-atlas) from its\n"
+        "                           textures; tile size and border come from the layout\n"
+        "      --layer NAME         with --layout: only this layer (default: every layer)\n"
+        "      --export-atlas FILE  with --layout: also write level 0 as one .tif/.png\n"
+        "  -j, --threads N          worker threads (default: all cores)\n"
+        "  -q, --quiet              errors only;  -v, --verbose  more detail\n"
+        "  -h, --help               this help;    --version  version\n");
+}
+
+static const struct option long_options[] = {{"output", required_argument, 0, 'o'},
+                                             {"tile-size", required_argument, 0, 't'},
+                                             {"keep", required_argument, 0, 'K'},
+                                             {"border", required_argument, 0, 'b'},
+                                             {"filtering", required_argument, 0, 'F'},
+                                             {"filter", required_argument, 0, 'f'},
+                                             {"colour", required_argument, 0, 'c'},
+                                             {"wrap", no_argument, 0, 'w'},
+                                             {"codec", required_argument, 0, 'C'},
+                                             {"quality", required_argument, 0, 'Q'},
+                                             {"subsampling", required_argument, 0, 'S'},
+                                             {"mode", required_argument, 0, 'M'},
+                                             {"name", required_argument, 0, 'N'},
+                                             {"max-pixels", required_argument, 0, 'P'},
+                                             {"temp-dir", required_argument, 0, 'T'},
+                                             {"max-store-size", required_argument, 0, 'Z'},
+                                             {"cache-size", required_argument, 0, 'X'},
+                                             {"shard", required_argument, 0, 'D'},
+                                             {"layout", required_argument, 0, 'L'},
+                                             {"layer", required_argument, 0, 'l'},
+                                             {"export-atlas", required_argument, 0, 'E'},
+                                             {"threads", required_argument, 0, 'j'},
+                                             {"quiet", no_argument, 0, 'q'},
+                                             {"verbose", no_argument, 0, 'v'},
+                                             {"help", no_argument, 0, 'h'},
+                                             {"version", no_argument, 0, 'V'},
+                                             {0, 0, 0, 0}};
+
+static int parse_colour(const char *s, uint32_t *out)
+{
+    static const char *const names[] = {"srgb", "linear", "normal", "data"};
+    for (uint32_t i = 0; i < 4; i++)
+        if (strcmp(s, names[i]) == 0) {
+            *out = VTS_COLOUR_SRGB + i;
+            return 0;
+        }
+    return -1;
+}
+
+/* Returns -1 to continue, or an exit status. */
+static int parse_options(int argc, char **argv, struct options *o)
+{
+    *o = (struct options){.tile_size = 256,
+                          .threads = vt_pool_cpu_count(),
+                          .codec_name = "auto",
+                          .name = "diffuse",
+                          .filtering = "trilinear",
+                          .quality = 85,
+                          .subsampling = 420,
+                          .max_pixels = VT_INPUT_DEFAULT_MAX_PIXELS,
+                          .max_store = VT_DEFAULT_MAX_STORE};
+    int c;
+    uint32_t v;
+    opterr = 0;
+    while ((c = vt_getopt_long(argc, argv, ":o:j:qvh", long_options)) != -1) {
+        switch (c) {
+        case 'o':
+            o->output = optarg;
+            break;
+        case 't':
+            if (vt_parse_u32(optarg, 8, VTS_MAX_PAYLOAD_PX, &o->tile_size))
+                return vt_usage_error("--tile-size must be 8..%u, not '%s'", VTS_MAX_PAYLOAD_PX,
+                                      optarg);
+            o->tile_size_set = true;
+            break;
+        case 'L':
+            o->layout = optarg;
+            break;
+        case 'l':
+            o->layer = optarg;
+            break;
+        case 'E':
+            o->export_atlas = optarg;
+            break;
+        case 'K':
+            if (strcmp(optarg, "content") && strcmp(optarg, "payload"))
+                return vt_usage_error("--keep must be content or payload, not '%s'", optarg);
+            o->keep_content = strcmp(optarg, "content") == 0;
+            break;
+        case 'b':
+            if (vt_parse_u32(optarg, 0, 64, &o->border))
+                return vt_usage_error("--border must be 0..64, not '%s'", optarg);
+            o->border_set = true;
+            break;
+        case 'F':
+            o->filtering = optarg;
+            break;
+        case 'f':
+            if (vt_filter_parse(optarg, &o->filter))
+                return vt_usage_error("unknown --filter '%s' (box, triangle, lanczos3, kaiser)",
+                                      optarg);
+            break;
+        case 'c':
+            if (parse_colour(optarg, &o->colour))
+                return vt_usage_error("unknown --colour '%s' (srgb, linear, normal, data)", optarg);
+            o->colour_set = true;
+            break;
+        case 'w':
+            o->wrap = true;
+            break;
+        case 'C':
+            o->codec_name = optarg;
+            break;
+        case 'Q':
+            if (vt_parse_u32(optarg, 1, 100, &o->quality))
+                return vt_usage_error("--quality must be 1..100, not '%s'", optarg);
+            break;
+        case 'S':
+            if (vt_parse_u32(optarg, 420, 444, &v) || (v != 420 && v != 444))
+                return vt_usage_error("--subsampling must be 420 or 444, not '%s'", optarg);
+            o->subsampling = v;
+            break;
+        case 'M':
+            if (strcmp(optarg, "fast") && strcmp(optarg, "best"))
+                return vt_usage_error("--mode must be fast or best, not '%s'", optarg);
+            o->best = strcmp(optarg, "best") == 0;
+            break;
+        case 'N':
+            if (strlen(optarg) == 0 || strlen(optarg) >= VTS_LAYER_NAME_BYTES)
+                return vt_usage_error("--name must have 1..%u bytes", VTS_LAYER_NAME_BYTES - 1);
+            o->name = optarg;
+            break;
+        case 'P': {
+            char *end;
+            unsigned long long n = strtoull(optarg, &end, 10);
+            if (*optarg < '0' || *optarg > '9' || *end || n == 0)
+                return vt_usage_error("--max-pixels must be a positive number, not '%s'", optarg);
+            o->max_pixels = n;
+            break;
+        }
+        case 'Z':
+            if (vt_parse_size(optarg, &o->max_store) || o->max_store == 0)
+                return vt_usage_error("--max-store-size: '%s' is not a size like 500G", optarg);
+            break;
+        case 'X':
+            if (vt_parse_size(optarg, &o->cache_bytes) || o->cache_bytes < (1u << 20))
+                return vt_usage_error("--cache-size: '%s' is not a size of at least 1M", optarg);
+            break;
+        case 'T':
+            o->temp_dir = optarg;
+            break;
+        case 'D':
+            if (vt_shard_parse(optarg, &o->shard, &o->shard_count))
+                return vt_usage_error("--shard must be I/N with N a power of two up to %u and I "
+                                      "1..N, not '%s'",
+                                      VT_SHARD_MAX_COUNT, optarg);
+            break;
+        case 'j':
+            if (vt_parse_u32(optarg, 1, 256, &o->threads))
+                return vt_usage_error("-j must be 1..256, not '%s'", optarg);
+            break;
+        case 'q':
+            vt_log_set_level(VT_LOG_ERROR);
+            break;
+        case 'v':
+            vt_log_set_level(vt_log_get_level() + 1);
+            break;
+        case 'h':
+            usage(stdout);
+            return VT_EXIT_OK;
+        case 'V':
+            vt_print_version(stdout);
+            return VT_EXIT_OK;
+        default:
+            return vt_usage_getopt_error(c, argv);
+        }
+    }
+    if (o->layout) {
+        if (optind != argc)
+            return vt_usage_error("--layout takes no INPUT ('%s')", argv[optind]);
+        if (o->wrap || o->colour_set || o->shard)
+            return vt_usage_error("--wrap, --colour and --shard do not apply to --layout");
+        o->input = o->layout;
+    } else {
+        if (o->layer || o->export_atlas)
+            return vt_usage_error("--layer and --export-atlas need --layout");
+        if (optind != argc - 1)
+            return vt_usage_error(optind >= argc ? "missing INPUT" : "more than one INPUT");
+        o->input = argv[optind];
+    }
+    if (!o->output && !(o->layout && o->export_atlas))
+        return vt_usage_error("missing -o OUT.vts");
+    if (strcmp(o->filtering, "bilinear") == 0)
+        o->aniso = 0;
+    else if (strcmp(o->filtering, "trilinear") == 0)
+        o->aniso = 1;
+    else if (strncmp(o->filtering, "aniso", 5) || vt_parse_u32(o->filtering + 5, 2, 16, &o->aniso))
+        return vt_usage_error(
+            "--filtering must be bilinear, trilinear or aniso2..aniso16, not '%s'", o->filtering);
+    return -1;
+}
+
+/* vt-tiles INPUT: the single-image build (tools/vt-tiles/vt_tiles_image.c). */
+static int run_image(const struct options *o)
+{
+    struct vt_tiles_image_options io = {.input = o->input,
+                                        .output = o->output,
+                                        .codec_name = o->codec_name,
+                                        .name = o->name,
+                                        .temp_dir = o->temp_dir,
+                                        .tile_size = o->tile_size,
+                                        .border = o->border,
+                                        .quality = o->quality,
+                                        .threads = o->threads,
+                                        .colour = o->colour,
+                                        .aniso = o->aniso,
+                                        .subsampling = o->subsampling,
+                                        .border_set = o->border_set,
+                                        .colour_set = o->colour_set,
+                                        .keep_content = o->keep_content,
+                                        .wrap = o->wrap,
+                                        .best = o->best,
+                                        .filter = o->filter,
+                                        .filtering = o->filtering,
+                                        .max_pixels = o->max_pixels,
+                                        .max_store = o->max_store,
+                                        .shard = o->shard,
+                                        .shard_count = o->shard_count};
+    return vt_tiles_image_run(&io);
+}
+
+/* vt-tiles --layout: the atlas build (tools/vt-tiles/vt_tiles_layout.c). */
+static int run_layout(const struct options *o)
+{
+    struct vt_tiles_layout_options lo = {.layout = o->layout,
+                                         .output = o->output,
+                                         .layer = o->layer,
+                                         .export_atlas = o->export_atlas,
+                                         .codec_name = o->codec_name,
+                                         .filtering = o->filtering,
+                                         .quality = o->quality,
+                                         .subsampling = o->subsampling,
+                                         .best = o->best,
+                                         .tile_size = o->tile_size,
+                                         .tile_size_set = o->tile_size_set,
+                                         .keep_content = o->keep_content,
+                                         .border = o->border,
+                                         .border_set = o->border_set,
+                                         .filter = o->filter,
+                                         .max_pixels = o->max_pixels,
+                                         .max_store = o->max_store,
+                                         .cache_bytes = o->cache_bytes,
+                                         .threads = o->threads};
+    return vt_tiles_layout_run(&lo);
+}
+
+int main(int argc, char **argv)
+{
+    vt_tool_init("vt-tiles");
+    vt_atomic_file_cleanup_on_signals();
+    struct options o;
+    int status = parse_options(argc, argv, &o);
+    if (status >= 0)
+        return status;
+    return o.layout ? run_layout(&o) : run_image(&o);
+}

@@ -1,0 +1,46 @@
+/* vt-view --reference-scene: the original scene (the OBJ before vt-offset, with its MTL files)
+ * drawn with one plain GL texture per material's map_Kd, read through
+ * formats/input/vt_image_input.h (8/16-bit samples, shown as 8 bits; sRGB textures as
+ * GL_SRGB8_ALPHA8 when the frame is sRGB), mipmapped with glGenerateMipmap, GL_REPEAT along an axis
+ * where the material's UVs leave [0, 1] (clamped at the outer edge of the copies vt-atlas lays, as
+ * the atlas is), else GL_CLAMP_TO_EDGE. Materials without map_Kd are drawn with their Kd (0.8 grey
+ * without one), taken as sRGB-encoded like vt-atlas's constant cells. Needs a current GL 3.3 core
+ * context and an initialised struct vtv_render. */
+#ifndef VTV_REFERENCE_H
+#define VTV_REFERENCE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include <epoxy/gl.h>
+
+#include "vt_error.h"
+#include "vtv_render.h"
+
+struct vtv_reference_part {
+    uint32_t first, count; /* vertices in the scene's buffer */
+    GLuint tex;            /* 0: the constant kd */
+    float kd[4];           /* linear when the frame is sRGB-encoded */
+    bool repeat[2];        /* u, v: the material's UVs leave [0, 1] (vt-atlas copies) */
+    float range[4];        /* u lo, v lo, u hi, v hi of the copies (v flipped); +-1e6 if none */
+};
+
+struct vtv_reference_scene {
+    GLuint vao, vbo;
+    struct vtv_reference_part *parts;
+    uint32_t part_count;
+    GLuint *textures; /* distinct map_Kd files */
+    uint32_t texture_count;
+    double lo[3], hi[3]; /* bounding box */
+};
+
+/* Reads obj_path and its MTL files, loads the textures (srgb: the frame is sRGB-encoded, so sRGB
+ * textures decode to linear light). Returns 0 or a negative status naming the file. */
+int vtv_reference_scene_load(struct vtv_reference_scene *s, const char *obj_path, bool srgb,
+                             struct vt_error *err);
+/* Draws the scene into the main framebuffer with the view's camera and filtering. */
+void vtv_reference_scene_draw(struct vtv_render *r, const struct vtv_reference_scene *s,
+                              const struct vtv_view *v);
+void vtv_reference_scene_free(struct vtv_reference_scene *s);
+
+#endif
