@@ -414,12 +414,12 @@ static int convert(struct run *r, struct vt_error *err)
     if (rc == 0) {
         struct vts_writer_stats st;
         vts_writer_stats(r->out, &st);
-        vt_log(VT_LOG_INFO,
-               "wrote '%s': %llu tiles stored (%llu shared), %llu empty, %llu payload bytes "
-               "(input: %llu bytes)",
-               r->o->out_path, (unsigned long long)st.tiles_stored,
-               (unsigned long long)st.tiles_shared, (unsigned long long)st.tiles_empty,
-               (unsigned long long)st.unique_bytes, (unsigned long long)vts_store_file_size(r->in));
+        vt_log(
+            VT_LOG_INFO,
+            "wrote '%s': %llu tiles stored (%llu shared), %llu empty, %llu payload bytes (input: %llu bytes)",
+            r->o->out_path, (unsigned long long)st.tiles_stored,
+            (unsigned long long)st.tiles_shared, (unsigned long long)st.tiles_empty,
+            (unsigned long long)st.unique_bytes, (unsigned long long)vts_store_file_size(r->in));
     }
     return rc;
 }

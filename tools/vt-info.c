@@ -401,9 +401,9 @@ static int check_extract_range(const struct vts_store *s, const struct options *
     for (; !o->has_tile && (uint64_t)L.width * L.height > EXTRACT_MAX_TEXELS; fit++)
         vts_store_level(s, fit + 1, &L); /* the last level fits in one tile */
     if (fit != o->level)
-        return vt_usage_error("level %u of '%s' has more than 2^32 texels, the most --extract "
-                              "writes: use level %u or coarser, or --tile",
-                              o->level, name, fit);
+        return vt_usage_error(
+            "level %u of '%s' has more than 2^32 texels, the most --extract writes: use level %u or coarser, or --tile",
+            o->level, name, fit);
     return 0;
 }
 

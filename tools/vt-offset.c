@@ -192,27 +192,27 @@ static int write_mtl(struct file_sink *mtl, const struct options *o, const struc
 static void report(const struct options *o, const char *mtl_path, const struct vt_layout *layout,
                    const struct vt_offset_stats *s)
 {
-    vt_log(VT_LOG_WARN,
-           "wrote '%s' and '%s': %llu vt on the atlas (%llu duplicated for faces of other "
-           "materials, %llu unused kept), %llu of %llu faces renumbered",
-           o->out_path, mtl_path, (unsigned long long)s->vt_rewritten,
-           (unsigned long long)s->vt_duplicated, (unsigned long long)s->vt_unused,
-           (unsigned long long)s->faces_rewritten, (unsigned long long)s->faces);
-    vt_log(VT_LOG_WARN,
-           "worst round-off on the %ux%u atlas: %.2g texel as written (%u decimals), %.2g texel "
-           "as float32",
-           layout->width, layout->height, s->max_error, s->digits, s->max_error_f32);
-    vt_log(VT_LOG_INFO,
-           "'%s': %llu lines, %llu vt statements, %llu faces (%llu without texture coordinates); "
-           "coordinates written with %u decimals",
-           o->obj_path, (unsigned long long)s->lines, (unsigned long long)s->vt_lines,
-           (unsigned long long)s->faces, (unsigned long long)s->faces_without_vt, s->digits);
+    vt_log(
+        VT_LOG_WARN,
+        "wrote '%s' and '%s': %llu vt on the atlas (%llu duplicated for faces of other materials, %llu unused kept), %llu of %llu faces renumbered",
+        o->out_path, mtl_path, (unsigned long long)s->vt_rewritten,
+        (unsigned long long)s->vt_duplicated, (unsigned long long)s->vt_unused,
+        (unsigned long long)s->faces_rewritten, (unsigned long long)s->faces);
+    vt_log(
+        VT_LOG_WARN,
+        "worst round-off on the %ux%u atlas: %.2g texel as written (%u decimals), %.2g texel as float32",
+        layout->width, layout->height, s->max_error, s->digits, s->max_error_f32);
+    vt_log(
+        VT_LOG_INFO,
+        "'%s': %llu lines, %llu vt statements, %llu faces (%llu without texture coordinates); coordinates written with %u decimals",
+        o->obj_path, (unsigned long long)s->lines, (unsigned long long)s->vt_lines,
+        (unsigned long long)s->faces, (unsigned long long)s->faces_without_vt, s->digits);
     if (vt_offset_f32_warning(s))
-        vt_log(VT_LOG_WARN,
-               "warning: float32 texture coordinates lose up to %.2g texel on this %ux%u atlas "
-               "(vt on line %llu): read them as double",
-               s->max_error_f32, layout->width, layout->height,
-               (unsigned long long)s->max_error_f32_line);
+        vt_log(
+            VT_LOG_WARN,
+            "warning: float32 texture coordinates lose up to %.2g texel on this %ux%u atlas (vt on line %llu): read them as double",
+            s->max_error_f32, layout->width, layout->height,
+            (unsigned long long)s->max_error_f32_line);
 }
 
 static int run(const struct options *o)

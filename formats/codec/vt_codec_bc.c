@@ -64,14 +64,14 @@ static int bc_check_channels_and_sample(const struct bc_format *fmt, uint32_t ch
                             vts_sample_name(sample));
     if (channels < fmt->min_channels || channels > fmt->max_channels) {
         if (fmt->has_alpha_block)
-            return vt_error_set(err, VT_ERR_UNSUPPORTED,
-                                "bc3 needs 4 channels (RGBA), got %u: use bc1 for RGB (half the "
-                                "size), png or raw for grey or grey+alpha",
-                                channels);
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
-                            "bc1 needs 3 or 4 channels (RGB or RGBA), got %u: use png or raw for "
-                            "grey or grey+alpha",
-                            channels);
+            return vt_error_set(
+                err, VT_ERR_UNSUPPORTED,
+                "bc3 needs 4 channels (RGBA), got %u: use bc1 for RGB (half the size), png or raw for grey or grey+alpha",
+                channels);
+        return vt_error_set(
+            err, VT_ERR_UNSUPPORTED,
+            "bc1 needs 3 or 4 channels (RGB or RGBA), got %u: use png or raw for grey or grey+alpha",
+            channels);
     }
     return 0;
 }
@@ -83,10 +83,10 @@ static int bc_check(const struct bc_format *fmt, uint32_t tile_px, uint32_t chan
     if (rc < 0)
         return rc;
     if (tile_px == 0 || tile_px % BC_BLOCK_PX != 0)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
-                            "%s needs a tile payload that is a multiple of 4 (got %u): use "
-                            "--tile-size 256 with --border 4 or --keep payload",
-                            fmt->name, tile_px);
+        return vt_error_set(
+            err, VT_ERR_UNSUPPORTED,
+            "%s needs a tile payload that is a multiple of 4 (got %u): use --tile-size 256 with --border 4 or --keep payload",
+            fmt->name, tile_px);
     uint64_t blocks = (uint64_t)(tile_px / BC_BLOCK_PX) * (tile_px / BC_BLOCK_PX);
     if (blocks * fmt->block_bytes > UINT32_MAX)
         return vt_error_set(err, VT_ERR_UNSUPPORTED,
@@ -285,11 +285,11 @@ static int bc_decode(const struct bc_format *fmt, const void *src, size_t src_le
     if (rc < 0)
         return rc;
     if (src_len != payload_bytes)
-        return vt_error_set(err, VT_ERR_BAD_INPUT,
-                            "%s payload: %zu bytes != %zu expected for a %ux%u tile (%u blocks "
-                            "of %u bytes)",
-                            fmt->name, src_len, payload_bytes, dst->width, dst->height,
-                            (unsigned)(payload_bytes / fmt->block_bytes), fmt->block_bytes);
+        return vt_error_set(
+            err, VT_ERR_BAD_INPUT,
+            "%s payload: %zu bytes != %zu expected for a %ux%u tile (%u blocks of %u bytes)",
+            fmt->name, src_len, payload_bytes, dst->width, dst->height,
+            (unsigned)(payload_bytes / fmt->block_bytes), fmt->block_bytes);
     const unsigned char *block = src;
     unsigned char texels[16][4];
     for (uint32_t y0 = 0; y0 < dst->height; y0 += BC_BLOCK_PX) {

@@ -114,9 +114,9 @@ static int jpg_check_channels_and_sample(uint32_t channels, uint32_t sample, str
                             "jpeg stores 8-bit samples only (got %s); use png or raw",
                             vts_sample_name(sample));
     if (channels == 2 || channels == 4)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
-                            "jpeg cannot store alpha: use png, bc3 or raw (vt-tiles drops an alpha "
-                            "that is opaque everywhere)");
+        return vt_error_set(
+            err, VT_ERR_UNSUPPORTED,
+            "jpeg cannot store alpha: use png, bc3 or raw (vt-tiles drops an alpha that is opaque everywhere)");
     if (channels != 1 && channels != 3)
         return vt_error_set(err, VT_ERR_UNSUPPORTED,
                             "jpeg codec: %u channels (1 grey or 3 RGB supported)", channels);

@@ -147,10 +147,10 @@ static int exr_choose_channels(struct exr_input *t, const exr_attr_chlist_t *lis
             if (i != a)
                 t->file_channel[t->channels++] = i;
     } else {
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
-                            "cannot read '%s': %d channels, none named R, G, B or Y (at most 4 "
-                            "unnamed channels are supported)",
-                            t->name, list->num_channels);
+        return vt_error_set(
+            err, VT_ERR_UNSUPPORTED,
+            "cannot read '%s': %d channels, none named R, G, B or Y (at most 4 unnamed channels are supported)",
+            t->name, list->num_channels);
     }
     *has_alpha = a >= 0;
     if (a >= 0)

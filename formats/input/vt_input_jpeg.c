@@ -191,10 +191,10 @@ static int jpeg_input_check_header(struct jpeg_input *t, uint64_t max_pixels, st
              c->num_components == 3)
         t->channels = 3;
     else
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
-                            "cannot read '%s': JPEG colour space %d with %d components (grey and "
-                            "RGB/YCbCr are supported)",
-                            t->name, (int)c->jpeg_color_space, c->num_components);
+        return vt_error_set(
+            err, VT_ERR_UNSUPPORTED,
+            "cannot read '%s': JPEG colour space %d with %d components (grey and RGB/YCbCr are supported)",
+            t->name, (int)c->jpeg_color_space, c->num_components);
     t->row = malloc((size_t)t->width * t->channels);
     if (!t->row)
         return vt_error_set(err, VT_ERR_NOMEM, "cannot read '%s': out of memory", t->name);

@@ -143,10 +143,9 @@ static int oiio_open_with(struct oiio_input *t, const char *path, uint64_t max_p
         !oiio_symbol(t->module, "vt_oiio_read", &t->read, sizeof t->read) ||
         !oiio_symbol(t->module, "vt_oiio_close", &t->close, sizeof t->close) ||
         version() != VT_OIIO_ABI_VERSION)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
-                            "'%s': format not supported: the OpenImageIO module does not match "
-                            "this build",
-                            path);
+        return vt_error_set(
+            err, VT_ERR_UNSUPPORTED,
+            "'%s': format not supported: the OpenImageIO module does not match this build", path);
     struct vt_oiio_info info;
     char msg[VT_OIIO_ERR_MAX] = "";
     int result = VT_OIIO_BAD_FILE;

@@ -261,10 +261,10 @@ static int png_input_deinterlace(struct png_input *t, struct vt_error *err)
 {
     size_t bytes;
     if (!vt_size_mul(t->row_bytes, t->height, &bytes) || bytes > VT_INPUT_MAX_BUFFER_BYTES)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
-                            "cannot read '%s': interlaced PNG of %ux%u texels is too big to "
-                            "de-interlace (save it non-interlaced)",
-                            t->name, t->width, t->height);
+        return vt_error_set(
+            err, VT_ERR_UNSUPPORTED,
+            "cannot read '%s': interlaced PNG of %ux%u texels is too big to de-interlace (save it non-interlaced)",
+            t->name, t->width, t->height);
     t->image = malloc(bytes);
     t->row_pointers = malloc(sizeof *t->row_pointers * t->height);
     if (!t->image || !t->row_pointers)

@@ -136,10 +136,10 @@ static int tiff_check_pixels(struct tiff_input *t, uint32_t *sample, struct vt_e
     bool grey = photometric == PHOTOMETRIC_MINISBLACK || photometric == PHOTOMETRIC_MINISWHITE;
     if (!(grey && spp <= 2) && !(photometric == PHOTOMETRIC_RGB && spp >= 3) &&
         !(photometric == PHOTOMETRIC_PALETTE && spp == 1))
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
-                            "cannot read '%s': photometric interpretation %u with %u channels "
-                            "(grey, RGB and palette images are supported)",
-                            t->name, photometric, spp);
+        return vt_error_set(
+            err, VT_ERR_UNSUPPORTED,
+            "cannot read '%s': photometric interpretation %u with %u channels (grey, RGB and palette images are supported)",
+            t->name, photometric, spp);
     t->min_is_white = photometric == PHOTOMETRIC_MINISWHITE;
     if (format == SAMPLEFORMAT_UINT && (t->bps == 8 || t->bps == 16)) {
         *sample = t->bps == 8 ? VTS_SAMPLE_U8 : VTS_SAMPLE_U16;
@@ -150,10 +150,10 @@ static int tiff_check_pixels(struct tiff_input *t, uint32_t *sample, struct vt_e
                (t->bps == 1 || t->bps == 2 || t->bps == 4)) {
         *sample = VTS_SAMPLE_U8;
     } else {
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
-                            "cannot read '%s': %u-bit samples of format %u (8/16-bit unsigned and "
-                            "16/32-bit float are supported)",
-                            t->name, t->bps, format);
+        return vt_error_set(
+            err, VT_ERR_UNSUPPORTED,
+            "cannot read '%s': %u-bit samples of format %u (8/16-bit unsigned and 16/32-bit float are supported)",
+            t->name, t->bps, format);
     }
     t->sample_bytes = t->bps >= 8 ? t->bps / 8 : 1;
     t->convert = t->bps < 8 ? TIFF_BITS : TIFF_COPY;

@@ -177,10 +177,10 @@ int vt_atlas_skyline_pack(struct vt_atlas_tile_item *items, size_t n, uint32_t m
             break;
     }
     if (!best.w) {
-        rc = vt_error_set(err, VT_ERR_LIMIT,
-                          "the textures (%llu tiles) do not fit in the atlas size limit %u "
-                          "(%u x %u tiles)",
-                          (unsigned long long)area, max_edge, max_tiles, max_tiles);
+        rc = vt_error_set(
+            err, VT_ERR_LIMIT,
+            "the textures (%llu tiles) do not fit in the atlas size limit %u (%u x %u tiles)",
+            (unsigned long long)area, max_edge, max_tiles, max_tiles);
         goto out;
     }
     sort_items(items, n, best.order);

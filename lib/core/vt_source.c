@@ -10,15 +10,13 @@ int vt_source_read(struct vt_source *src, uint32_t x, uint32_t y, struct vt_imag
     const struct vt_source_info *in = &src->info;
     if (dst->channels != in->channels || dst->sample != in->sample)
         return vt_error_set(err, VT_ERR_ARG,
-                            "'%s': region buffer has %u channels of sample %u, "
-                            "source has %u of %u",
+                            "'%s': region buffer has %u channels of sample %u, source has %u of %u",
                             src->name, dst->channels, dst->sample, in->channels, in->sample);
     if (x >= in->width || y >= in->height || dst->width > in->width - x ||
         dst->height > in->height - y)
         return vt_error_set(err, VT_ERR_RANGE,
-                            "'%s': region %ux%u at %u,%u is outside the %ux%u "
-                            "image",
-                            src->name, dst->width, dst->height, x, y, in->width, in->height);
+                            "'%s': region %ux%u at %u,%u is outside the %ux%u image", src->name,
+                            dst->width, dst->height, x, y, in->width, in->height);
     return src->ops->read_region(src->ctx, x, y, dst, err);
 }
 

@@ -669,12 +669,12 @@ static int check_reduce_args(const struct vt_kernel *k, const struct vt_edges *e
     if (edges->level_w == 0 || edges->level_h == 0 || k->count < 1 || k->count > VT_KERNEL_MAX_TAPS)
         return vt_error_set(err, VT_ERR_ARG, "reduce: empty level or bad kernel");
     if (!axis_covered(ax) || !axis_covered(ay))
-        return vt_error_set(err, VT_ERR_ARG,
-                            "reduce: source %ux%u at (%lld,%lld) does not cover the %s taps of "
-                            "%ux%u at (%lld,%lld)",
-                            src->width, src->height, (long long)src->x0, (long long)src->y0,
-                            vt_filter_name(k->kind), dst->width, dst->height, (long long)dst->x0,
-                            (long long)dst->y0);
+        return vt_error_set(
+            err, VT_ERR_ARG,
+            "reduce: source %ux%u at (%lld,%lld) does not cover the %s taps of %ux%u at (%lld,%lld)",
+            src->width, src->height, (long long)src->x0, (long long)src->y0,
+            vt_filter_name(k->kind), dst->width, dst->height, (long long)dst->x0,
+            (long long)dst->y0);
     if (scratch_floats < vt_filter_reduce_scratch(k, src, dst))
         return vt_error_set(err, VT_ERR_ARG, "reduce: scratch of %zu floats is too small",
                             scratch_floats);

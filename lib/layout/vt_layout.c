@@ -338,10 +338,10 @@ int vt_layout_check(struct vt_layout *l, const char *name, struct vt_error *err)
         return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': the atlas has an empty size", name);
     if (!is_pow2(l->tile_content) || l->tile_content < 8 || l->tile_content > 16384 ||
         l->border > 64)
-        return vt_error_set(err, VT_ERR_BAD_INPUT,
-                            "'%s': tile content %u / border %u: content must be a power of two "
-                            "8..16384 and border 0..64",
-                            name, l->tile_content, l->border);
+        return vt_error_set(
+            err, VT_ERR_BAD_INPUT,
+            "'%s': tile content %u / border %u: content must be a power of two 8..16384 and border 0..64",
+            name, l->tile_content, l->border);
     if (l->layer_count == 0 || l->layer_count > VT_LAYOUT_MAX_LAYERS)
         return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': %u layers (1..%d)", name, l->layer_count,
                             VT_LAYOUT_MAX_LAYERS);

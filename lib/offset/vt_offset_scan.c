@@ -89,13 +89,12 @@ static int check_covered(struct vt_offset_run *r, uint32_t i, uint32_t m, struct
     double u = r->uv[2 * (size_t)i], v = r->uv[2 * (size_t)i + 1];
     if (vt_layout_uv_covered(e, u, v))
         return 0;
-    return vt_error_set(err, VT_ERR_BAD_INPUT,
-                        "'%s':%llu: vt %lu (%.9g %.9g) is outside the UV range of material '%s' "
-                        "in '%s' (u %ld..%ld, v %ld..%ld)",
-                        r->src.name, (unsigned long long)r->src.line, (unsigned long)i + 1, u, v,
-                        e->name, r->opt->layout_name, (long)e->origin_u,
-                        (long)e->origin_u + (long)e->repeat_u, (long)e->origin_v,
-                        (long)e->origin_v + (long)e->repeat_v);
+    return vt_error_set(
+        err, VT_ERR_BAD_INPUT,
+        "'%s':%llu: vt %lu (%.9g %.9g) is outside the UV range of material '%s' in '%s' (u %ld..%ld, v %ld..%ld)",
+        r->src.name, (unsigned long long)r->src.line, (unsigned long)i + 1, u, v, e->name,
+        r->opt->layout_name, (long)e->origin_u, (long)e->origin_u + (long)e->repeat_u,
+        (long)e->origin_v, (long)e->origin_v + (long)e->repeat_v);
 }
 
 /* Records that the current material uses vt i. */

@@ -96,12 +96,11 @@ static int check_options(struct vt_source *const *sources, const struct vt_pyram
         const struct vt_source_info *r = &sources[0]->info;
         if (!plan.has_next || r->width != plan.carry_width || r->height != plan.carry_height ||
             r->channels != in->channels || r->sample != VTS_SAMPLE_F32)
-            return vt_error_set(err, VT_ERR_ARG,
-                                "'%s': %ux%u texels of %u channels, %s, cannot resume a "
-                                "%ux%u build of %u channels at level %u",
-                                sources[0]->name, r->width, r->height, r->channels,
-                                vts_sample_name(r->sample), o->width, o->height, in->channels,
-                                plan.levels_per_pass);
+            return vt_error_set(
+                err, VT_ERR_ARG,
+                "'%s': %ux%u texels of %u channels, %s, cannot resume a %ux%u build of %u channels at level %u",
+                sources[0]->name, r->width, r->height, r->channels, vts_sample_name(r->sample),
+                o->width, o->height, in->channels, plan.levels_per_pass);
         for (unsigned i = 0; i < o->threads; i++)
             if (!sources[i])
                 return vt_error_set(err, VT_ERR_ARG, "resuming needs one source per worker");
@@ -115,8 +114,7 @@ static int check_options(struct vt_source *const *sources, const struct vt_pyram
     for (unsigned i = 0; !in->sequential && i < o->threads; i++)
         if (!sources[i])
             return vt_error_set(err, VT_ERR_ARG,
-                                "a random-access input needs one source per "
-                                "worker");
+                                "a random-access input needs one source per worker");
     return 0;
 }
 

@@ -81,9 +81,8 @@ static int scratch_alloc(struct vt_pyramid_pass *p, struct vt_error *err)
             ok = (s->reduce_scratch = malloc(floats * sizeof(float))) != NULL;
         if (!ok)
             return vt_error_set(err, VT_ERR_NOMEM,
-                                "out of memory for the working blocks of %ux%u "
-                                "texels",
-                                big.width, big.height);
+                                "out of memory for the working blocks of %ux%u texels", big.width,
+                                big.height);
     }
     return 0;
 }

@@ -29,10 +29,10 @@ int vt_shard_build_parse(const char *text, struct vt_shard_build *out)
     unsigned k, ch, alpha, premul, sub, effort;
     int used = 0;
     if (!text ||
-        sscanf(text,
-               "levels-per-pass=%u channels=%u alpha=%u premultiplied=%u subsampling=%u "
-               "effort=%u%n",
-               &k, &ch, &alpha, &premul, &sub, &effort, &used) != 6 ||
+        sscanf(
+            text,
+            "levels-per-pass=%u channels=%u alpha=%u premultiplied=%u subsampling=%u effort=%u%n",
+            &k, &ch, &alpha, &premul, &sub, &effort, &used) != 6 ||
         text[used] != '\0' || k < 1 || k > 6 || ch < 1 || ch > 4 || alpha > 1 || premul > 1 ||
         effort > 9)
         return -1;

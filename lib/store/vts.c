@@ -41,8 +41,7 @@ static int read_at(const struct vts_store *s, void *buf, size_t len, uint64_t of
 {
     if (!vt_range_within(off, len, s->file_size))
         return vt_error_set(err, VT_ERR_CORRUPT,
-                            "'%s': %s is truncated (needs bytes %llu..%llu, "
-                            "file has %llu)",
+                            "'%s': %s is truncated (needs bytes %llu..%llu, file has %llu)",
                             s->name, what, (unsigned long long)off, (unsigned long long)(off + len),
                             (unsigned long long)s->file_size);
     if (s->mem) {
@@ -92,11 +91,11 @@ static int check_regions(const struct vts_store *s, struct region *r, int n, uin
 {
     for (int i = 0; i < n; i++) {
         if (!vt_range_within(r[i].off, r[i].size, s->file_size))
-            return vt_error_set(err, VT_ERR_CORRUPT,
-                                "'%s': %s (bytes %llu + %llu) lies past the "
-                                "end of the file (%llu bytes)",
-                                s->name, r[i].what, (unsigned long long)r[i].off,
-                                (unsigned long long)r[i].size, (unsigned long long)s->file_size);
+            return vt_error_set(
+                err, VT_ERR_CORRUPT,
+                "'%s': %s (bytes %llu + %llu) lies past the end of the file (%llu bytes)", s->name,
+                r[i].what, (unsigned long long)r[i].off, (unsigned long long)r[i].size,
+                (unsigned long long)s->file_size);
         if (r[i].size > 0 && r[i].off < header_size)
             return vt_error_set(err, VT_ERR_CORRUPT, "'%s': %s overlaps the header", s->name,
                                 r[i].what);
@@ -140,10 +139,10 @@ static int parse_layers(struct vts_store *s, uint64_t off, uint32_t entry_size, 
         if (L->channels < 1 || L->channels > 4 || vts_sample_bytes(L->sample) == 0 ||
             L->colour < VTS_COLOUR_SRGB || L->colour > VTS_COLOUR_DATA ||
             memchr(L->name, '\0', VTS_LAYER_NAME_BYTES) == NULL) {
-            rc = vt_error_set(err, VT_ERR_CORRUPT,
-                              "'%s': layer %u has an invalid description "
-                              "(%u channels, sample %u, colour %u)",
-                              s->name, i, L->channels, L->sample, L->colour);
+            rc = vt_error_set(
+                err, VT_ERR_CORRUPT,
+                "'%s': layer %u has an invalid description (%u channels, sample %u, colour %u)",
+                s->name, i, L->channels, L->sample, L->colour);
             goto out;
         }
     }
@@ -166,11 +165,10 @@ static int check_entry(struct vts_store *s, uint64_t i, uint64_t data_off, uint6
         return 0;
     uint32_t layer, level, tx, ty;
     entry_position(s, i, &layer, &level, &tx, &ty);
-    return vt_error_set(err, VT_ERR_CORRUPT,
-                        "'%s': index entry of layer %u level %u tile %u,%u "
-                        "%s (offset %llu, length %u)",
-                        s->name, layer, level, tx, ty, why, (unsigned long long)e->offset,
-                        e->length);
+    return vt_error_set(
+        err, VT_ERR_CORRUPT,
+        "'%s': index entry of layer %u level %u tile %u,%u %s (offset %llu, length %u)", s->name,
+        layer, level, tx, ty, why, (unsigned long long)e->offset, e->length);
 }
 
 static int parse_index(struct vts_store *s, uint64_t off, uint32_t entry_size, uint32_t crc,
@@ -250,10 +248,10 @@ static int check_overlaps(struct vts_store *s, struct vt_error *err)
         if (!shared && a->offset + a->length > b->offset) {
             uint32_t layer, level, tx, ty;
             entry_position(s, (uint64_t)(b - s->entries), &layer, &level, &tx, &ty);
-            rc = vt_error_set(err, VT_ERR_CORRUPT,
-                              "'%s': payload of layer %u level %u tile %u,%u "
-                              "overlaps another payload at offset %llu",
-                              s->name, layer, level, tx, ty, (unsigned long long)a->offset);
+            rc = vt_error_set(
+                err, VT_ERR_CORRUPT,
+                "'%s': payload of layer %u level %u tile %u,%u overlaps another payload at offset %llu",
+                s->name, layer, level, tx, ty, (unsigned long long)a->offset);
         }
     }
     free(sorted);
@@ -348,8 +346,7 @@ static int parse_header(struct vts_store *s, struct vt_error *err)
     s->minor = vts_load_u16(h + VTS_H_MINOR);
     if (s->major != VTS_FORMAT_MAJOR)
         return vt_error_set(err, VT_ERR_VERSION,
-                            "'%s': format version %u.%u is not supported "
-                            "(this reader knows %u.x)",
+                            "'%s': format version %u.%u is not supported (this reader knows %u.x)",
                             s->name, s->major, s->minor, VTS_FORMAT_MAJOR);
     if (vts_crc32c(0, h, VTS_H_HEADER_CRC) != vts_load_u32(h + VTS_H_HEADER_CRC))
         return vt_error_set(err, VT_ERR_CHECKSUM, "'%s': header checksum mismatch", s->name);
@@ -380,16 +377,14 @@ static int parse_header(struct vts_store *s, struct vt_error *err)
     if (header_size < VTS_HEADER_SIZE || layer_entry < VTS_LAYER_ENTRY_SIZE ||
         layer_entry > MAX_ENTRY_SIZE || index_entry < VTS_INDEX_ENTRY_SIZE ||
         index_entry > MAX_ENTRY_SIZE)
-        return vt_error_set(err, VT_ERR_CORRUPT,
-                            "'%s': invalid header (header %llu, layer entry "
-                            "%u, index entry %u bytes)",
-                            s->name, (unsigned long long)header_size, layer_entry, index_entry);
+        return vt_error_set(
+            err, VT_ERR_CORRUPT,
+            "'%s': invalid header (header %llu, layer entry %u, index entry %u bytes)", s->name,
+            (unsigned long long)header_size, layer_entry, index_entry);
     if (index_count != s->tile_count)
         return vt_error_set(err, VT_ERR_CORRUPT,
-                            "'%s': index holds %llu entries, the geometry "
-                            "needs %llu",
-                            s->name, (unsigned long long)index_count,
-                            (unsigned long long)s->tile_count);
+                            "'%s': index holds %llu entries, the geometry needs %llu", s->name,
+                            (unsigned long long)index_count, (unsigned long long)s->tile_count);
     if (meta_size < 4 || meta_size > VTS_MAX_META_BYTES)
         return vt_error_set(err, VT_ERR_CORRUPT, "'%s': metadata size %u is outside 4..%u", s->name,
                             meta_size, VTS_MAX_META_BYTES);
@@ -402,9 +397,8 @@ static int parse_header(struct vts_store *s, struct vt_error *err)
     };
     if (header_size > s->file_size)
         return vt_error_set(err, VT_ERR_CORRUPT,
-                            "'%s': header size %llu is past the end of the "
-                            "file",
-                            s->name, (unsigned long long)header_size);
+                            "'%s': header size %llu is past the end of the file", s->name,
+                            (unsigned long long)header_size);
     rc = check_regions(s, r, 4, header_size, err);
     if (rc == 0)
         rc = parse_layers(s, r[0].off, layer_entry, vts_load_u32(h + VTS_H_LAYERS_CRC), err);
@@ -556,9 +550,8 @@ int vts_store_read(const struct vts_store *s, uint32_t layer, uint32_t level, ui
         return rc;
     if (e.length > dst_capacity)
         return vt_error_set(err, VT_ERR_LIMIT,
-                            "'%s': tile %u,%u of level %u is %u bytes, buffer "
-                            "holds %zu",
-                            s->name, tx, ty, level, e.length, dst_capacity);
+                            "'%s': tile %u,%u of level %u is %u bytes, buffer holds %zu", s->name,
+                            tx, ty, level, e.length, dst_capacity);
     if (e.length == 0) /* empty tile: nothing to read (dst may be NULL) */
         return 0;
     char what[64];

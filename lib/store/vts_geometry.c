@@ -73,8 +73,7 @@ int vts_geometry_check(const struct vts_geometry *g, struct vt_error *err)
     if (!vt_u64_mul(vts_geometry_tiles_per_layer(g), g->layer_count, &tiles) ||
         tiles > VTS_MAX_TILES)
         return vt_error_set(err, VT_ERR_LIMIT,
-                            "%ux%u with %u px tiles and %u layers has too many "
-                            "tiles (limit %llu)",
+                            "%ux%u with %u px tiles and %u layers has too many tiles (limit %llu)",
                             g->width, g->height, g->tile_content_px, g->layer_count,
                             (unsigned long long)VTS_MAX_TILES);
     return 0;

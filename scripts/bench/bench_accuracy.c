@@ -439,11 +439,11 @@ static void bench_filters(const char *name, const struct rgb *full, int runs)
         ref8[i] = (uint8_t)lround(ref[i]);
     double ref8_psnr = psnr_ref(ref8, ref, on * 3);
 
-    fprintf(md,
-            "\n### %s: mip filters\n\n%ux%u -> %ux%u. Reference: Lanczos-8 in linear light, "
-            "double precision (the reference itself rounded to 8 bits scores %.2f dB).\n\n"
-            "| filter | colour | PSNR dB | SSIM | MP/s |\n|---|---|---:|---:|---:|\n",
-            name, img.w, img.h, ow, oh, ref8_psnr);
+    fprintf(
+        md,
+        "\n### %s: mip filters\n\n%ux%u -> %ux%u. Reference: Lanczos-8 in linear light, double precision (the reference itself rounded to 8 bits scores %.2f dB).\n\n"
+        "| filter | colour | PSNR dB | SSIM | MP/s |\n|---|---|---:|---:|---:|\n",
+        name, img.w, img.h, ow, oh, ref8_psnr);
 
     float *work = xmalloc(n * 3 * sizeof *work), *dwork = xmalloc(on * 3 * sizeof *dwork);
     uint8_t *out = xmalloc(on * 3);
@@ -510,8 +510,8 @@ int main(int argc, char **argv)
             break;
     }
     if (!tsv_path || !md_path || i >= argc || runs < 1) {
-        fprintf(stderr, "usage: vt-bench-accuracy [--runs N] --tsv OUT.tsv --md OUT.md "
-                        "IMAGE.png...\n");
+        fprintf(stderr,
+                "usage: vt-bench-accuracy [--runs N] --tsv OUT.tsv --md OUT.md IMAGE.png...\n");
         return 2;
     }
     tsv = fopen(tsv_path, "w");

@@ -140,10 +140,9 @@ int main(int argc, char **argv)
     }
     printf("store: %s (%s, %ux%u, %u levels), layer 0: %s %u channel(s)\n", argv[i], codec->name,
            g->width, g->height, g->level_count, layer->name, layer->channels);
-    printf("tiles: %zu stored, %ux%u payload, %.1f MP decoded per round, %.2f bits/texel, "
-           "best of %d rounds\n",
-           count, g->tile_payload_px, g->tile_payload_px, mp, (double)bytes * 8 / (mp * 1e6),
-           rounds);
+    printf(
+        "tiles: %zu stored, %ux%u payload, %.1f MP decoded per round, %.2f bits/texel, best of %d rounds\n",
+        count, g->tile_payload_px, g->tile_payload_px, mp, (double)bytes * 8 / (mp * 1e6), rounds);
     for (int way = 0; way < 3; way++)
         printf("%-12s %8.1f MP/s  %8.2f ms/round\n", names[way], mp / best[way], best[way] * 1e3);
     printf("ratio store/memory:       %.3f\n", best[0] / best[1]);

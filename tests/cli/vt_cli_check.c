@@ -301,7 +301,8 @@ int main(int argc, char **argv)
         return junk_tile(argv + 2);
     if (argc >= 3 && strcmp(argv[1], "json") == 0)
         return check_json(argv[2], argc - 3, argv + 3);
-    fprintf(stderr, "usage: vt-cli-check png|tile-offset|junk-tile|empty-store|json ... (see "
-                    "tests/cli/vt_cli_check.c)\n");
+    fprintf(
+        stderr,
+        "usage: vt-cli-check png|tile-offset|junk-tile|empty-store|json ... (see tests/cli/vt_cli_check.c)\n");
     return 2;
 }

@@ -782,9 +782,9 @@ static void payload_crc_mismatch_is_reported_by_read(void)
         struct vt_error err = {0};
         VT_CHECK_INT_EQ(vts_store_read(s, 0, 0, 0, 0, buf, sizeof buf, &len, 0, &err),
                         VT_ERR_CHECKSUM);
-        VT_CHECK_STR_CONTAINS(err.message,
-                              "'bad/payload_crc_mismatch.vts': tile 0,0 of level 0 of layer 0 "
-                              "has a bad checksum");
+        VT_CHECK_STR_CONTAINS(
+            err.message,
+            "'bad/payload_crc_mismatch.vts': tile 0,0 of level 0 of layer 0 has a bad checksum");
         VT_CHECK_INT_EQ(len, 0);
         VT_CHECK_INT_EQ(vts_store_read(s, 0, 0, 0, 0, buf, sizeof buf, &len, VTS_READ_NO_CRC, &err),
                         0);

@@ -201,11 +201,11 @@ static int time_rewrite(const char *obj, const char *layout_path, int runs)
             best = t;
     }
     vt_layout_release(&l);
-    printf("%.1f MB in %.3f s: %.0f MB/s (CPU time %.3f s: %.0f MB/s); %llu bytes written, %llu "
-           "vt, %llu faces renumbered\n",
-           (double)st.st_size / 1e6, best, (double)st.st_size / 1e6 / best, best_cpu,
-           (double)st.st_size / 1e6 / best_cpu, written, (unsigned long long)stats.vt_lines,
-           (unsigned long long)stats.faces_rewritten);
+    printf(
+        "%.1f MB in %.3f s: %.0f MB/s (CPU time %.3f s: %.0f MB/s); %llu bytes written, %llu vt, %llu faces renumbered\n",
+        (double)st.st_size / 1e6, best, (double)st.st_size / 1e6 / best, best_cpu,
+        (double)st.st_size / 1e6 / best_cpu, written, (unsigned long long)stats.vt_lines,
+        (unsigned long long)stats.faces_rewritten);
     return 0;
 }
 

@@ -64,9 +64,9 @@ int main(int argc, char **argv)
         }
     }
     if (bad || optind != argc - 1) {
-        fprintf(stderr,
-                "usage: vt-synth-image OUT [--format tiff|png|jpeg|exr] [--size WxH] "
-                "[--channels N] [--sample u8|u16|f16|f32] [--tile N] [--seed N] [--photo]\n");
+        fprintf(
+            stderr,
+            "usage: vt-synth-image OUT [--format tiff|png|jpeg|exr] [--size WxH] [--channels N] [--sample u8|u16|f16|f32] [--tile N] [--seed N] [--photo]\n");
         return 2;
     }
     struct vt_error err = {0};

@@ -294,10 +294,10 @@ static void print_summary(const struct options *o, const struct vt_layout *l,
     if (r->shared_cells)
         snprintf(shared, sizeof shared, "; %u materials share %u cell%s", r->shared,
                  r->shared_cells, r->shared_cells == 1 ? "" : "s");
-    printf("%s: %u entries (%u constant, %u replicated, %u rescaled%s) from %u texture files; "
-           "layers %s\n",
-           o->output, l->entry_count, r->constant, r->replicated, r->scaled, shared, texture_files,
-           layers);
+    printf(
+        "%s: %u entries (%u constant, %u replicated, %u rescaled%s) from %u texture files; layers %s\n",
+        o->output, l->entry_count, r->constant, r->replicated, r->scaled, shared, texture_files,
+        layers);
     printf("atlas %ux%u (%ux%u tiles of %u), tiles used %llu, empty %llu, fill %.1f%%\n", l->width,
            l->height, r->pack.tiles_x, r->pack.tiles_y, l->tile_content,
            (unsigned long long)r->pack.tiles_used, (unsigned long long)r->pack.tiles_empty,

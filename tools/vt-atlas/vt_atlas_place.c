@@ -104,16 +104,16 @@ static int check_wrap(const struct vt_atlas_material *m, const struct vt_atlas_p
     if (!outside)
         return 0;
     if (!o->wrap_replicate)
-        return vt_error_set(err, VT_ERR_BAD_INPUT,
-                            "'%s': material '%s' uses u %g..%g, v %g..%g outside [0,1]: use "
-                            "--wrap replicate",
-                            m->obj, m->name, m->umin, m->umax, m->vmin, m->vmax);
+        return vt_error_set(
+            err, VT_ERR_BAD_INPUT,
+            "'%s': material '%s' uses u %g..%g, v %g..%g outside [0,1]: use --wrap replicate",
+            m->obj, m->name, m->umin, m->umax, m->vmin, m->vmax);
     if (wrap_range(m->umin, m->umax, o->max_repeat, &z->origin_u, &z->repeat_u) ||
         wrap_range(m->vmin, m->vmax, o->max_repeat, &z->origin_v, &z->repeat_v))
-        return vt_error_set(err, VT_ERR_LIMIT,
-                            "'%s': material '%s' uses u %g..%g, v %g..%g: more than --max-repeat "
-                            "%u copies",
-                            m->obj, m->name, m->umin, m->umax, m->vmin, m->vmax, o->max_repeat);
+        return vt_error_set(
+            err, VT_ERR_LIMIT,
+            "'%s': material '%s' uses u %g..%g, v %g..%g: more than --max-repeat %u copies", m->obj,
+            m->name, m->umin, m->umax, m->vmin, m->vmax, o->max_repeat);
     return 0;
 }
 
@@ -438,10 +438,10 @@ static int check_grid(const struct vt_atlas_scene *scene, const struct vt_atlas_
     for (uint32_t i = 1; i < scene->material_count; i++) {
         const struct vt_atlas_texture *t = &scene->textures[scene->materials[i].texture[0]];
         if (t->width != t0->width || t->height != t0->height)
-            return vt_error_set(err, VT_ERR_BAD_INPUT,
-                                "'%s' is %ux%u, not %ux%u like '%s': --grid pieces must have "
-                                "one size",
-                                t->path, t->width, t->height, t0->width, t0->height, t0->path);
+            return vt_error_set(
+                err, VT_ERR_BAD_INPUT,
+                "'%s' is %ux%u, not %ux%u like '%s': --grid pieces must have one size", t->path,
+                t->width, t->height, t0->width, t0->height, t0->path);
     }
     if ((uint64_t)t0->width * o->grid_cols > UINT32_MAX ||
         (uint64_t)t0->height * o->grid_rows > UINT32_MAX)

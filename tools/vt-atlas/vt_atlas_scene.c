@@ -417,8 +417,7 @@ static int resolve_material(struct obj_ctx *c, struct vt_atlas_material *m, stru
         if (c->o->warn) {
             char msg[VT_ERROR_MESSAGE_MAX];
             snprintf(msg, sizeof msg,
-                     "'%s':%llu: material '%s' is not defined in any mtllib: "
-                     "constant grey",
+                     "'%s':%llu: material '%s' is not defined in any mtllib: constant grey",
                      c->obj_path, (unsigned long long)m->first_line, m->name);
             c->o->warn(msg);
         }

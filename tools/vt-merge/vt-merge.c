@@ -296,10 +296,10 @@ static int merge_shard_tile(struct merge *m, uint64_t index, uint32_t layer, uin
         if (e->length == len && e->crc32c == vts_store_entry(m->in[owner], index)->crc32c)
             rc = vt_merge_read_tile(m, k, 1, layer, level, tx, ty, &other_len, err);
         if (rc == 0 && (other_len != len || memcmp(m->buf[0], m->buf[1], len) != 0))
-            rc = vt_error_set(err, VT_ERR_BAD_INPUT,
-                              "tile %u,%u of level %u, layer %u, is stored in both '%s' and '%s' "
-                              "with different bytes",
-                              tx, ty, level, layer, m->o->inputs[owner], m->o->inputs[k]);
+            rc = vt_error_set(
+                err, VT_ERR_BAD_INPUT,
+                "tile %u,%u of level %u, layer %u, is stored in both '%s' and '%s' with different bytes",
+                tx, ty, level, layer, m->o->inputs[owner], m->o->inputs[k]);
     }
     /* empty (len 0) when no input stores it; a shard build's coarse levels come later */
     if (rc == 0 && !(m->shard_build && owner < 0))
@@ -373,8 +373,7 @@ static int merge(struct merge *m, struct vt_error *err)
     m->copy_layers = vts_store_geometry(m->in[0])->layer_count - (m->shard_build ? 1 : 0);
     if (rc == 0 && m->shard_build && (!shards || m->copy_layers != 1))
         rc = vt_error_set(err, VT_ERR_BAD_INPUT,
-                          "the shards' layer tables differ or are not "
-                          "vt-tiles --shard's");
+                          "the shards' layer tables differ or are not vt-tiles --shard's");
     if (rc == 0 && !shards)
         rc = check_layer_names(m, err);
     if (rc == 0 && (!(m->buf[0] = malloc(m->buf_cap + 1)) || !(m->buf[1] = malloc(m->buf_cap + 1))))

@@ -38,10 +38,10 @@ int vt_merge_check_shard_build(const struct merge *m, struct vt_error *err)
     for (int k = 0; k < n && rc == 0; k++) {
         const char *v = vts_store_meta_find(m->in[k], SHARD_KEY);
         if (!vts_store_meta_find(m->in[k], VT_SHARD_BUILD_KEY) || vt_shard_parse(v, &index, &c)) {
-            rc = vt_error_set(err, VT_ERR_BAD_INPUT,
-                              "'%s' is not a shard of vt-tiles --shard (no %s metadata), unlike "
-                              "'%s'",
-                              m->o->inputs[k], VT_SHARD_BUILD_KEY, m->o->inputs[with]);
+            rc = vt_error_set(
+                err, VT_ERR_BAD_INPUT,
+                "'%s' is not a shard of vt-tiles --shard (no %s metadata), unlike '%s'",
+                m->o->inputs[k], VT_SHARD_BUILD_KEY, m->o->inputs[with]);
             break;
         }
         if (k == 0) {
@@ -62,11 +62,11 @@ int vt_merge_check_shard_build(const struct merge *m, struct vt_error *err)
         else if (key) {
             const char *va = vts_store_meta_find(m->in[k], key);
             const char *vb = vts_store_meta_find(m->in[0], key);
-            rc = vt_error_set(err, VT_ERR_BAD_INPUT,
-                              "'%s' (shard %u/%u) is from another build: its %s is '%s', not '%s' "
-                              "as in '%s'",
-                              m->o->inputs[k], index, c, key, va ? va : "(none)",
-                              vb ? vb : "(none)", m->o->inputs[0]);
+            rc = vt_error_set(
+                err, VT_ERR_BAD_INPUT,
+                "'%s' (shard %u/%u) is from another build: its %s is '%s', not '%s' as in '%s'",
+                m->o->inputs[k], index, c, key, va ? va : "(none)", vb ? vb : "(none)",
+                m->o->inputs[0]);
         } else
             owner[index - 1] = k;
     }
@@ -75,11 +75,11 @@ int vt_merge_check_shard_build(const struct merge *m, struct vt_error *err)
         if (owner[i] < 0 && missing++ == 0)
             first = i + 1;
     if (rc == 0 && missing)
-        rc = vt_error_set(err, VT_ERR_BAD_INPUT,
-                          "shard %u/%u is missing%s%.0u%s: merge all %u shards of a vt-tiles "
-                          "--shard build at once",
-                          first, count, missing > 1 ? " (and " : "", missing > 1 ? missing - 1 : 0,
-                          missing > 1 ? " more)" : "", count);
+        rc = vt_error_set(
+            err, VT_ERR_BAD_INPUT,
+            "shard %u/%u is missing%s%.0u%s: merge all %u shards of a vt-tiles --shard build at once",
+            first, count, missing > 1 ? " (and " : "", missing > 1 ? missing - 1 : 0,
+            missing > 1 ? " more)" : "", count);
     free(owner);
     return rc;
 }
@@ -163,10 +163,10 @@ int vt_merge_build_coarse(struct merge *m, struct vt_error *err)
         F->codec != VTS_CODEC_RAW || F->sample != VTS_SAMPLE_F32 ||
         vt_shard_build_parse(vts_store_meta_find(s0, VT_SHARD_BUILD_KEY), &sb) ||
         F->channels != sb.channels || !filter_name || vt_filter_parse(filter_name, &filter))
-        return vt_error_set(err, VT_ERR_BAD_INPUT,
-                            "'%s': not a well-formed vt-tiles shard (layer table, %s or filter "
-                            "metadata)",
-                            m->o->inputs[0], VT_SHARD_BUILD_KEY);
+        return vt_error_set(
+            err, VT_ERR_BAD_INPUT,
+            "'%s': not a well-formed vt-tiles shard (layer table, %s or filter metadata)",
+            m->o->inputs[0], VT_SHARD_BUILD_KEY);
     if (!(m->codec = vt_codec_by_fourcc(L->codec)))
         return vt_error_set(err, VT_ERR_UNSUPPORTED, "'%s': codec of layer 0 is not available",
                             m->o->inputs[0]);

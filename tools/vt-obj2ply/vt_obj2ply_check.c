@@ -71,10 +71,10 @@ int vt_obj2ply_check_compare(const struct vt_obj2ply_mesh *a, const struct vt_ob
         for (uint32_t j = 0; j < a->material_count && !known; j++)
             known = !strcmp(a->materials[j], b->materials[i]) && !strcmp(ta[j], tb[i]);
         if (!known) {
-            rc = vt_error_set(err, VT_ERR_BAD_INPUT,
-                              "'%s': material '%s' (texture '%s') is not a material of '%s' with"
-                              " that texture",
-                              b->path, b->materials[i], tb[i], a->path);
+            rc = vt_error_set(
+                err, VT_ERR_BAD_INPUT,
+                "'%s': material '%s' (texture '%s') is not a material of '%s' with that texture",
+                b->path, b->materials[i], tb[i], a->path);
             goto cleanup;
         }
     }

@@ -114,8 +114,8 @@ int vt_obj2ply_restore_write(const struct vt_obj2ply_mesh *orig, const char *mes
                 vt_parse_u32(file + strlen(VT_OBJ2PLY_MESH_TOKEN_PREFIX), 0, UINT32_MAX, &index) ||
                 index >= orig->material_count) {
                 rc = vt_error_set(err, VT_ERR_BAD_INPUT,
-                                  "'%s':%" PRIu64 ": material '%s' does not name one of '%s'"
-                                  " (map_Kd '%s')",
+                                  "'%s':%" PRIu64
+                                  ": material '%s' does not name one of '%s' (map_Kd '%s')",
                                   meshlab_path, lineno, name, orig->path, file ? file : "");
                 break;
             }
@@ -123,10 +123,11 @@ int vt_obj2ply_restore_write(const struct vt_obj2ply_mesh *orig, const char *mes
             if (!orig_name[0]) {
                 /* faces before any usemtl: expressible only before the first material */
                 if (material_seen) {
-                    rc = vt_error_set(err, VT_ERR_BAD_INPUT,
-                                      "'%s':%" PRIu64 ": faces without a material come after"
-                                      " faces with one; OBJ cannot say that",
-                                      meshlab_path, lineno);
+                    rc = vt_error_set(
+                        err, VT_ERR_BAD_INPUT,
+                        "'%s':%" PRIu64
+                        ": faces without a material come after faces with one; OBJ cannot say that",
+                        meshlab_path, lineno);
                     break;
                 }
                 continue;

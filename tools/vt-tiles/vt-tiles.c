@@ -33,8 +33,7 @@ static void usage(FILE *f)
         f,
         "usage: vt-tiles INPUT -o OUT.vts [options]\n"
         "Builds every mip level of INPUT, cut into bordered tiles, into one .vts store.\n"
-        "INPUT: TIFF/BigTIFF (tiled or striped), PNG, JPEG, EXR; other formats through "
-        "OpenImageIO.\n\n"
+        "INPUT: TIFF/BigTIFF (tiled or striped), PNG, JPEG, EXR; other formats through OpenImageIO.\n\n"
         "  -o, --output FILE        the store to write (replaced atomically)\n"
         "      --tile-size N        tile payload edge in texels, 8..16384 (default 256)\n"
         "      --keep payload|content  which edge is the given size: payload (content =\n"
@@ -42,16 +41,13 @@ static void usage(FILE *f)
         "      --border N           border texels per side, 0..64 (default: from --filtering\n"
         "                           and the codec: bilinear 1, trilinear 2, anisoN N/2;\n"
         "                           at least 4 for bc1/bc3)\n"
-        "      --filtering MODE     bilinear | trilinear | aniso2..aniso16 (default "
-        "trilinear)\n"
-        "      --filter NAME        mip filter: box | triangle | lanczos3 | kaiser (default "
-        "box)\n"
+        "      --filtering MODE     bilinear | trilinear | aniso2..aniso16 (default trilinear)\n"
+        "      --filter NAME        mip filter: box | triangle | lanczos3 | kaiser (default box)\n"
         "      --colour SPACE       srgb | linear | normal | data (default: srgb for 8/16-bit\n"
         "                           images, linear for float)\n"
         "      --wrap               tiling texture: borders and filters wrap around\n"
         "      --codec NAME         raw | png | jpeg | bc1 | bc3 | auto (default auto: jpeg for\n"
-        "                           opaque 8-bit colour, png for alpha, 16-bit, normal or "
-        "data,\n"
+        "                           opaque 8-bit colour, png for alpha, 16-bit, normal or data,\n"
         "                           raw for float)\n"
         "      --quality Q          jpeg quality 1..100 (default 85)\n"
         "      --subsampling S      jpeg chroma subsampling 420 | 444 (default 420)\n"
@@ -215,9 +211,9 @@ static int parse_options(int argc, char **argv, struct options *o)
             break;
         case 'D':
             if (vt_shard_parse(optarg, &o->shard, &o->shard_count))
-                return vt_usage_error("--shard must be I/N with N a power of two up to %u and I "
-                                      "1..N, not '%s'",
-                                      VT_SHARD_MAX_COUNT, optarg);
+                return vt_usage_error(
+                    "--shard must be I/N with N a power of two up to %u and I 1..N, not '%s'",
+                    VT_SHARD_MAX_COUNT, optarg);
             break;
         case 'j':
             if (vt_parse_u32(optarg, 1, 256, &o->threads))

@@ -301,12 +301,12 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
     if (rc == 0) {
         struct vts_writer_stats st;
         vts_writer_stats(r.writer, &st);
-        vt_log(VT_LOG_INFO,
-               "wrote '%s': %ux%u, %u levels, %llu tiles stored (%llu shared), "
-               "%llu empty, %llu payload bytes",
-               o->output, g.width, g.height, g.level_count, (unsigned long long)st.tiles_stored,
-               (unsigned long long)st.tiles_shared, (unsigned long long)st.tiles_empty,
-               (unsigned long long)st.unique_bytes);
+        vt_log(
+            VT_LOG_INFO,
+            "wrote '%s': %ux%u, %u levels, %llu tiles stored (%llu shared), %llu empty, %llu payload bytes",
+            o->output, g.width, g.height, g.level_count, (unsigned long long)st.tiles_stored,
+            (unsigned long long)st.tiles_shared, (unsigned long long)st.tiles_empty,
+            (unsigned long long)st.unique_bytes);
         status = VT_EXIT_OK;
     }
 out:

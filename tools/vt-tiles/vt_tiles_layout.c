@@ -69,15 +69,15 @@ static int emit_tile(void *user, unsigned worker, uint32_t slot, uint32_t level,
 static int check_geometry(const struct vt_tiles_layout_options *o, const struct vt_layout *lay)
 {
     if (o->border_set && o->border != lay->border)
-        return vt_usage_error("--border %u conflicts with the layout's border %u (the layout "
-                              "fixes it: omit --border)",
-                              o->border, lay->border);
+        return vt_usage_error(
+            "--border %u conflicts with the layout's border %u (the layout fixes it: omit --border)",
+            o->border, lay->border);
     uint32_t want = o->keep_content ? lay->tile_content : lay->tile_content + 2 * lay->border;
     if (o->tile_size_set && o->tile_size != want)
-        return vt_usage_error("--tile-size %u conflicts with the layout's tiles (content %u, "
-                              "border %u: --tile-size %u%s; or omit it)",
-                              o->tile_size, lay->tile_content, lay->border, want,
-                              o->keep_content ? " with --keep content" : "");
+        return vt_usage_error(
+            "--tile-size %u conflicts with the layout's tiles (content %u, border %u: --tile-size %u%s; or omit it)",
+            o->tile_size, lay->tile_content, lay->border, want,
+            o->keep_content ? " with --keep content" : "");
     if (lay->tile_content + 2 * lay->border > VTS_MAX_PAYLOAD_PX)
         return vt_usage_error("the layout's tile payload %u exceeds %u",
                               lay->tile_content + 2 * lay->border, VTS_MAX_PAYLOAD_PX);
@@ -210,13 +210,13 @@ static int write_store(struct layout_run *r, struct vt_error *err)
     struct vt_atlas_build_stats bs;
     vts_writer_stats(r->writer, &st);
     vt_atlas_build_stats(r->build, &bs);
-    vt_log(VT_LOG_INFO,
-           "wrote '%s': %ux%u, %u levels, %u layers, %llu tiles stored (%llu shared), %llu empty, "
-           "%llu payload bytes; %llu texture decodes, cache peak %.1f MiB",
-           r->o->output, g.width, g.height, g.level_count, g.layer_count,
-           (unsigned long long)st.tiles_stored, (unsigned long long)st.tiles_shared,
-           (unsigned long long)st.tiles_empty, (unsigned long long)st.unique_bytes,
-           (unsigned long long)bs.chains_built, (double)bs.cache_peak / (1 << 20));
+    vt_log(
+        VT_LOG_INFO,
+        "wrote '%s': %ux%u, %u levels, %u layers, %llu tiles stored (%llu shared), %llu empty, %llu payload bytes; %llu texture decodes, cache peak %.1f MiB",
+        r->o->output, g.width, g.height, g.level_count, g.layer_count,
+        (unsigned long long)st.tiles_stored, (unsigned long long)st.tiles_shared,
+        (unsigned long long)st.tiles_empty, (unsigned long long)st.unique_bytes,
+        (unsigned long long)bs.chains_built, (double)bs.cache_peak / (1 << 20));
     return 0;
 }
 
@@ -282,9 +282,7 @@ static int export_atlas(struct layout_run *r, struct vt_error *err)
     bool is_png = ends_with(path, ".png");
     if (!is_png && !ends_with(path, ".tif") && !ends_with(path, ".tiff"))
         return vt_error_set(err, VT_ERR_ARG,
-                            "cannot export '%s': the name must end in .png, "
-                            ".tif or .tiff",
-                            path);
+                            "cannot export '%s': the name must end in .png, .tif or .tiff", path);
     struct vt_atlas_layer_format f;
     vt_atlas_build_format(r->build, 0, &f);
     struct vt_png_file_writer *png = NULL;

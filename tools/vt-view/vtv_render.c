@@ -158,11 +158,10 @@ int vtv_render_set_cache(struct vtv_render *r, const struct vtv_cache *c,
     uint64_t pw = (uint64_t)c->slots_x * g->tile_payload_px;
     uint64_t ph = (uint64_t)c->slots_y * g->tile_payload_px;
     if (pw > (uint64_t)max_size || ph > (uint64_t)max_size)
-        return vt_error_set(err, VT_ERR_LIMIT,
-                            "a cache of %u tiles of %u px needs a %llux%llu texture; this GL "
-                            "allows %d: use a smaller --cache",
-                            c->slots, g->tile_payload_px, (unsigned long long)pw,
-                            (unsigned long long)ph, max_size);
+        return vt_error_set(
+            err, VT_ERR_LIMIT,
+            "a cache of %u tiles of %u px needs a %llux%llu texture; this GL allows %d: use a smaller --cache",
+            c->slots, g->tile_payload_px, (unsigned long long)pw, (unsigned long long)ph, max_size);
     r->srgb = srgb;
     r->bc_format = bc_codec ? vtv_render_bc_format(r, bc_codec, srgb, g->tile_payload_px) : 0;
     r->phys_w = (uint32_t)pw;

@@ -137,12 +137,10 @@ int main(int argc, char **argv)
     for (uint32_t t = 0; t < TEX_COUNT; t++)
         write_texture(t);
     write_scene();
-    snprintf(cmd, sizeof cmd,
-             "cd '%s' && '%s' scene.obj -o atlas.json --wrap replicate -q && "
-             "'%s' scene.obj atlas.json -o scene.vt.obj -q && "
-             "'%s' --layout atlas.json -o scene.vts --codec png -q && "
-             "'%s' --extract 0 -o level0.png scene.vts",
-             work, argv[2], argv[3], argv[4], argv[5]);
+    snprintf(
+        cmd, sizeof cmd,
+        "cd '%s' && '%s' scene.obj -o atlas.json --wrap replicate -q && '%s' scene.obj atlas.json -o scene.vt.obj -q && '%s' --layout atlas.json -o scene.vts --codec png -q && '%s' --extract 0 -o level0.png scene.vts",
+        work, argv[2], argv[3], argv[4], argv[5]);
     VT_CHECK(vt_test_run(cmd) == 0);
 
     /* Material names "m_<texture>": corner materials index texs[]. */

@@ -432,10 +432,10 @@ static void interrupted_run_leaves_nothing_behind(void)
     fputs("previous output", old);
     fclose(old);
     char cmd[2048];
-    snprintf(cmd, sizeof cmd,
-             "'%s' '%s' -o '%s' -q --codec png --mode best -j 1 & pid=$!; sleep 0.5; "
-             "kill -INT $pid; wait $pid; echo $? > '%s'",
-             tiles_tool, tiles_path("sig.png"), tiles_path("sig.vts"), tiles_path("sig.status"));
+    snprintf(
+        cmd, sizeof cmd,
+        "'%s' '%s' -o '%s' -q --codec png --mode best -j 1 & pid=$!; sleep 0.5; kill -INT $pid; wait $pid; echo $? > '%s'",
+        tiles_tool, tiles_path("sig.png"), tiles_path("sig.vts"), tiles_path("sig.status"));
     VT_CHECK(system(cmd) == 0);
     FILE *f = fopen(tiles_path("sig.status"), "r");
     int status = -1;

@@ -127,11 +127,7 @@ static void test_round_trip(void)
 static void test_resolve_against_directory(void)
 {
     const char *text =
-        "{\"format\":\"vtpipe-atlas\",\"version\":1,\"width\":256,\"height\":256,"
-        "\"tile_content\":256,\"border\":2,\"layers\":[{\"name\":\"diffuse\",\"map\":\"map_Kd\","
-        "\"colour\":\"srgb\"}],\"entries\":[{\"name\":\"a\",\"x\":0,\"y\":0,\"width\":10,"
-        "\"height\":10,\"cell_width\":16,\"cell_height\":16,\"alignment\":16,"
-        "\"textures\":[{\"path\":\"t/a.png\",\"width\":10,\"height\":10}]}]}";
+        "{\"format\":\"vtpipe-atlas\",\"version\":1,\"width\":256,\"height\":256,\"tile_content\":256,\"border\":2,\"layers\":[{\"name\":\"diffuse\",\"map\":\"map_Kd\",\"colour\":\"srgb\"}],\"entries\":[{\"name\":\"a\",\"x\":0,\"y\":0,\"width\":10,\"height\":10,\"cell_width\":16,\"cell_height\":16,\"alignment\":16,\"textures\":[{\"path\":\"t/a.png\",\"width\":10,\"height\":10}]}]}";
     struct vt_layout l;
     VT_CHECK_INT_EQ(
         vt_layout_parse_memory(text, strlen(text), "out/dir/atlas.json", NULL, &l, NULL), 0);
@@ -326,25 +322,23 @@ static void test_parse_errors(void)
     expect_parse_error("{\"format\":\"vtpipe-atlas\",\"version\":2}", "layout version 2");
     expect_parse_error("{\"format\":\"vtpipe-atlas\",\"version\":1,\"entries\":[]}",
                        "layers: expected an array");
-    const char *head = "{\"format\":\"vtpipe-atlas\",\"version\":1,\"width\":256,\"height\":256,"
-                       "\"tile_content\":256,\"border\":2,\"layers\":[{\"name\":\"diffuse\","
-                       "\"map\":\"map_Kd\",\"colour\":\"srgb\"}],\"entries\":[";
+    const char *head =
+        "{\"format\":\"vtpipe-atlas\",\"version\":1,\"width\":256,\"height\":256,\"tile_content\":256,\"border\":2,\"layers\":[{\"name\":\"diffuse\",\"map\":\"map_Kd\",\"colour\":\"srgb\"}],\"entries\":[";
     char buf[1024];
     snprintf(buf, sizeof buf, "%s{\"name\":\"a\",\"x\":-1}]}", head);
     expect_parse_error(buf, "entries[0].x: expected an integer 0..4294967295");
-    snprintf(buf, sizeof buf,
-             "%s{\"name\":\"a\",\"x\":0,\"y\":0,\"width\":4,\"height\":4,\"cell_width\":4,"
-             "\"cell_height\":4,\"alignment\":4,\"textures\":[]}]}",
-             head);
+    snprintf(
+        buf, sizeof buf,
+        "%s{\"name\":\"a\",\"x\":0,\"y\":0,\"width\":4,\"height\":4,\"cell_width\":4,\"cell_height\":4,\"alignment\":4,\"textures\":[]}]}",
+        head);
     expect_parse_error(buf, "entries[0]: textures must be an array with one item per layer");
-    snprintf(buf, sizeof buf,
-             "%s{\"name\":\"a\",\"x\":0,\"y\":0,\"width\":4,\"height\":4,\"cell_width\":4,"
-             "\"cell_height\":4,\"alignment\":4,\"textures\":[{\"fill\":[0,0,0,2]}]}]}",
-             head);
+    snprintf(
+        buf, sizeof buf,
+        "%s{\"name\":\"a\",\"x\":0,\"y\":0,\"width\":4,\"height\":4,\"cell_width\":4,\"cell_height\":4,\"alignment\":4,\"textures\":[{\"fill\":[0,0,0,2]}]}]}",
+        head);
     expect_parse_error(buf, "entries[0].textures[0]: fill values must be numbers in 0..1");
     snprintf(buf, sizeof buf,
-             "{\"format\":\"vtpipe-atlas\",\"version\":1,\"width\":1,"
-             "\"width\":2}");
+             "{\"format\":\"vtpipe-atlas\",\"version\":1,\"width\":1,\"width\":2}");
     expect_parse_error(buf, "duplicate object key");
     struct vt_layout_limits lim;
     vt_layout_limits_default(&lim);
@@ -357,8 +351,8 @@ static void test_parse_errors(void)
     VT_CHECK_STR_CONTAINS(err.message, "1 entries, more than the limit 0");
     vt_layout_release(&l);
     /* aliases: an array of non-empty strings, counted against the entry limit. */
-    const char *entry = "{\"name\":\"a\",\"x\":0,\"y\":0,\"width\":4,\"height\":4,\"cell_width\":4,"
-                        "\"cell_height\":4,\"alignment\":4,\"textures\":[{\"fill\":[0,0,0,1]}],";
+    const char *entry =
+        "{\"name\":\"a\",\"x\":0,\"y\":0,\"width\":4,\"height\":4,\"cell_width\":4,\"cell_height\":4,\"alignment\":4,\"textures\":[{\"fill\":[0,0,0,1]}],";
     snprintf(buf, sizeof buf, "%s%s\"aliases\":\"b\"}]}", head, entry);
     expect_parse_error(buf, "'bad.json': entries[0].aliases: expected an array of names");
     snprintf(buf, sizeof buf, "%s%s\"aliases\":[\"b\",1]}]}", head, entry);
@@ -491,28 +485,25 @@ static void test_gutter_fields(void)
     expect_invalid(gutter_misaligned, "('small') has an alignment that is not a power of two");
     expect_invalid(gutter_outside, "('small') has a cell outside the atlas");
     /* Reader: cell_x defaults to x, must not exceed it. */
-    const char *head = "{\"format\":\"vtpipe-atlas\",\"version\":1,\"width\":256,\"height\":256,"
-                       "\"tile_content\":256,\"border\":2,\"layers\":[{\"name\":\"diffuse\","
-                       "\"map\":\"map_Kd\",\"colour\":\"srgb\"}],\"entries\":[";
+    const char *head =
+        "{\"format\":\"vtpipe-atlas\",\"version\":1,\"width\":256,\"height\":256,\"tile_content\":256,\"border\":2,\"layers\":[{\"name\":\"diffuse\",\"map\":\"map_Kd\",\"colour\":\"srgb\"}],\"entries\":[";
     char buf[1024];
     snprintf(
         buf, sizeof buf,
-        "%s{\"name\":\"a\",\"x\":4,\"y\":4,\"width\":4,\"height\":4,\"cell_width\":12,"
-        "\"cell_height\":12,\"alignment\":4,\"cell_x\":8,\"textures\":[{\"fill\":[0,0,0,1]}]}]}",
+        "%s{\"name\":\"a\",\"x\":4,\"y\":4,\"width\":4,\"height\":4,\"cell_width\":12,\"cell_height\":12,\"alignment\":4,\"cell_x\":8,\"textures\":[{\"fill\":[0,0,0,1]}]}]}",
         head);
     expect_parse_error(buf, "entries[0].cell_x: expected an integer 0..4");
-    snprintf(buf, sizeof buf,
-             "%s{\"name\":\"a\",\"x\":4,\"y\":4,\"width\":4,\"height\":4,\"cell_width\":12,"
-             "\"cell_height\":12,\"alignment\":4,\"cell_x\":0,\"cell_y\":0,"
-             "\"textures\":[{\"fill\":[0,0,0,1]}]}]}",
-             head);
+    snprintf(
+        buf, sizeof buf,
+        "%s{\"name\":\"a\",\"x\":4,\"y\":4,\"width\":4,\"height\":4,\"cell_width\":12,\"cell_height\":12,\"alignment\":4,\"cell_x\":0,\"cell_y\":0,\"textures\":[{\"fill\":[0,0,0,1]}]}]}",
+        head);
     VT_CHECK_INT_EQ(vt_layout_parse_memory(buf, strlen(buf), "g.json", NULL, &r, &err), 0);
     VT_CHECK(r.entries[0].cell_left == 4 && r.entries[0].cell_top == 4);
     vt_layout_release(&r);
-    snprintf(buf, sizeof buf,
-             "%s{\"name\":\"a\",\"x\":4,\"y\":4,\"width\":4,\"height\":4,\"cell_width\":8,"
-             "\"cell_height\":8,\"alignment\":4,\"textures\":[{\"fill\":[0,0,0,1]}]}]}",
-             head);
+    snprintf(
+        buf, sizeof buf,
+        "%s{\"name\":\"a\",\"x\":4,\"y\":4,\"width\":4,\"height\":4,\"cell_width\":8,\"cell_height\":8,\"alignment\":4,\"textures\":[{\"fill\":[0,0,0,1]}]}]}",
+        head);
     VT_CHECK_INT_EQ(vt_layout_parse_memory(buf, strlen(buf), "g.json", NULL, &r, &err), 0);
     VT_CHECK(r.entries[0].cell_left == 0 && r.entries[0].cell_top == 0);
     vt_layout_release(&r);

@@ -159,8 +159,7 @@ static void rejects_bad_input_before_writing(void)
         "'s.obj':5: texture index 3 in '1/3' out of range (2 texcoords defined)"));
     VT_CHECK(offset_fixture_expect_error(
         "v 0 0 0\nvt 0 0\nusemtl a\nf 1/1 1/-2 1/1\n", &l, VT_ERR_BAD_INPUT,
-        "'s.obj':4: texture index -2 in '1/-2' out of range (1 texcoords "
-        "defined)"));
+        "'s.obj':4: texture index -2 in '1/-2' out of range (1 texcoords defined)"));
     VT_CHECK(offset_fixture_expect_error(
         "v 0 0 0\nvt 0 0\nusemtl a\nf 2/1 1/1 1/1\n", &l, VT_ERR_BAD_INPUT,
         "'s.obj':4: vertex index 2 in '2/1' out of range (1 vertices defined)"));
@@ -181,19 +180,16 @@ static void rejects_bad_input_before_writing(void)
                                          "'s.obj':1: 'vt' needs 1 to 3 numbers"));
     VT_CHECK(offset_fixture_expect_error(
         "v 0 0 0\nvt 0 0\nusemtl a\nusemtl zz top\nf 1/1 1/1 1/1\n", &l, VT_ERR_BAD_INPUT,
-        "'s.obj':5: material 'zz top' (usemtl on line 4) is not in "
-        "'atlas.json'"));
+        "'s.obj':5: material 'zz top' (usemtl on line 4) is not in 'atlas.json'"));
     VT_CHECK(
         offset_fixture_expect_error("v 0 0 0\nvt 0 0\nf 1/1 1/1 1/1\n", &l, VT_ERR_BAD_INPUT,
                                     "'s.obj':3: face with texture coordinates before any usemtl"));
     VT_CHECK(offset_fixture_expect_error(
         "v 0 0 0\nvt 0 0\nvt 1.5 0.25\nusemtl b\nf 1/1 1/1 1/2\n", &l, VT_ERR_BAD_INPUT,
-        "'s.obj':5: vt 2 (1.5 0.25) is outside the UV range of material 'b' "
-        "in 'atlas.json' (u 0..1, v 0..1)"));
+        "'s.obj':5: vt 2 (1.5 0.25) is outside the UV range of material 'b' in 'atlas.json' (u 0..1, v 0..1)"));
     VT_CHECK(offset_fixture_expect_error(
         "v 0 0 0\nvt 0 -0.001\nusemtl a\nf 1/1 1/1 1/1\n", &l, VT_ERR_BAD_INPUT,
-        "'s.obj':4: vt 1 (0 -0.001) is outside the UV range of material 'a' "
-        "in 'atlas.json' (u 0..1, v 0..1)"));
+        "'s.obj':4: vt 1 (0 -0.001) is outside the UV range of material 'a' in 'atlas.json' (u 0..1, v 0..1)"));
     VT_CHECK(offset_fixture_expect_error("v 0 0 0\nf 1 1\n", &l, VT_ERR_BAD_INPUT,
                                          "'s.obj':2: face with 2 corners (needs 3)"));
     VT_CHECK(offset_fixture_expect_error("v 0 0 0\nmtllib\n", &l, VT_ERR_BAD_INPUT,
