@@ -60,10 +60,10 @@ static void text_printf(struct text *t, const char *fmt, ...)
     }
 }
 
-static int write_text(const char *path, const struct text *t, struct vt_error *err)
+static int write_text(const char *path, const struct text *t, struct vts_error *err)
 {
     if (t->failed)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory writing '%s'", path);
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory writing '%s'", path);
     struct vt_atomic_file f;
     int rc = vt_atomic_file_create(&f, path, "tmp", err);
     if (rc < 0)
@@ -292,7 +292,7 @@ static int make_dir(const char *path)
 
 static int run(const char *dir, uint32_t shrink)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     char path[VT_PATH_MAX];
     if (strlen(dir) > VT_PATH_MAX - 64) {
         vt_log(VT_LOG_ERROR, "output directory name too long");

@@ -35,7 +35,7 @@ void vt_sample_image_fill_rect(struct vt_sample_image *im, int64_t x0, int64_t y
             vt_sample_image_set(im, x, y, value);
 }
 
-int vt_sample_image_write_png(const char *path, struct vt_sample_image *im, struct vt_error *err)
+int vt_sample_image_write_png(const char *path, struct vt_sample_image *im, struct vts_error *err)
 {
     struct vt_png_file_writer *w = vt_png_file_writer_create(path, im->w, im->h, im->ch, 8, err);
     if (!w)

@@ -26,6 +26,6 @@ void vt_sample_image_fill_rect(struct vt_sample_image *im, int64_t x0, int64_t y
                                int64_t h, const uint8_t *value);
 
 /* Writes the image to path as an 8-bit PNG. Returns 0 or a negative status with err filled. */
-int vt_sample_image_write_png(const char *path, struct vt_sample_image *im, struct vt_error *err);
+int vt_sample_image_write_png(const char *path, struct vt_sample_image *im, struct vts_error *err);
 
 #endif

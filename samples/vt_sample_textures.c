@@ -7,6 +7,7 @@
 #include <stdlib.h>
 
 #include "vt_atomic_file.h"
+#include "vt_error.h"
 #include "vt_sample_font.h"
 #include "vt_sample_image.h"
 
@@ -246,7 +247,7 @@ static int paint_normal(struct vt_sample_image *im, const char *line1, const cha
     return 0;
 }
 
-int vt_sample_textures_make(const char *dir, uint32_t index, uint32_t shrink, struct vt_error *err)
+int vt_sample_textures_make(const char *dir, uint32_t index, uint32_t shrink, struct vts_error *err)
 {
     const struct vt_sample_textures_spec *t = &vt_sample_textures[index];
     uint32_t w = t->w / shrink > 8 ? t->w / shrink : 8;
@@ -254,7 +255,7 @@ int vt_sample_textures_make(const char *dir, uint32_t index, uint32_t shrink, st
     static const uint32_t channels[] = {3, 4, 1, 3, 3};
     struct vt_sample_image im;
     if (vt_sample_image_alloc(&im, w, h, channels[t->kind]) < 0)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory for texture '%s'", t->file);
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for texture '%s'", t->file);
     char size_text[32];
     snprintf(size_text, sizeof(size_text), "%uX%u", w, h);
     struct vt_sample_font_label b = vt_sample_font_label_place(w, h, t->label, size_text);
@@ -277,7 +278,7 @@ int vt_sample_textures_make(const char *dir, uint32_t index, uint32_t shrink, st
     }
     case VT_SAMPLE_TEXTURES_NORMAL:
         if (paint_normal(&im, t->label, size_text) < 0)
-            rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory for texture '%s'", t->file);
+            rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory for texture '%s'", t->file);
         break;
     case VT_SAMPLE_TEXTURES_TILING: {
         paint_tiling(&im, index);

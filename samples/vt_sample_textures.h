@@ -32,6 +32,7 @@ uint32_t vt_sample_textures_hash32(uint32_t x);
 
 /* Paints texture index (edges divided by shrink, at least 8 px) and writes it to
  * dir/textures/<file>. Returns 0 or a negative status with err filled. */
-int vt_sample_textures_make(const char *dir, uint32_t index, uint32_t shrink, struct vt_error *err);
+int vt_sample_textures_make(const char *dir, uint32_t index, uint32_t shrink,
+                            struct vts_error *err);
 
 #endif

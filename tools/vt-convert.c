@@ -6,6 +6,7 @@
 #include "tool_common.h"
 #include "vt_atomic_file.h"
 #include "vt_codec.h"
+#include "vt_error.h"
 #include "vt_pool.h"
 #include "vts.h"
 #include "vts_writer.h"
@@ -182,17 +183,17 @@ struct run {
 
 /* Decides the output sample type and layer entry of a layer to convert; fails with the codec's
  * reason when it cannot store the layer. */
-static int plan_layer(struct run *r, uint32_t layer, bool *lossy_warned, struct vt_error *err)
+static int plan_layer(struct run *r, uint32_t layer, bool *lossy_warned, struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(r->in);
     const struct vts_layer *in = vts_store_layer(r->in, layer);
     struct layer_plan *p = &r->plans[layer];
-    struct vt_error why = {0};
+    struct vts_error why = {0};
     char codec[5];
     uint32_t sample = in->sample, px = g->tile_payload_px;
     vts_codec_name(in->codec, codec);
     if (!(p->src_codec = vt_codec_by_fourcc(in->codec)))
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
                             "'%s': layer %u uses codec '%s', which this build cannot decode",
                             vts_store_name(r->in), layer, codec);
     int rc = r->codec->check(px, in->channels, sample, &why);
@@ -222,7 +223,7 @@ static int plan_layer(struct run *r, uint32_t layer, bool *lossy_warned, struct 
     return 0;
 }
 
-static int plan(struct run *r, struct vt_error *err)
+static int plan(struct run *r, struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(r->in);
     bool lossy_warned = false;
@@ -270,7 +271,7 @@ static void narrow_u16(const struct vt_image *src, struct vt_image *dst)
 
 /* Decodes w->payload (len bytes) and encodes it into w->encoded; *len becomes the new length. */
 static int transcode(const struct run *r, uint32_t layer, struct worker *w, size_t *len,
-                     struct vt_error *err)
+                     struct vts_error *err)
 {
     const struct layer_plan *p = &r->plans[layer];
     uint32_t px = vts_store_geometry(r->in)->tile_payload_px, ch = p->out.channels;
@@ -297,11 +298,11 @@ static bool next_job(void *ctx, uint64_t *job)
     return true;
 }
 
-static int do_job(void *ctx, unsigned worker, uint64_t job, struct vt_error *err)
+static int do_job(void *ctx, unsigned worker, uint64_t job, struct vts_error *err)
 {
     struct run *r = ctx;
     struct worker *w = &r->workers[worker];
-    struct vt_error why = {0};
+    struct vts_error why = {0};
     uint32_t layer, level, tx, ty;
     size_t len = 0;
     job_position(r, job, &layer, &level, &tx, &ty);
@@ -317,7 +318,7 @@ static int do_job(void *ctx, unsigned worker, uint64_t job, struct vt_error *err
         return 0;
     return vt_error_set(err, rc, "'%s': layer %u level %u tile %u,%u: %s", vts_store_name(r->in),
                         layer, level, tx, ty,
-                        rc == VT_ERR_CHECKSUM ? "payload checksum mismatch" : why.message);
+                        rc == VTS_ERR_CHECKSUM ? "payload checksum mismatch" : why.message);
 }
 
 static int on_progress(void *ctx)
@@ -327,10 +328,10 @@ static int on_progress(void *ctx)
     return 0;
 }
 
-static int alloc_workers(struct run *r, struct vt_error *err)
+static int alloc_workers(struct run *r, struct vts_error *err)
 {
     if (!(r->workers = calloc(r->o->threads, sizeof *r->workers)))
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory for workers");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for workers");
     for (unsigned i = 0; i < r->o->threads; i++) {
         struct worker *w = &r->workers[i];
         w->payload = malloc(r->payload_cap);
@@ -338,7 +339,7 @@ static int alloc_workers(struct run *r, struct vt_error *err)
         w->decoded = malloc(r->tile_cap + 1);
         w->narrowed = malloc(r->tile_cap + 1);
         if (!w->payload || !w->encoded || !w->decoded || !w->narrowed)
-            return vt_error_set(err, VT_ERR_NOMEM, "out of memory for tile buffers");
+            return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for tile buffers");
     }
     return 0;
 }
@@ -356,7 +357,7 @@ static void free_workers(struct run *r)
 
 /* Copies the input's metadata and adds convert.N (N one above the highest convert.N there):
  * "<codec>[ q<quality>[ 444]][ best] from <old codecs, '+' joined>[, layer N]". */
-static int set_metadata(struct run *r, struct vt_error *err)
+static int set_metadata(struct run *r, struct vts_error *err)
 {
     char key[32], value[256], name[5];
     uint32_t n = 1, v;
@@ -389,7 +390,7 @@ static int set_metadata(struct run *r, struct vt_error *err)
     return rc != 0 ? rc : vts_writer_set_meta(r->out, key, value, err);
 }
 
-static int convert(struct run *r, struct vt_error *err)
+static int convert(struct run *r, struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(r->in);
     struct vts_layer layers[VTS_MAX_LAYERS];
@@ -426,7 +427,7 @@ static int convert(struct run *r, struct vt_error *err)
 
 static int run(const struct options *o, const struct vt_codec *codec)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct run r = {.o = o, .codec = codec};
     r.params = (struct vt_codec_params){(int)o->quality,
                                         o->best ? (codec->fourcc == VTS_CODEC_PNG ? 9 : 1) : 0,

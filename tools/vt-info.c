@@ -329,7 +329,7 @@ static int print_json(const struct vts_store *s, const struct vt_store_stats *st
 static int run_summary(const struct vts_store *s, bool json)
 {
     struct vt_store_stats st;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = VT_EXIT_OK;
     if (vt_store_stats_init(&st, s, &err) != 0) {
         vt_log(VT_LOG_ERROR, "%s", err.message);
@@ -349,7 +349,7 @@ static int run_verify(const struct vts_store *s)
 {
     const struct vts_geometry *g = vts_store_geometry(s);
     struct vt_tile_reader r = {0};
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vt_progress progress;
     uint64_t stored = 0, done = 0;
     int rc = 0;
@@ -410,7 +410,7 @@ static int check_extract_range(const struct vts_store *s, const struct options *
 static int run_extract(const struct vts_store *s, const struct options *o)
 {
     struct vt_tile_reader r;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vts_tile_entry e;
     int rc = check_extract_range(s, o);
     if (rc != 0)
@@ -437,7 +437,7 @@ static int run_extract(const struct vts_store *s, const struct options *o)
 
 static int run(const struct options *o)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vts_store *s = vts_open(o->store_path, &err);
     int rc;
     if (!s) {

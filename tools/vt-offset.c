@@ -9,6 +9,7 @@
 
 #include "tool_common.h"
 #include "vt_atomic_file.h"
+#include "vt_error.h"
 #include "vt_layout.h"
 #include "vt_offset.h"
 #include "vt_uv_text.h"
@@ -159,7 +160,7 @@ struct file_sink {
     unsigned long long offset;
 };
 
-static int sink_write(void *user, const void *data, size_t size, struct vt_error *err)
+static int sink_write(void *user, const void *data, size_t size, struct vts_error *err)
 {
     struct file_sink *s = user;
     int rc = vt_atomic_file_pwrite(&s->file, data, size, s->offset, err);
@@ -168,7 +169,7 @@ static int sink_write(void *user, const void *data, size_t size, struct vt_error
 }
 
 static int write_mtl(struct file_sink *mtl, const struct options *o, const struct vt_layout *layout,
-                     const char *store, struct vt_error *err)
+                     const char *store, struct vts_error *err)
 {
     char text[4096];
     size_t n = (size_t)snprintf(text, sizeof text,
@@ -185,7 +186,7 @@ static int write_mtl(struct file_sink *mtl, const struct options *o, const struc
                              "\nnewmtl %s\nKa 1 1 1\nKd 1 1 1\nKs 0 0 0\nd 1\nillum 1\nmap_Kd %s\n",
                              VT_OFFSET_MATERIAL, store);
     if (n >= sizeof text)
-        return vt_error_set(err, VT_ERR_ARG, "store name '%s' too long", store);
+        return vt_error_set(err, VTS_ERR_ARG, "store name '%s' too long", store);
     return sink_write(mtl, text, n, err);
 }
 
@@ -217,7 +218,7 @@ static void report(const struct options *o, const char *mtl_path, const struct v
 
 static int run(const struct options *o)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vt_layout layout = {0};
     struct file_sink obj = {.file.fd = -1}, mtl = {.file.fd = -1};
     char *mtl_path = o->mtl_path ? strdup(o->mtl_path) : with_extension(o->out_path, ".mtl");

@@ -23,20 +23,20 @@ struct vt_codec {
     const char *summary; /* one line for --help */
     bool lossless;
     /* 0 when the codec can store tiles of edge tile_px with this many channels and sample type;
-     * else VT_ERR_UNSUPPORTED and a message that says why and what to use instead (including a
+     * else VTS_ERR_UNSUPPORTED and a message that says why and what to use instead (including a
      * payload that could not fit the index's 32-bit length). */
-    int (*check)(uint32_t tile_px, uint32_t channels, uint32_t sample, struct vt_error *err);
+    int (*check)(uint32_t tile_px, uint32_t channels, uint32_t sample, struct vts_error *err);
     /* Largest payload encode() can produce for such a tile (0 = shape not supported). */
     size_t (*encoded_bound)(uint32_t width, uint32_t height, uint32_t channels, uint32_t sample);
     /* Encodes src into dst (dst_capacity bytes, at least encoded_bound()); *out_len = bytes
-     * written. Thread-safe. Returns 0, VT_ERR_LIMIT when dst_capacity is too small, or another
+     * written. Thread-safe. Returns 0, VTS_ERR_LIMIT when dst_capacity is too small, or another
      * negative status with a message. */
     int (*encode)(const struct vt_image *src, const struct vt_codec_params *params, void *dst,
-                  size_t dst_capacity, size_t *out_len, struct vt_error *err);
+                  size_t dst_capacity, size_t *out_len, struct vts_error *err);
     /* Decodes src into dst, which the caller allocated with the width, height, channels and sample
-     * the store's layer declares. A payload of another shape, or malformed, gives VT_ERR_BAD_INPUT
+     * the store's layer declares. A payload of another shape, or malformed, gives VTS_ERR_BAD_INPUT
      * (never a crash, never a read outside src). Thread-safe. */
-    int (*decode)(const void *src, size_t src_len, struct vt_image *dst, struct vt_error *err);
+    int (*decode)(const void *src, size_t src_len, struct vt_image *dst, struct vts_error *err);
 };
 
 /* Lookup in the registry of codecs compiled into this build; NULL when unknown. */

@@ -34,6 +34,7 @@
 #include "vt_checked.h"
 #include "vt_codec.h"
 #include "vt_codec_impl.h"
+#include "vt_error.h"
 #include "vt_squish_shim.h"
 
 #define BC_BLOCK_PX     4
@@ -56,20 +57,20 @@ static const struct bc_format bc3_format = {"bc3", 16, true, 4, 4};
 /* ---- shapes ---- */
 
 static int bc_check_channels_and_sample(const struct bc_format *fmt, uint32_t channels,
-                                        uint32_t sample, struct vt_error *err)
+                                        uint32_t sample, struct vts_error *err)
 {
     if (sample != VTS_SAMPLE_U8)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
                             "%s stores 8-bit samples only (got %s); use png or raw", fmt->name,
                             vts_sample_name(sample));
     if (channels < fmt->min_channels || channels > fmt->max_channels) {
         if (fmt->has_alpha_block)
             return vt_error_set(
-                err, VT_ERR_UNSUPPORTED,
+                err, VTS_ERR_UNSUPPORTED,
                 "bc3 needs 4 channels (RGBA), got %u: use bc1 for RGB (half the size), png or raw for grey or grey+alpha",
                 channels);
         return vt_error_set(
-            err, VT_ERR_UNSUPPORTED,
+            err, VTS_ERR_UNSUPPORTED,
             "bc1 needs 3 or 4 channels (RGB or RGBA), got %u: use png or raw for grey or grey+alpha",
             channels);
     }
@@ -77,19 +78,19 @@ static int bc_check_channels_and_sample(const struct bc_format *fmt, uint32_t ch
 }
 
 static int bc_check(const struct bc_format *fmt, uint32_t tile_px, uint32_t channels,
-                    uint32_t sample, struct vt_error *err)
+                    uint32_t sample, struct vts_error *err)
 {
     int rc = bc_check_channels_and_sample(fmt, channels, sample, err);
     if (rc < 0)
         return rc;
     if (tile_px == 0 || tile_px % BC_BLOCK_PX != 0)
         return vt_error_set(
-            err, VT_ERR_UNSUPPORTED,
+            err, VTS_ERR_UNSUPPORTED,
             "%s needs a tile payload that is a multiple of 4 (got %u): use --tile-size 256 with --border 4 or --keep payload",
             fmt->name, tile_px);
     uint64_t blocks = (uint64_t)(tile_px / BC_BLOCK_PX) * (tile_px / BC_BLOCK_PX);
     if (blocks * fmt->block_bytes > UINT32_MAX)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
                             "%s: a %ux%u tile exceeds the 4 GiB payload limit", fmt->name, tile_px,
                             tile_px);
     return 0;
@@ -115,18 +116,18 @@ static size_t bc_encoded_bound(const struct bc_format *fmt, uint32_t width, uint
 
 /* Checks that img is a tile this format stores; *payload_bytes receives its encoded size. */
 static int bc_image_layout(const struct bc_format *fmt, const struct vt_image *img,
-                           const char *role, size_t *payload_bytes, struct vt_error *err)
+                           const char *role, size_t *payload_bytes, struct vts_error *err)
 {
     int rc = bc_check_channels_and_sample(fmt, img->channels, img->sample, err);
     if (rc < 0)
         return rc;
     *payload_bytes = bc_payload_bytes(fmt, img->width, img->height);
     if (*payload_bytes == 0)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
                             "%s: a %ux%u %s image is not a whole number of 4x4 blocks", fmt->name,
                             img->width, img->height, role);
     if (!img->pixels || img->stride < (size_t)img->width * img->channels)
-        return vt_error_set(err, VT_ERR_ARG, "%s codec: invalid %s image (stride %zu, %ux%u)",
+        return vt_error_set(err, VTS_ERR_ARG, "%s codec: invalid %s image (stride %zu, %ux%u)",
                             fmt->name, role, img->stride, img->width, img->height);
     return 0;
 }
@@ -173,7 +174,7 @@ static int bc_encode_block(const struct bc_format *fmt, const unsigned char *rgb
 
 static int bc_encode(const struct bc_format *fmt, const struct vt_image *src,
                      const struct vt_codec_params *params, void *dst, size_t dst_capacity,
-                     size_t *out_len, struct vt_error *err)
+                     size_t *out_len, struct vts_error *err)
 {
     size_t payload_bytes;
     *out_len = 0;
@@ -182,10 +183,11 @@ static int bc_encode(const struct bc_format *fmt, const struct vt_image *src,
         return rc;
     int effort = params ? params->effort : BC_EFFORT_FAST;
     if (effort != BC_EFFORT_FAST && effort != BC_EFFORT_BEST)
-        return vt_error_set(err, VT_ERR_ARG, "%s codec: effort %d is neither 0 (fast) nor 1 (best)",
-                            fmt->name, effort);
+        return vt_error_set(err, VTS_ERR_ARG,
+                            "%s codec: effort %d is neither 0 (fast) nor 1 (best)", fmt->name,
+                            effort);
     if (dst_capacity < payload_bytes)
-        return vt_error_set(err, VT_ERR_LIMIT, "%s encode: output buffer of %zu bytes < %zu",
+        return vt_error_set(err, VTS_ERR_LIMIT, "%s encode: output buffer of %zu bytes < %zu",
                             fmt->name, dst_capacity, payload_bytes);
     unsigned char *out = dst;
     _Alignas(16) unsigned char rgba[64]; /* stb_dxt reads the texels as 32-bit words */
@@ -193,7 +195,7 @@ static int bc_encode(const struct bc_format *fmt, const struct vt_image *src,
         for (uint32_t x0 = 0; x0 < src->width; x0 += BC_BLOCK_PX, out += fmt->block_bytes) {
             bc_gather_block(src, x0, y0, rgba);
             if (bc_encode_block(fmt, rgba, effort, src->channels == 4, out) < 0)
-                return vt_error_set(err, VT_ERR_NOMEM,
+                return vt_error_set(err, VTS_ERR_NOMEM,
                                     "%s encode: libsquish failed at block (%u, %u)", fmt->name,
                                     x0 / BC_BLOCK_PX, y0 / BC_BLOCK_PX);
         }
@@ -278,7 +280,7 @@ static void bc_scatter_block(unsigned char texels[16][4], struct vt_image *dst, 
 }
 
 static int bc_decode(const struct bc_format *fmt, const void *src, size_t src_len,
-                     struct vt_image *dst, struct vt_error *err)
+                     struct vt_image *dst, struct vts_error *err)
 {
     size_t payload_bytes;
     int rc = bc_image_layout(fmt, dst, "destination", &payload_bytes, err);
@@ -286,7 +288,7 @@ static int bc_decode(const struct bc_format *fmt, const void *src, size_t src_le
         return rc;
     if (src_len != payload_bytes)
         return vt_error_set(
-            err, VT_ERR_BAD_INPUT,
+            err, VTS_ERR_BAD_INPUT,
             "%s payload: %zu bytes != %zu expected for a %ux%u tile (%u blocks of %u bytes)",
             fmt->name, src_len, payload_bytes, dst->width, dst->height,
             (unsigned)(payload_bytes / fmt->block_bytes), fmt->block_bytes);
@@ -308,7 +310,7 @@ static int bc_decode(const struct bc_format *fmt, const void *src, size_t src_le
 
 /* ---- the two table entries ---- */
 
-static int bc1_check(uint32_t tile_px, uint32_t channels, uint32_t sample, struct vt_error *err)
+static int bc1_check(uint32_t tile_px, uint32_t channels, uint32_t sample, struct vts_error *err)
 {
     return bc_check(&bc1_format, tile_px, channels, sample, err);
 }
@@ -319,17 +321,17 @@ static size_t bc1_encoded_bound(uint32_t width, uint32_t height, uint32_t channe
 }
 
 static int bc1_encode(const struct vt_image *src, const struct vt_codec_params *params, void *dst,
-                      size_t dst_capacity, size_t *out_len, struct vt_error *err)
+                      size_t dst_capacity, size_t *out_len, struct vts_error *err)
 {
     return bc_encode(&bc1_format, src, params, dst, dst_capacity, out_len, err);
 }
 
-static int bc1_decode(const void *src, size_t src_len, struct vt_image *dst, struct vt_error *err)
+static int bc1_decode(const void *src, size_t src_len, struct vt_image *dst, struct vts_error *err)
 {
     return bc_decode(&bc1_format, src, src_len, dst, err);
 }
 
-static int bc3_check(uint32_t tile_px, uint32_t channels, uint32_t sample, struct vt_error *err)
+static int bc3_check(uint32_t tile_px, uint32_t channels, uint32_t sample, struct vts_error *err)
 {
     return bc_check(&bc3_format, tile_px, channels, sample, err);
 }
@@ -340,12 +342,12 @@ static size_t bc3_encoded_bound(uint32_t width, uint32_t height, uint32_t channe
 }
 
 static int bc3_encode(const struct vt_image *src, const struct vt_codec_params *params, void *dst,
-                      size_t dst_capacity, size_t *out_len, struct vt_error *err)
+                      size_t dst_capacity, size_t *out_len, struct vts_error *err)
 {
     return bc_encode(&bc3_format, src, params, dst, dst_capacity, out_len, err);
 }
 
-static int bc3_decode(const void *src, size_t src_len, struct vt_image *dst, struct vt_error *err)
+static int bc3_decode(const void *src, size_t src_len, struct vt_image *dst, struct vts_error *err)
 {
     return bc_decode(&bc3_format, src, src_len, dst, err);
 }

@@ -27,6 +27,7 @@
 
 #include "vt_codec.h"
 #include "vt_codec_impl.h"
+#include "vt_error.h"
 
 #define JPG_DEFAULT_QUALITY 85
 #define JPG_MAX_EDGE        65500 /* JPEG_MAX_DIMENSION of libjpeg */
@@ -59,11 +60,11 @@ static void jpg_key_create(void)
 
 /* The calling thread's handle (compress or decompress), created on first use; NULL when out of
  * memory (err filled). The handle belongs to the thread: never pass it to another one. */
-static tjhandle jpg_thread_handle(bool compress, struct vt_error *err)
+static tjhandle jpg_thread_handle(bool compress, struct vts_error *err)
 {
     pthread_once(&jpg_key_once, jpg_key_create);
     if (jpg_key_error) {
-        vt_error_set(err, VT_ERR_NOMEM, "jpeg codec: cannot create a thread key");
+        vt_error_set(err, VTS_ERR_NOMEM, "jpeg codec: cannot create a thread key");
         return NULL;
     }
     struct jpg_handles *handles = pthread_getspecific(jpg_key);
@@ -71,7 +72,7 @@ static tjhandle jpg_thread_handle(bool compress, struct vt_error *err)
         handles = calloc(1, sizeof *handles);
         if (!handles || pthread_setspecific(jpg_key, handles) != 0) {
             free(handles);
-            vt_error_set(err, VT_ERR_NOMEM, "jpeg codec: out of memory");
+            vt_error_set(err, VTS_ERR_NOMEM, "jpeg codec: out of memory");
             return NULL;
         }
     }
@@ -79,7 +80,7 @@ static tjhandle jpg_thread_handle(bool compress, struct vt_error *err)
     if (!*slot)
         *slot = compress ? tjInitCompress() : tjInitDecompress();
     if (!*slot)
-        vt_error_set(err, VT_ERR_NOMEM, "jpeg codec: cannot create a TurboJPEG handle: %s",
+        vt_error_set(err, VTS_ERR_NOMEM, "jpeg codec: cannot create a TurboJPEG handle: %s",
                      tjGetErrorStr2(NULL));
     return *slot;
 }
@@ -98,7 +99,7 @@ static void jpg_thread_handle_discard(bool compress)
 
 /* Fills err with TurboJPEG's message for handle, then discards the handle; returns status. */
 static int jpg_fail(bool compress, tjhandle handle, int status, const char *what,
-                    struct vt_error *err)
+                    struct vts_error *err)
 {
     vt_error_set(err, status, "jpeg %s: %s", what, tjGetErrorStr2(handle));
     jpg_thread_handle_discard(compress);
@@ -107,18 +108,18 @@ static int jpg_fail(bool compress, tjhandle handle, int status, const char *what
 
 /* ---- shapes ---- */
 
-static int jpg_check_channels_and_sample(uint32_t channels, uint32_t sample, struct vt_error *err)
+static int jpg_check_channels_and_sample(uint32_t channels, uint32_t sample, struct vts_error *err)
 {
     if (sample != VTS_SAMPLE_U8)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
                             "jpeg stores 8-bit samples only (got %s); use png or raw",
                             vts_sample_name(sample));
     if (channels == 2 || channels == 4)
         return vt_error_set(
-            err, VT_ERR_UNSUPPORTED,
+            err, VTS_ERR_UNSUPPORTED,
             "jpeg cannot store alpha: use png, bc3 or raw (vt-tiles drops an alpha that is opaque everywhere)");
     if (channels != 1 && channels != 3)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
                             "jpeg codec: %u channels (1 grey or 3 RGB supported)", channels);
     return 0;
 }
@@ -142,23 +143,23 @@ static size_t jpg_encoded_bound(uint32_t width, uint32_t height, uint32_t channe
     return bound;
 }
 
-static int jpg_check(uint32_t tile_px, uint32_t channels, uint32_t sample, struct vt_error *err)
+static int jpg_check(uint32_t tile_px, uint32_t channels, uint32_t sample, struct vts_error *err)
 {
     int rc = jpg_check_channels_and_sample(channels, sample, err);
     if (rc < 0)
         return rc;
     if (tile_px == 0 || tile_px > JPG_MAX_EDGE)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
                             "jpeg codec: tile edge %u outside JPEG's 1..%u", tile_px, JPG_MAX_EDGE);
     if (jpg_encoded_bound(tile_px, tile_px, channels, sample) > UINT32_MAX)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
                             "jpeg codec: a %ux%u tile does not fit the 4 GiB payload limit",
                             tile_px, tile_px);
     return 0;
 }
 
 /* Checks that img is a tile JPEG can hold (also the range of TurboJPEG's int arguments). */
-static int jpg_image_layout(const struct vt_image *img, const char *role, struct vt_error *err)
+static int jpg_image_layout(const struct vt_image *img, const char *role, struct vts_error *err)
 {
     int rc = jpg_check_channels_and_sample(img->channels, img->sample, err);
     if (rc < 0)
@@ -166,15 +167,15 @@ static int jpg_image_layout(const struct vt_image *img, const char *role, struct
     if (!img->pixels || img->width == 0 || img->height == 0 || img->width > JPG_MAX_EDGE ||
         img->height > JPG_MAX_EDGE || img->stride < (size_t)img->width * img->channels ||
         img->stride > INT_MAX)
-        return vt_error_set(err, VT_ERR_ARG, "jpeg codec: invalid %s image %ux%u, stride %zu", role,
-                            img->width, img->height, img->stride);
+        return vt_error_set(err, VTS_ERR_ARG, "jpeg codec: invalid %s image %ux%u, stride %zu",
+                            role, img->width, img->height, img->stride);
     return 0;
 }
 
 /* ---- encoding ---- */
 
 /* TurboJPEG's subsampling for params (grey: TJSAMP_GRAY); -1 with err filled when invalid. */
-static int jpg_subsampling(const struct vt_image *src, int subsampling, struct vt_error *err)
+static int jpg_subsampling(const struct vt_image *src, int subsampling, struct vts_error *err)
 {
     if (src->channels == 1)
         return TJSAMP_GRAY;
@@ -187,14 +188,14 @@ static int jpg_subsampling(const struct vt_image *src, int subsampling, struct v
     case 444:
         return TJSAMP_444;
     default:
-        vt_error_set(err, VT_ERR_ARG, "jpeg codec: subsampling %d is not 420, 422 or 444",
+        vt_error_set(err, VTS_ERR_ARG, "jpeg codec: subsampling %d is not 420, 422 or 444",
                      subsampling);
         return -1;
     }
 }
 
 static int jpg_encode(const struct vt_image *src, const struct vt_codec_params *params, void *dst,
-                      size_t dst_capacity, size_t *out_len, struct vt_error *err)
+                      size_t dst_capacity, size_t *out_len, struct vts_error *err)
 {
     *out_len = 0;
     int rc = jpg_image_layout(src, "source", err);
@@ -202,24 +203,24 @@ static int jpg_encode(const struct vt_image *src, const struct vt_codec_params *
         return rc;
     int quality = params && params->quality ? params->quality : JPG_DEFAULT_QUALITY;
     if (quality < 1 || quality > 100)
-        return vt_error_set(err, VT_ERR_ARG, "jpeg codec: quality %d outside 1..100", quality);
+        return vt_error_set(err, VTS_ERR_ARG, "jpeg codec: quality %d outside 1..100", quality);
     int subsamp = jpg_subsampling(src, params ? params->subsampling : 0, err);
     if (subsamp < 0)
-        return VT_ERR_ARG;
+        return VTS_ERR_ARG;
     /* With TJFLAG_NOREALLOC TurboJPEG assumes a buffer of tjBufSize() bytes: make sure it is. */
     unsigned long needed = tjBufSize((int)src->width, (int)src->height, subsamp);
     if (needed == (unsigned long)-1 || dst_capacity < needed)
-        return vt_error_set(err, VT_ERR_LIMIT, "jpeg encode: output buffer of %zu bytes < %lu",
+        return vt_error_set(err, VTS_ERR_LIMIT, "jpeg encode: output buffer of %zu bytes < %lu",
                             dst_capacity, needed);
     tjhandle handle = jpg_thread_handle(true, err);
     if (!handle)
-        return VT_ERR_NOMEM;
+        return VTS_ERR_NOMEM;
     unsigned char *out = dst;
     unsigned long out_size = (unsigned long)dst_capacity;
     if (tjCompress2(handle, src->pixels, (int)src->width, (int)src->stride, (int)src->height,
                     src->channels == 1 ? TJPF_GRAY : TJPF_RGB, &out, &out_size, subsamp, quality,
                     TJFLAG_NOREALLOC) != 0)
-        return jpg_fail(true, handle, VT_ERR_ARG, "encode", err);
+        return jpg_fail(true, handle, VTS_ERR_ARG, "encode", err);
     *out_len = out_size;
     return 0;
 }
@@ -228,50 +229,50 @@ static int jpg_encode(const struct vt_image *src, const struct vt_codec_params *
 
 /* Compares the JPEG header with the tile dst. */
 static int jpg_decode_match(int width, int height, int subsamp, int colourspace,
-                            const struct vt_image *dst, struct vt_error *err)
+                            const struct vt_image *dst, struct vts_error *err)
 {
     if ((uint32_t)width != dst->width)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "jpeg payload: width %d != tile %u", width,
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "jpeg payload: width %d != tile %u", width,
                             dst->width);
     if ((uint32_t)height != dst->height)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "jpeg payload: height %d != tile %u", height,
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "jpeg payload: height %d != tile %u", height,
                             dst->height);
     if (colourspace == TJCS_CMYK || colourspace == TJCS_YCCK)
-        return vt_error_set(err, VT_ERR_BAD_INPUT,
+        return vt_error_set(err, VTS_ERR_BAD_INPUT,
                             "jpeg payload: CMYK JPEG (tiles are grey or RGB)");
     bool grey = colourspace == TJCS_GRAY || subsamp == TJSAMP_GRAY;
     if (grey && dst->channels != 1)
-        return vt_error_set(err, VT_ERR_BAD_INPUT,
+        return vt_error_set(err, VTS_ERR_BAD_INPUT,
                             "jpeg payload: greyscale JPEG for a %u-channel tile", dst->channels);
     if (!grey && dst->channels != 3)
-        return vt_error_set(err, VT_ERR_BAD_INPUT,
+        return vt_error_set(err, VTS_ERR_BAD_INPUT,
                             "jpeg payload: colour JPEG for a greyscale tile");
     return 0;
 }
 
-static int jpg_decode(const void *src, size_t src_len, struct vt_image *dst, struct vt_error *err)
+static int jpg_decode(const void *src, size_t src_len, struct vt_image *dst, struct vts_error *err)
 {
     int rc = jpg_image_layout(dst, "destination", err);
     if (rc < 0)
         return rc;
     const unsigned char *bytes = src;
     if (src_len < 4 || bytes[0] != 0xff || bytes[1] != 0xd8)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "jpeg payload: no SOI marker (%zu bytes)",
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "jpeg payload: no SOI marker (%zu bytes)",
                             src_len);
     tjhandle handle = jpg_thread_handle(false, err);
     if (!handle)
-        return VT_ERR_NOMEM;
+        return VTS_ERR_NOMEM;
     int width, height, subsamp, colourspace;
     if (tjDecompressHeader3(handle, bytes, (unsigned long)src_len, &width, &height, &subsamp,
                             &colourspace) != 0)
-        return jpg_fail(false, handle, VT_ERR_BAD_INPUT, "payload", err);
+        return jpg_fail(false, handle, VTS_ERR_BAD_INPUT, "payload", err);
     rc = jpg_decode_match(width, height, subsamp, colourspace, dst, err);
     if (rc < 0)
         return rc;
     if (tjDecompress2(handle, bytes, (unsigned long)src_len, dst->pixels, width, (int)dst->stride,
                       height, dst->channels == 1 ? TJPF_GRAY : TJPF_RGB,
                       TJFLAG_STOPONWARNING | TJFLAG_LIMITSCANS) != 0)
-        return jpg_fail(false, handle, VT_ERR_BAD_INPUT, "payload", err);
+        return jpg_fail(false, handle, VTS_ERR_BAD_INPUT, "payload", err);
     return 0;
 }
 

@@ -17,6 +17,7 @@
 #include "vt_checked.h"
 #include "vt_codec.h"
 #include "vt_codec_impl.h"
+#include "vt_error.h"
 
 #define PNG_DEFAULT_LEVEL  2
 #define PNG_FAST_MAX_LEVEL 3
@@ -33,7 +34,7 @@ struct png_mem_ctx {
     size_t src_len;
     size_t src_pos;
     int status; /* status to return once libpng stops (0: the default of the operation) */
-    char message[VT_ERROR_MESSAGE_MAX]; /* first error, already worded for the user */
+    char message[VTS_ERROR_MESSAGE_MAX]; /* first error, already worded for the user */
 };
 
 #if defined(__GNUC__)
@@ -55,7 +56,7 @@ png_ctx_fail(struct png_mem_ctx *ctx, int status, const char *fmt, ...)
 static void png_mem_error(png_structp png, png_const_charp msg)
 {
     struct png_mem_ctx *ctx = png_get_error_ptr(png);
-    int status = strstr(msg, "memory") ? VT_ERR_NOMEM : ctx->default_status;
+    int status = strstr(msg, "memory") ? VTS_ERR_NOMEM : ctx->default_status;
     png_ctx_fail(ctx, status, "png %s: %s", ctx->what, msg);
     png_longjmp(png, 1);
 }
@@ -70,7 +71,7 @@ static void png_mem_write(png_structp png, png_bytep data, size_t length)
 {
     struct png_mem_ctx *ctx = png_get_io_ptr(png);
     if (length > ctx->dst_capacity - ctx->dst_len) {
-        png_ctx_fail(ctx, VT_ERR_LIMIT, "png encode: output exceeds the %zu-byte buffer",
+        png_ctx_fail(ctx, VTS_ERR_LIMIT, "png encode: output exceeds the %zu-byte buffer",
                      ctx->dst_capacity);
         png_error(png, "output buffer full");
     }
@@ -87,7 +88,7 @@ static void png_mem_read(png_structp png, png_bytep data, size_t length)
 {
     struct png_mem_ctx *ctx = png_get_io_ptr(png);
     if (length > ctx->src_len - ctx->src_pos) {
-        png_ctx_fail(ctx, VT_ERR_BAD_INPUT, "png payload: truncated at byte %zu", ctx->src_len);
+        png_ctx_fail(ctx, VTS_ERR_BAD_INPUT, "png payload: truncated at byte %zu", ctx->src_len);
         png_error(png, "truncated");
     }
     memcpy(data, ctx->src + ctx->src_pos, length);
@@ -101,21 +102,21 @@ static int png_colour_type(uint32_t channels)
     return types[channels - 1];
 }
 
-/* Row bytes of an image PNG can hold; VT_ERR_UNSUPPORTED / VT_ERR_ARG otherwise. */
+/* Row bytes of an image PNG can hold; VTS_ERR_UNSUPPORTED / VTS_ERR_ARG otherwise. */
 static int png_image_layout(const struct vt_image *img, const char *role, size_t *row_bytes,
-                            struct vt_error *err)
+                            struct vts_error *err)
 {
     if (img->sample != VTS_SAMPLE_U8 && img->sample != VTS_SAMPLE_U16)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
                             "png codec: %s samples are not supported (8 or 16-bit only); use raw",
                             vts_sample_name(img->sample));
     if (!img->pixels || img->channels < 1 || img->channels > 4 || img->width == 0 ||
         img->height == 0 || img->width > PNG_MAX_EDGE || img->height > PNG_MAX_EDGE ||
         !vt_size_mul3(img->width, img->channels, vts_sample_bytes(img->sample), row_bytes))
-        return vt_error_set(err, VT_ERR_ARG, "png codec: invalid %s image %ux%u, %u channels", role,
-                            img->width, img->height, img->channels);
+        return vt_error_set(err, VTS_ERR_ARG, "png codec: invalid %s image %ux%u, %u channels",
+                            role, img->width, img->height, img->channels);
     if (img->stride < *row_bytes)
-        return vt_error_set(err, VT_ERR_ARG, "png codec: %s stride %zu < row size %zu", role,
+        return vt_error_set(err, VTS_ERR_ARG, "png codec: %s stride %zu < row size %zu", role,
                             img->stride, *row_bytes);
     return 0;
 }
@@ -138,20 +139,20 @@ static size_t png_encoded_bound(uint32_t width, uint32_t height, uint32_t channe
     return total;
 }
 
-static int png_check(uint32_t tile_px, uint32_t channels, uint32_t sample, struct vt_error *err)
+static int png_check(uint32_t tile_px, uint32_t channels, uint32_t sample, struct vts_error *err)
 {
     if (channels < 1 || channels > 4)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED, "png codec: %u channels (1 to 4 supported)",
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED, "png codec: %u channels (1 to 4 supported)",
                             channels);
     if (sample == VTS_SAMPLE_F16 || sample == VTS_SAMPLE_F32)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
                             "png codec: %s samples are not supported (8 or 16-bit only); use raw",
                             vts_sample_name(sample));
     if (sample != VTS_SAMPLE_U8 && sample != VTS_SAMPLE_U16)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED, "png codec: unknown sample type %u", sample);
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED, "png codec: unknown sample type %u", sample);
     size_t bound = png_encoded_bound(tile_px, tile_px, channels, sample);
     if (bound == 0 || bound > UINT32_MAX)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
                             "png codec: a %ux%u tile does not fit the 4 GiB payload limit", tile_px,
                             tile_px);
     return 0;
@@ -187,7 +188,7 @@ static int png_encode_run(png_structp png, png_infop info, const struct vt_image
 }
 
 static int png_encode(const struct vt_image *src, const struct vt_codec_params *params, void *dst,
-                      size_t dst_capacity, size_t *out_len, struct vt_error *err)
+                      size_t dst_capacity, size_t *out_len, struct vts_error *err)
 {
     size_t row_bytes;
     *out_len = 0;
@@ -196,15 +197,15 @@ static int png_encode(const struct vt_image *src, const struct vt_codec_params *
         return rc;
     int effort = params ? params->effort : 0;
     if (effort < 0 || effort > 9)
-        return vt_error_set(err, VT_ERR_ARG, "png codec: effort %d outside 0..9", effort);
+        return vt_error_set(err, VTS_ERR_ARG, "png codec: effort %d outside 0..9", effort);
     struct png_mem_ctx ctx = {
-        .what = "encode", .default_status = VT_ERR_ARG, .dst = dst, .dst_capacity = dst_capacity};
+        .what = "encode", .default_status = VTS_ERR_ARG, .dst = dst, .dst_capacity = dst_capacity};
     png_structp png =
         png_create_write_struct(PNG_LIBPNG_VER_STRING, &ctx, png_mem_error, png_mem_warning);
     png_infop info = png ? png_create_info_struct(png) : NULL;
     if (!info) {
         png_destroy_write_struct(&png, NULL);
-        return vt_error_set(err, VT_ERR_NOMEM, "png encode: out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "png encode: out of memory");
     }
     rc = png_encode_run(png, info, src, effort ? effort : PNG_DEFAULT_LEVEL, &ctx);
     png_destroy_write_struct(&png, &info);
@@ -222,25 +223,25 @@ static int png_decode_match(png_structp png, png_infop info, const struct vt_ima
     int bit_depth, colour_type;
     png_get_IHDR(png, info, &width, &height, &bit_depth, &colour_type, NULL, NULL, NULL);
     if (width != dst->width)
-        return png_ctx_fail(ctx, VT_ERR_BAD_INPUT, "png payload: width %u != tile %u",
+        return png_ctx_fail(ctx, VTS_ERR_BAD_INPUT, "png payload: width %u != tile %u",
                             (unsigned)width, dst->width);
     if (height != dst->height)
-        return png_ctx_fail(ctx, VT_ERR_BAD_INPUT, "png payload: height %u != tile %u",
+        return png_ctx_fail(ctx, VTS_ERR_BAD_INPUT, "png payload: height %u != tile %u",
                             (unsigned)height, dst->height);
     if (colour_type == PNG_COLOR_TYPE_PALETTE)
-        return png_ctx_fail(ctx, VT_ERR_BAD_INPUT,
+        return png_ctx_fail(ctx, VTS_ERR_BAD_INPUT,
                             "png payload: palette image (tiles are gray, gray+alpha, RGB or RGBA)");
     unsigned channels = png_get_channels(png, info);
     if (channels != dst->channels)
-        return png_ctx_fail(ctx, VT_ERR_BAD_INPUT, "png payload: %u channels != tile %u", channels,
+        return png_ctx_fail(ctx, VTS_ERR_BAD_INPUT, "png payload: %u channels != tile %u", channels,
                             dst->channels);
     unsigned tile_depth = dst->sample == VTS_SAMPLE_U16 ? 16 : 8;
     if ((unsigned)bit_depth != tile_depth)
-        return png_ctx_fail(ctx, VT_ERR_BAD_INPUT, "png payload: bit depth %d != tile %u",
+        return png_ctx_fail(ctx, VTS_ERR_BAD_INPUT, "png payload: bit depth %d != tile %u",
                             bit_depth, tile_depth);
     if (png_get_valid(png, info, PNG_INFO_tRNS))
         return png_ctx_fail(
-            ctx, VT_ERR_BAD_INPUT,
+            ctx, VTS_ERR_BAD_INPUT,
             "png payload: tRNS transparency chunk (tiles carry alpha as a channel)");
     return 0;
 }
@@ -262,14 +263,14 @@ static int png_decode_body(png_structp png, png_infop info, struct vt_image *dst
     int passes = png_set_interlace_handling(png);
     png_read_update_info(png, info);
     if (png_get_rowbytes(png, info) != row_bytes)
-        return png_ctx_fail(ctx, VT_ERR_BAD_INPUT, "png payload: row of %zu bytes != tile %zu",
+        return png_ctx_fail(ctx, VTS_ERR_BAD_INPUT, "png payload: row of %zu bytes != tile %zu",
                             (size_t)png_get_rowbytes(png, info), row_bytes);
     for (int pass = 0; pass < passes; pass++)
         for (uint32_t y = 0; y < dst->height; y++)
             png_read_row(png, (unsigned char *)dst->pixels + (size_t)y * dst->stride, NULL);
     png_read_end(png, NULL);
     if (ctx->src_pos != ctx->src_len)
-        return png_ctx_fail(ctx, VT_ERR_BAD_INPUT, "png payload: %zu bytes after IEND",
+        return png_ctx_fail(ctx, VTS_ERR_BAD_INPUT, "png payload: %zu bytes after IEND",
                             ctx->src_len - ctx->src_pos);
     return 0;
 }
@@ -282,23 +283,23 @@ static int png_decode_run(png_structp png, png_infop info, struct vt_image *dst,
     return png_decode_body(png, info, dst, row_bytes, ctx);
 }
 
-static int png_decode(const void *src, size_t src_len, struct vt_image *dst, struct vt_error *err)
+static int png_decode(const void *src, size_t src_len, struct vt_image *dst, struct vts_error *err)
 {
     size_t row_bytes;
     int rc = png_image_layout(dst, "destination", &row_bytes, err);
     if (rc < 0)
         return rc;
     if (src_len < 8 || png_sig_cmp(src, 0, 8) != 0)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "png payload: no PNG signature (%zu bytes)",
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "png payload: no PNG signature (%zu bytes)",
                             src_len);
     struct png_mem_ctx ctx = {
-        .what = "payload", .default_status = VT_ERR_BAD_INPUT, .src = src, .src_len = src_len};
+        .what = "payload", .default_status = VTS_ERR_BAD_INPUT, .src = src, .src_len = src_len};
     png_structp png =
         png_create_read_struct(PNG_LIBPNG_VER_STRING, &ctx, png_mem_error, png_mem_warning);
     png_infop info = png ? png_create_info_struct(png) : NULL;
     if (!info) {
         png_destroy_read_struct(&png, NULL, NULL);
-        return vt_error_set(err, VT_ERR_NOMEM, "png payload: out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "png payload: out of memory");
     }
     rc = png_decode_run(png, info, dst, row_bytes, &ctx);
     png_destroy_read_struct(&png, &info, NULL);

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "vt_checked.h"
+#include "vt_error.h"
 #include "vt_input_impl.h"
 
 enum input_kind { INPUT_OTHER, INPUT_TIFF, INPUT_PNG, INPUT_JPEG, INPUT_EXR };
@@ -32,27 +33,27 @@ static enum input_kind input_kind_of(const unsigned char *magic, size_t len)
 
 /* Reads up to 8 bytes from the start of path into magic; *len gets the count. */
 static int input_read_magic(const char *path, unsigned char magic[8], size_t *len,
-                            struct vt_error *err)
+                            struct vts_error *err)
 {
     FILE *f = fopen(path, "rb");
     if (!f)
-        return vt_error_set(err, VT_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
+        return vt_error_set(err, VTS_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
     *len = fread(magic, 1, 8, f);
     int read_failed = ferror(f);
     fclose(f);
     if (read_failed)
-        return vt_error_set(err, VT_ERR_IO, "cannot read '%s': read error", path);
+        return vt_error_set(err, VTS_ERR_IO, "cannot read '%s': read error", path);
     if (*len == 0)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': empty file", path);
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': empty file", path);
     return 0;
 }
 
 int vt_image_input_open(const char *path, const struct vt_input_limits *limits,
-                        struct vt_source *out, struct vt_error *err)
+                        struct vt_source *out, struct vts_error *err)
 {
     memset(out, 0, sizeof *out);
     if (!path || !path[0])
-        return vt_error_set(err, VT_ERR_ARG, "cannot open an image: empty path");
+        return vt_error_set(err, VTS_ERR_ARG, "cannot open an image: empty path");
     uint64_t max_pixels =
         limits && limits->max_pixels ? limits->max_pixels : VT_INPUT_DEFAULT_MAX_PIXELS;
     unsigned char magic[8];
@@ -86,15 +87,15 @@ int vt_image_input_open(const char *path, const struct vt_input_limits *limits,
 }
 
 int vt_input_check_size(const char *path, uint64_t width, uint64_t height, uint64_t max_pixels,
-                        struct vt_error *err)
+                        struct vts_error *err)
 {
     if (width == 0 || height == 0)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': image size %llux%llu", path,
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': image size %llux%llu", path,
                             (unsigned long long)width, (unsigned long long)height);
     uint64_t pixels;
     if (width > UINT32_MAX || height > UINT32_MAX || !vt_u64_mul(width, height, &pixels) ||
         pixels > max_pixels)
-        return vt_error_set(err, VT_ERR_LIMIT, "'%s': %llux%llu texels exceeds --max-pixels %llu",
+        return vt_error_set(err, VTS_ERR_LIMIT, "'%s': %llux%llu texels exceeds --max-pixels %llu",
                             path, (unsigned long long)width, (unsigned long long)height,
                             (unsigned long long)max_pixels);
     return 0;

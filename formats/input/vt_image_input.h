@@ -19,21 +19,22 @@
 
 /* Limits checked from the header, before any pixel buffer is allocated. */
 struct vt_input_limits {
-    uint64_t max_pixels; /* width * height above this: VT_ERR_LIMIT; 0 = the default */
+    uint64_t max_pixels; /* width * height above this: VTS_ERR_LIMIT; 0 = the default */
 };
 
 /* Opens the image at path and fills *out (info, ops, ctx, name = path). Returns 0, or a negative
- * status with a one-line message naming the file: VT_ERR_IO (cannot open or read), VT_ERR_BAD_INPUT
- * (truncated, corrupt, zero size), VT_ERR_LIMIT (more texels than limits->max_pixels; limits may be
- * NULL for the defaults), VT_ERR_UNSUPPORTED (a variant no reader handles: more than 4 channels,
- * CMYK, signed or 32-bit integer samples, a format OpenImageIO does not know or a build without
- * it), VT_ERR_NOMEM; *out is then zeroed. Close with vt_source_close().
+ * status with a one-line message naming the file: VTS_ERR_IO (cannot open or read),
+ * VTS_ERR_BAD_INPUT (truncated, corrupt, zero size), VTS_ERR_LIMIT (more texels than
+ * limits->max_pixels; limits may be NULL for the defaults), VTS_ERR_UNSUPPORTED (a variant no
+ * reader handles: more than 4 channels, CMYK, signed or 32-bit integer samples, a format
+ * OpenImageIO does not know or a build without it), VTS_ERR_NOMEM; *out is then zeroed. Close with
+ * vt_source_close().
  *
  * The source is read by one thread at a time (the caller serialises); different sources may be
  * used from different threads at once. Sources with info.sequential (PNG, JPEG, striped TIFF,
  * scanline EXR, scanline files through OpenImageIO) are fastest read in full-width bands in
  * increasing y; a PNG or JPEG region above the previous one restarts the decode from the top. */
 int vt_image_input_open(const char *path, const struct vt_input_limits *limits,
-                        struct vt_source *out, struct vt_error *err);
+                        struct vt_source *out, struct vts_error *err);
 
 #endif

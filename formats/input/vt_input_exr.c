@@ -20,6 +20,7 @@
 #include <OpenEXR/openexr.h>
 
 #include "vt_checked.h"
+#include "vt_error.h"
 #include "vt_input_impl.h"
 
 struct exr_input {
@@ -108,10 +109,10 @@ static void exr_input_close(void *ctx)
 static int exr_input_status(exr_result_t rv)
 {
     if (rv == EXR_ERR_OUT_OF_MEMORY)
-        return VT_ERR_NOMEM;
+        return VTS_ERR_NOMEM;
     if (rv == EXR_ERR_FEATURE_NOT_IMPLEMENTED)
-        return VT_ERR_UNSUPPORTED;
-    return VT_ERR_BAD_INPUT;
+        return VTS_ERR_UNSUPPORTED;
+    return VTS_ERR_BAD_INPUT;
 }
 
 static const char *exr_input_message(const struct exr_input *t, exr_result_t rv)
@@ -130,7 +131,7 @@ static int exr_find_channel(const exr_attr_chlist_t *list, const char *name)
 
 /* Chooses the output channels (t->file_channel) and the sample type; sets *has_alpha. */
 static int exr_choose_channels(struct exr_input *t, const exr_attr_chlist_t *list, bool *has_alpha,
-                               struct vt_error *err)
+                               struct vts_error *err)
 {
     int r = exr_find_channel(list, "R"), g = exr_find_channel(list, "G");
     int b = exr_find_channel(list, "B"), a = exr_find_channel(list, "A");
@@ -148,7 +149,7 @@ static int exr_choose_channels(struct exr_input *t, const exr_attr_chlist_t *lis
                 t->file_channel[t->channels++] = i;
     } else {
         return vt_error_set(
-            err, VT_ERR_UNSUPPORTED,
+            err, VTS_ERR_UNSUPPORTED,
             "cannot read '%s': %d channels, none named R, G, B or Y (at most 4 unnamed channels are supported)",
             t->name, list->num_channels);
     }
@@ -162,7 +163,7 @@ static int exr_choose_channels(struct exr_input *t, const exr_attr_chlist_t *lis
             (e->pixel_type != EXR_PIXEL_HALF && e->pixel_type != EXR_PIXEL_FLOAT)) {
             char name[64];
             exr_one_line(name, sizeof name, e->name.str ? e->name.str : "");
-            return vt_error_set(err, VT_ERR_UNSUPPORTED,
+            return vt_error_set(err, VTS_ERR_UNSUPPORTED,
                                 "cannot read '%s': channel '%s' is subsampled or not half/float",
                                 t->name, name);
         }
@@ -174,7 +175,7 @@ static int exr_choose_channels(struct exr_input *t, const exr_attr_chlist_t *lis
 }
 
 /* Reads the size, storage and chunk shape of part 0. */
-static int exr_check_layout(struct exr_input *t, uint64_t max_pixels, struct vt_error *err)
+static int exr_check_layout(struct exr_input *t, uint64_t max_pixels, struct vts_error *err)
 {
     exr_attr_box2i_t dw;
     exr_storage_t storage;
@@ -199,7 +200,7 @@ static int exr_check_layout(struct exr_input *t, uint64_t max_pixels, struct vt_
         exr_tile_round_mode_t round_mode;
         rv = exr_get_tile_descriptor(t->exr, 0, &tw, &th, &level_mode, &round_mode);
         if (rv != EXR_ERR_SUCCESS || tw == 0 || th == 0)
-            return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': bad tile description",
+            return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': bad tile description",
                                 t->name);
         t->tiled = true;
         t->chunk_w = tw;
@@ -208,24 +209,24 @@ static int exr_check_layout(struct exr_input *t, uint64_t max_pixels, struct vt_
         int32_t lines = 0;
         rv = exr_get_scanlines_per_chunk(t->exr, 0, &lines);
         if (rv != EXR_ERR_SUCCESS || lines <= 0)
-            return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': bad chunk description",
+            return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': bad chunk description",
                                 t->name);
         t->chunk_w = t->width;
         t->chunk_h = (uint32_t)lines;
     } else {
-        return vt_error_set(err, VT_ERR_UNSUPPORTED, "cannot read '%s': deep images", t->name);
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot read '%s': deep images", t->name);
     }
     return 0;
 }
 
 static int exr_input_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,
-                                 struct vt_error *err);
+                                 struct vts_error *err);
 
 static const struct vt_source_ops exr_input_ops = {exr_input_read_region, exr_input_close};
 
 /* Everything after the file is open: header, channels, buffers. */
 static int exr_input_setup(struct exr_input *t, uint64_t max_pixels, bool *has_alpha,
-                           struct vt_error *err)
+                           struct vts_error *err)
 {
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.error_handler_fn = exr_input_on_error;
@@ -242,7 +243,7 @@ static int exr_input_setup(struct exr_input *t, uint64_t max_pixels, bool *has_a
     const exr_attr_chlist_t *list = NULL;
     rv = exr_get_channels(t->exr, 0, &list);
     if (rv != EXR_ERR_SUCCESS || !list || list->num_channels <= 0)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': no channels", t->name);
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': no channels", t->name);
     rc = exr_choose_channels(t, list, has_alpha, err);
     if (rc < 0)
         return rc;
@@ -251,25 +252,25 @@ static int exr_input_setup(struct exr_input *t, uint64_t max_pixels, bool *has_a
     uint32_t buf_h = t->chunk_h < t->height ? t->chunk_h : t->height;
     if (!vt_size_mul3(buf_w, buf_h, t->sample_bytes, &t->plane_bytes) ||
         !vt_size_mul(t->plane_bytes, t->channels, &all) || all > VT_INPUT_MAX_BUFFER_BYTES)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': chunks of %ux%u texels",
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': chunks of %ux%u texels",
                             t->name, t->chunk_w, t->chunk_h);
     t->planes = malloc(all);
     if (!t->planes)
-        return vt_error_set(err, VT_ERR_NOMEM, "cannot read '%s': out of memory", t->name);
+        return vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", t->name);
     return 0;
 }
 
 int vt_input_exr_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                      struct vt_error *err)
+                      struct vts_error *err)
 {
     struct exr_input *t = calloc(1, sizeof *t);
     if (!t)
-        return vt_error_set(err, VT_ERR_NOMEM, "cannot read '%s': out of memory", path);
+        return vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", path);
     vt_input_copy_name(t->name, sizeof t->name, path);
     int rc;
     t->fd = open(path, O_RDONLY | O_CLOEXEC);
     if (t->fd < 0) {
-        rc = vt_error_set(err, VT_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
+        rc = vt_error_set(err, VTS_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
         goto out_close;
     }
     bool has_alpha = false;
@@ -339,7 +340,7 @@ static exr_result_t exr_set_outputs(struct exr_input *t, const exr_chunk_info_t 
 }
 
 /* Decodes chunk (cx, cy) into t->planes unless it is already there. */
-static int exr_load_chunk(struct exr_input *t, uint32_t cx, uint32_t cy, struct vt_error *err)
+static int exr_load_chunk(struct exr_input *t, uint32_t cx, uint32_t cy, struct vts_error *err)
 {
     uint64_t index = (uint64_t)cy * ((t->width - 1) / t->chunk_w + 1) + cx;
     if (t->cached == index + 1)
@@ -390,7 +391,7 @@ static void exr_copy_chunk(const struct exr_input *t, uint32_t px, uint32_t py, 
 }
 
 static int exr_input_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,
-                                 struct vt_error *err)
+                                 struct vts_error *err)
 {
     struct exr_input *t = ctx;
     uint32_t x_end = x + dst->width, y_end = y + dst->height;

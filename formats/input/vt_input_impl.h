@@ -58,21 +58,21 @@ typedef void (*vt_oiio_close_fn)(void *handle);
  * out->ops and out->ctx (not out->name) and returns 0, or a negative status with err naming path
  * and leaves *out untouched. max_pixels is the resolved limit (never 0). */
 int vt_input_tiff_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                       struct vt_error *err);
+                       struct vts_error *err);
 int vt_input_png_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                      struct vt_error *err);
+                      struct vts_error *err);
 int vt_input_jpeg_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                       struct vt_error *err);
+                       struct vts_error *err);
 int vt_input_exr_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                      struct vt_error *err);
+                      struct vts_error *err);
 /* The fallback: loads libvt_oiio.so (see vt_input_oiio.c for where it is searched). */
 int vt_input_oiio_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                       struct vt_error *err);
+                       struct vts_error *err);
 
-/* Checks a header's size: 0 in either direction is VT_ERR_BAD_INPUT, more than max_pixels texels
- * VT_ERR_LIMIT ("'x.tif': 200000x200000 texels exceeds --max-pixels 17179869184"). */
+/* Checks a header's size: 0 in either direction is VTS_ERR_BAD_INPUT, more than max_pixels texels
+ * VTS_ERR_LIMIT ("'x.tif': 200000x200000 texels exceeds --max-pixels 17179869184"). */
 int vt_input_check_size(const char *path, uint64_t width, uint64_t height, uint64_t max_pixels,
-                        struct vt_error *err);
+                        struct vts_error *err);
 
 /* Copies path into a reader's name buffer (for messages), truncating if needed. */
 void vt_input_copy_name(char *dst, size_t dst_size, const char *path);

@@ -19,6 +19,7 @@
 #include <jerror.h>
 #include <jpeglib.h>
 
+#include "vt_error.h"
 #include "vt_input_impl.h"
 
 /* Memory a decode may use before it is refused: a progressive JPEG keeps every coefficient of the
@@ -42,7 +43,7 @@ struct jpeg_input {
     bool started; /* a decode session is running (jpeg_start_decompress() done) */
     bool in_rows; /* errors happen while decoding rows: name the row */
     char name[256];
-    struct vt_error error; /* filled by the error handler */
+    struct vts_error error; /* filled by the error handler */
     uint32_t width, height, channels;
     JDIMENSION crop_x; /* first column of the running session (output_width columns) */
     unsigned char *row;
@@ -53,10 +54,10 @@ static void jpeg_input_fail(j_common_ptr cinfo, bool truncated)
 {
     struct jpeg_input_error *jerr = (struct jpeg_input_error *)cinfo->err;
     struct jpeg_input *t = jerr->input;
-    if (t->error.status == VT_OK) {
+    if (t->error.status == VTS_OK) {
         char msg[JMSG_LENGTH_MAX];
         int code = cinfo->err->msg_code;
-        int status = VT_ERR_BAD_INPUT;
+        int status = VTS_ERR_BAD_INPUT;
         if (truncated)
             snprintf(msg, sizeof msg, "truncated");
         else if (code == JERR_NO_BACKING_STORE)
@@ -65,10 +66,10 @@ static void jpeg_input_fail(j_common_ptr cinfo, bool truncated)
         else
             cinfo->err->format_message(cinfo, msg);
         if (code == JERR_OUT_OF_MEMORY)
-            status = VT_ERR_NOMEM;
+            status = VTS_ERR_NOMEM;
         else if (code == JERR_BAD_PRECISION || code == JERR_NO_BACKING_STORE ||
                  code == JERR_CONVERSION_NOTIMPL)
-            status = VT_ERR_UNSUPPORTED;
+            status = VTS_ERR_UNSUPPORTED;
         if (t->in_rows)
             vt_error_set(&t->error, status, "cannot read '%s': %s at row %u", t->name, msg,
                          (unsigned)t->cinfo.output_scanline);
@@ -98,11 +99,11 @@ static void jpeg_input_output_message(j_common_ptr cinfo)
 }
 
 /* The status of a run that libjpeg stopped; the session is over. */
-static int jpeg_input_stopped(struct jpeg_input *t, struct vt_error *err)
+static int jpeg_input_stopped(struct jpeg_input *t, struct vts_error *err)
 {
     t->started = false;
-    if (t->error.status == VT_OK)
-        vt_error_set(&t->error, VT_ERR_BAD_INPUT, "cannot read '%s': libjpeg stopped", t->name);
+    if (t->error.status == VTS_OK)
+        vt_error_set(&t->error, VTS_ERR_BAD_INPUT, "cannot read '%s': libjpeg stopped", t->name);
     return vt_error_set(err, t->error.status, "%s", t->error.message);
 }
 
@@ -172,12 +173,12 @@ static int jpeg_input_start_run(struct jpeg_input *t, uint32_t x, uint32_t w)
 }
 
 static int jpeg_input_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,
-                                  struct vt_error *err);
+                                  struct vts_error *err);
 
 static const struct vt_source_ops jpeg_input_ops = {jpeg_input_read_region, jpeg_input_close};
 
 /* Checks what jpeg_read_header() found. */
-static int jpeg_input_check_header(struct jpeg_input *t, uint64_t max_pixels, struct vt_error *err)
+static int jpeg_input_check_header(struct jpeg_input *t, uint64_t max_pixels, struct vts_error *err)
 {
     struct jpeg_decompress_struct *c = &t->cinfo;
     int rc = vt_input_check_size(t->name, c->image_width, c->image_height, max_pixels, err);
@@ -192,21 +193,21 @@ static int jpeg_input_check_header(struct jpeg_input *t, uint64_t max_pixels, st
         t->channels = 3;
     else
         return vt_error_set(
-            err, VT_ERR_UNSUPPORTED,
+            err, VTS_ERR_UNSUPPORTED,
             "cannot read '%s': JPEG colour space %d with %d components (grey and RGB/YCbCr are supported)",
             t->name, (int)c->jpeg_color_space, c->num_components);
     t->row = malloc((size_t)t->width * t->channels);
     if (!t->row)
-        return vt_error_set(err, VT_ERR_NOMEM, "cannot read '%s': out of memory", t->name);
+        return vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", t->name);
     return 0;
 }
 
 int vt_input_jpeg_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                       struct vt_error *err)
+                       struct vts_error *err)
 {
     struct jpeg_input *t = calloc(1, sizeof *t);
     if (!t)
-        return vt_error_set(err, VT_ERR_NOMEM, "cannot read '%s': out of memory", path);
+        return vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", path);
     vt_input_copy_name(t->name, sizeof t->name, path);
     t->cinfo.err = jpeg_std_error(&t->jerr.mgr);
     t->jerr.mgr.error_exit = jpeg_input_error_exit;
@@ -216,7 +217,7 @@ int vt_input_jpeg_open(const char *path, uint64_t max_pixels, struct vt_source *
     int rc;
     t->file = fopen(path, "rb");
     if (!t->file) {
-        rc = vt_error_set(err, VT_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
+        rc = vt_error_set(err, VTS_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
         goto out_close;
     }
     if (jpeg_input_header_run(t) < 0) {
@@ -268,7 +269,7 @@ static int jpeg_input_rows_run(struct jpeg_input *t, uint32_t x, uint32_t y, str
 }
 
 static int jpeg_input_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,
-                                  struct vt_error *err)
+                                  struct vts_error *err)
 {
     struct jpeg_input *t = ctx;
     struct jpeg_decompress_struct *c = &t->cinfo;
@@ -281,7 +282,7 @@ static int jpeg_input_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_i
     if (c->output_components != (int)t->channels || t->crop_x > x ||
         x + dst->width > t->crop_x + c->output_width) {
         t->started = false;
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': unexpected decoder output",
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': unexpected decoder output",
                             t->name);
     }
     if (jpeg_input_rows_run(t, x, y, dst) < 0)

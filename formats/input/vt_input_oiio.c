@@ -10,16 +10,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vt_error.h"
 #include "vt_input_impl.h"
 
 #ifndef VT_HAVE_OIIO
 
 int vt_input_oiio_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                       struct vt_error *err)
+                       struct vts_error *err)
 {
     (void)max_pixels;
     (void)out;
-    return vt_error_set(err, VT_ERR_UNSUPPORTED,
+    return vt_error_set(err, VTS_ERR_UNSUPPORTED,
                         "'%s': format not supported (built without OpenImageIO)", path);
 }
 
@@ -94,14 +95,14 @@ static void *oiio_load(char *why, size_t why_size)
 }
 
 static int oiio_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,
-                            struct vt_error *err)
+                            struct vts_error *err)
 {
     struct oiio_input *t = ctx;
     char msg[VT_OIIO_ERR_MAX] = "";
     int r = t->read(t->handle, x, y, dst->width, dst->height, dst->pixels, dst->stride, msg);
     if (r == VT_OIIO_OK)
         return 0;
-    return vt_error_set(err, r == VT_OIIO_NOMEM ? VT_ERR_NOMEM : VT_ERR_BAD_INPUT,
+    return vt_error_set(err, r == VT_OIIO_NOMEM ? VTS_ERR_NOMEM : VTS_ERR_BAD_INPUT,
                         "cannot read '%s': rows %u-%u: %s", t->name, y, y + dst->height - 1, msg);
 }
 
@@ -124,17 +125,17 @@ static int oiio_status(int result)
     switch (result) {
     case VT_OIIO_UNKNOWN_FORMAT:
     case VT_OIIO_UNSUPPORTED:
-        return VT_ERR_UNSUPPORTED;
+        return VTS_ERR_UNSUPPORTED;
     case VT_OIIO_NOMEM:
-        return VT_ERR_NOMEM;
+        return VTS_ERR_NOMEM;
     default:
-        return VT_ERR_BAD_INPUT;
+        return VTS_ERR_BAD_INPUT;
     }
 }
 
 /* Resolves the module's functions and opens path through it. */
 static int oiio_open_with(struct oiio_input *t, const char *path, uint64_t max_pixels,
-                          struct vt_source *out, struct vt_error *err)
+                          struct vt_source *out, struct vts_error *err)
 {
     vt_oiio_abi_version_fn version;
     vt_oiio_open_fn open_fn;
@@ -144,7 +145,7 @@ static int oiio_open_with(struct oiio_input *t, const char *path, uint64_t max_p
         !oiio_symbol(t->module, "vt_oiio_close", &t->close, sizeof t->close) ||
         version() != VT_OIIO_ABI_VERSION)
         return vt_error_set(
-            err, VT_ERR_UNSUPPORTED,
+            err, VTS_ERR_UNSUPPORTED,
             "'%s': format not supported: the OpenImageIO module does not match this build", path);
     struct vt_oiio_info info;
     char msg[VT_OIIO_ERR_MAX] = "";
@@ -156,7 +157,7 @@ static int oiio_open_with(struct oiio_input *t, const char *path, uint64_t max_p
     if (rc < 0)
         return rc;
     if (info.channels < 1 || info.channels > 4 || vts_sample_bytes(info.sample) == 0)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED, "cannot read '%s': %u channels", path,
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot read '%s': %u channels", path,
                             info.channels);
     char format[32];
     snprintf(format, sizeof format, "oiio:%.*s", 10, info.format);
@@ -167,17 +168,17 @@ static int oiio_open_with(struct oiio_input *t, const char *path, uint64_t max_p
 }
 
 int vt_input_oiio_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                       struct vt_error *err)
+                       struct vts_error *err)
 {
     struct oiio_input *t = calloc(1, sizeof *t);
     if (!t)
-        return vt_error_set(err, VT_ERR_NOMEM, "cannot read '%s': out of memory", path);
+        return vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", path);
     vt_input_copy_name(t->name, sizeof t->name, path);
     char why[200];
     t->module = oiio_load(why, sizeof why);
     int rc;
     if (!t->module) {
-        rc = vt_error_set(err, VT_ERR_UNSUPPORTED,
+        rc = vt_error_set(err, VTS_ERR_UNSUPPORTED,
                           "'%s': format not supported: cannot load the OpenImageIO module (%s)",
                           path, why);
         goto out_close;

@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "vt_checked.h"
+#include "vt_error.h"
 #include "vt_input_impl.h"
 
 #define PNG_INPUT_MAX_EDGE 0x7fffffffu /* PNG_UINT_31_MAX */
@@ -25,7 +26,7 @@ struct png_input {
     png_structp png;
     png_infop info;
     char name[256];
-    struct vt_error error;   /* filled by the libpng callbacks */
+    struct vts_error error;  /* filled by the libpng callbacks */
     bool in_rows;            /* errors happen while decoding rows: name the row */
     bool broken;             /* the decoder stopped on an error: restart before the next read */
     uint32_t width, height;  /* from IHDR */
@@ -42,8 +43,8 @@ struct png_input {
 static void png_input_on_error(png_structp png, png_const_charp msg)
 {
     struct png_input *t = png_get_error_ptr(png);
-    if (t->error.status == VT_OK) {
-        int status = strstr(msg, "memory") ? VT_ERR_NOMEM : VT_ERR_BAD_INPUT;
+    if (t->error.status == VTS_OK) {
+        int status = strstr(msg, "memory") ? VTS_ERR_NOMEM : VTS_ERR_BAD_INPUT;
         if (t->in_rows)
             vt_error_set(&t->error, status, "cannot read '%s': %s at row %u", t->name, msg,
                          t->next_row);
@@ -70,8 +71,8 @@ static void png_input_on_read(png_structp png, png_bytep data, size_t length)
 static int png_input_stopped(struct png_input *t)
 {
     t->broken = true;
-    if (t->error.status == VT_OK)
-        vt_error_set(&t->error, VT_ERR_BAD_INPUT, "cannot read '%s': libpng stopped", t->name);
+    if (t->error.status == VTS_OK)
+        vt_error_set(&t->error, VTS_ERR_BAD_INPUT, "cannot read '%s': libpng stopped", t->name);
     return t->error.status;
 }
 
@@ -140,19 +141,19 @@ static int png_input_start_run(struct png_input *t)
 }
 
 /* (Re)creates the decoder at the start of the file and reads the header. */
-static int png_input_start(struct png_input *t, struct vt_error *err)
+static int png_input_start(struct png_input *t, struct vts_error *err)
 {
     png_input_destroy_decoder(t);
     vt_error_clear(&t->error);
     t->in_rows = false;
     t->next_row = 0;
     if (fseek(t->file, 0, SEEK_SET) != 0)
-        return vt_error_set(err, VT_ERR_IO, "cannot read '%s': %s", t->name, strerror(errno));
+        return vt_error_set(err, VTS_ERR_IO, "cannot read '%s': %s", t->name, strerror(errno));
     t->png =
         png_create_read_struct(PNG_LIBPNG_VER_STRING, t, png_input_on_error, png_input_on_warning);
     t->info = t->png ? png_create_info_struct(t->png) : NULL;
     if (!t->info)
-        return vt_error_set(err, VT_ERR_NOMEM, "cannot read '%s': out of memory", t->name);
+        return vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", t->name);
     if (png_input_start_run(t) < 0)
         return vt_error_set(err, t->error.status, "%s", t->error.message);
     t->broken = false;
@@ -160,37 +161,37 @@ static int png_input_start(struct png_input *t, struct vt_error *err)
 }
 
 /* Reads the size from IHDR before libpng allocates anything, so that the limit comes first. */
-static int png_input_check_header(struct png_input *t, uint64_t max_pixels, struct vt_error *err)
+static int png_input_check_header(struct png_input *t, uint64_t max_pixels, struct vts_error *err)
 {
     unsigned char h[24];
     if (fread(h, 1, sizeof h, t->file) != sizeof h)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': truncated header", t->name);
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': truncated header", t->name);
     if (memcmp(h + 12, "IHDR", 4) != 0)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': no IHDR chunk", t->name);
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': no IHDR chunk", t->name);
     uint32_t w = (uint32_t)h[16] << 24 | (uint32_t)h[17] << 16 | (uint32_t)h[18] << 8 | h[19];
     uint32_t ht = (uint32_t)h[20] << 24 | (uint32_t)h[21] << 16 | (uint32_t)h[22] << 8 | h[23];
     int rc = vt_input_check_size(t->name, w, ht, max_pixels, err);
     if (rc == 0 && (uint64_t)w * 8 > VT_INPUT_MAX_BUFFER_BYTES) /* RGBA16 rows, before libpng's */
-        rc = vt_error_set(err, VT_ERR_LIMIT, "'%s': rows of %u texels are too long", t->name, w);
+        rc = vt_error_set(err, VTS_ERR_LIMIT, "'%s': rows of %u texels are too long", t->name, w);
     return rc;
 }
 
 static int png_input_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,
-                                 struct vt_error *err);
+                                 struct vts_error *err);
 
 static const struct vt_source_ops png_input_ops = {png_input_read_region, png_input_close};
 
 int vt_input_png_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                      struct vt_error *err)
+                      struct vts_error *err)
 {
     struct png_input *t = calloc(1, sizeof *t);
     if (!t)
-        return vt_error_set(err, VT_ERR_NOMEM, "cannot read '%s': out of memory", path);
+        return vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", path);
     vt_input_copy_name(t->name, sizeof t->name, path);
     int rc;
     t->file = fopen(path, "rb");
     if (!t->file) {
-        rc = vt_error_set(err, VT_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
+        rc = vt_error_set(err, VTS_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
         goto out_close;
     }
     rc = png_input_check_header(t, max_pixels, err);
@@ -201,14 +202,14 @@ int vt_input_png_open(const char *path, uint64_t max_pixels, struct vt_source *o
     size_t sb = t->bit_depth / 8;
     if (t->channels < 1 || t->channels > 4 || (sb != 1 && sb != 2) ||
         t->row_bytes != (size_t)t->width * t->channels * sb) {
-        rc = vt_error_set(err, VT_ERR_UNSUPPORTED,
+        rc = vt_error_set(err, VTS_ERR_UNSUPPORTED,
                           "cannot read '%s': %u channels of %u bits in %zu-byte rows", path,
                           t->channels, t->bit_depth, t->row_bytes);
         goto out_close;
     }
     t->row = malloc(t->row_bytes);
     if (!t->row) {
-        rc = vt_error_set(err, VT_ERR_NOMEM, "cannot read '%s': out of memory", path);
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", path);
         goto out_close;
     }
     vt_input_set_info(&out->info, t->width, t->height, t->channels,
@@ -257,18 +258,18 @@ static int png_input_deinterlace_run(struct png_input *t)
 }
 
 /* Decodes the whole interlaced image into t->image once. */
-static int png_input_deinterlace(struct png_input *t, struct vt_error *err)
+static int png_input_deinterlace(struct png_input *t, struct vts_error *err)
 {
     size_t bytes;
     if (!vt_size_mul(t->row_bytes, t->height, &bytes) || bytes > VT_INPUT_MAX_BUFFER_BYTES)
         return vt_error_set(
-            err, VT_ERR_UNSUPPORTED,
+            err, VTS_ERR_UNSUPPORTED,
             "cannot read '%s': interlaced PNG of %ux%u texels is too big to de-interlace (save it non-interlaced)",
             t->name, t->width, t->height);
     t->image = malloc(bytes);
     t->row_pointers = malloc(sizeof *t->row_pointers * t->height);
     if (!t->image || !t->row_pointers)
-        return vt_error_set(err, VT_ERR_NOMEM, "cannot read '%s': out of memory", t->name);
+        return vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", t->name);
     for (uint32_t r = 0; r < t->height; r++)
         t->row_pointers[r] = t->image + (size_t)r * t->row_bytes;
     int rc = png_input_deinterlace_run(t);
@@ -284,7 +285,7 @@ static int png_input_deinterlace(struct png_input *t, struct vt_error *err)
 }
 
 static int png_input_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,
-                                 struct vt_error *err)
+                                 struct vts_error *err)
 {
     struct png_input *t = ctx;
     int rc;

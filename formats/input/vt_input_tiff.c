@@ -13,6 +13,7 @@
 #include <tiffio.h>
 
 #include "vt_checked.h"
+#include "vt_error.h"
 #include "vt_input_impl.h"
 
 enum tiff_layout { TIFF_TILES, TIFF_STRIPS, TIFF_SCANLINES };
@@ -111,7 +112,7 @@ static void tiff_load_palette(struct tiff_input *t, const uint16_t *r, const uin
 
 /* Decides channels, output sample and conversion from the photometric interpretation and the
  * sample layout; fills *sample. */
-static int tiff_check_pixels(struct tiff_input *t, uint32_t *sample, struct vt_error *err)
+static int tiff_check_pixels(struct tiff_input *t, uint32_t *sample, struct vts_error *err)
 {
     TIFF *tif = t->tif;
     uint16_t spp = tiff_get16(tif, TIFFTAG_SAMPLESPERPIXEL, 1);
@@ -126,18 +127,18 @@ static int tiff_check_pixels(struct tiff_input *t, uint32_t *sample, struct vt_e
     t->channels = spp;
     if (photometric == PHOTOMETRIC_YCBCR && compression == COMPRESSION_JPEG) {
         if (!TIFFSetField(tif, TIFFTAG_JPEGCOLORMODE, JPEGCOLORMODE_RGB))
-            return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': %s", t->name,
+            return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': %s", t->name,
                                 tiff_message(t));
         photometric = PHOTOMETRIC_RGB;
     }
     if (spp < 1 || spp > 4)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
                             "cannot read '%s': %u channels (1 to 4 are supported)", t->name, spp);
     bool grey = photometric == PHOTOMETRIC_MINISBLACK || photometric == PHOTOMETRIC_MINISWHITE;
     if (!(grey && spp <= 2) && !(photometric == PHOTOMETRIC_RGB && spp >= 3) &&
         !(photometric == PHOTOMETRIC_PALETTE && spp == 1))
         return vt_error_set(
-            err, VT_ERR_UNSUPPORTED,
+            err, VTS_ERR_UNSUPPORTED,
             "cannot read '%s': photometric interpretation %u with %u channels (grey, RGB and palette images are supported)",
             t->name, photometric, spp);
     t->min_is_white = photometric == PHOTOMETRIC_MINISWHITE;
@@ -151,7 +152,7 @@ static int tiff_check_pixels(struct tiff_input *t, uint32_t *sample, struct vt_e
         *sample = VTS_SAMPLE_U8;
     } else {
         return vt_error_set(
-            err, VT_ERR_UNSUPPORTED,
+            err, VTS_ERR_UNSUPPORTED,
             "cannot read '%s': %u-bit samples of format %u (8/16-bit unsigned and 16/32-bit float are supported)",
             t->name, t->bps, format);
     }
@@ -160,7 +161,7 @@ static int tiff_check_pixels(struct tiff_input *t, uint32_t *sample, struct vt_e
     if (photometric == PHOTOMETRIC_PALETTE) {
         uint16_t *r, *g, *b;
         if (t->bps > 8 || !TIFFGetField(tif, TIFFTAG_COLORMAP, &r, &g, &b))
-            return vt_error_set(err, VT_ERR_UNSUPPORTED, "cannot read '%s': %u-bit palette image",
+            return vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot read '%s': %u-bit palette image",
                                 t->name, t->bps);
         tiff_load_palette(t, r, g, b);
         t->convert = TIFF_PALETTE;
@@ -170,7 +171,7 @@ static int tiff_check_pixels(struct tiff_input *t, uint32_t *sample, struct vt_e
 }
 
 /* Chooses tiles, strips or scanlines and checks the chunk sizes libtiff computes. */
-static int tiff_check_layout(struct tiff_input *t, struct vt_error *err)
+static int tiff_check_layout(struct tiff_input *t, struct vts_error *err)
 {
     TIFF *tif = t->tif;
     uint64_t chunk_bytes, row_bytes;
@@ -179,8 +180,8 @@ static int tiff_check_layout(struct tiff_input *t, struct vt_error *err)
         TIFFGetField(tif, TIFFTAG_TILEWIDTH, &tw);
         TIFFGetField(tif, TIFFTAG_TILELENGTH, &th);
         if (tw == 0 || th == 0)
-            return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': tile size %ux%u", t->name,
-                                tw, th);
+            return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': tile size %ux%u",
+                                t->name, tw, th);
         t->layout = TIFF_TILES;
         t->chunk_w = tw;
         t->chunk_h = th;
@@ -209,7 +210,7 @@ static int tiff_check_layout(struct tiff_input *t, struct vt_error *err)
     if (row_bytes == 0 || chunk_bytes == 0 || chunk_bytes > VT_INPUT_MAX_BUFFER_BYTES / planes ||
         !vt_u64_mul(t->chunk_w, texel_bits, &need_row) || (need_row + 7) / 8 > row_bytes ||
         !vt_u64_mul(row_bytes, t->chunk_h, &need_chunk) || need_chunk > chunk_bytes)
-        return vt_error_set(err, VT_ERR_BAD_INPUT,
+        return vt_error_set(err, VTS_ERR_BAD_INPUT,
                             "cannot read '%s': unusable %s size %ux%u (%llu bytes)", t->name,
                             t->layout == TIFF_TILES ? "tile" : "strip", t->chunk_w, t->chunk_h,
                             (unsigned long long)chunk_bytes);
@@ -218,24 +219,24 @@ static int tiff_check_layout(struct tiff_input *t, struct vt_error *err)
     for (uint32_t s = 0; s < planes; s++) {
         t->chunk[s] = malloc(t->chunk_bytes);
         if (!t->chunk[s])
-            return vt_error_set(err, VT_ERR_NOMEM, "cannot read '%s': out of memory", t->name);
+            return vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", t->name);
     }
     return 0;
 }
 
 static int tiff_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,
-                            struct vt_error *err);
+                            struct vts_error *err);
 
 static const struct vt_source_ops tiff_ops = {tiff_read_region, tiff_close};
 
 int vt_input_tiff_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                       struct vt_error *err)
+                       struct vts_error *err)
 {
     struct tiff_input *t = calloc(1, sizeof *t);
     if (!t)
-        return vt_error_set(err, VT_ERR_NOMEM, "cannot read '%s': out of memory", path);
+        return vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", path);
     vt_input_copy_name(t->name, sizeof t->name, path);
-    int rc = VT_ERR_NOMEM;
+    int rc = VTS_ERR_NOMEM;
     TIFFOpenOptions *opts = TIFFOpenOptionsAlloc();
     if (!opts) {
         vt_error_set(err, rc, "cannot read '%s': out of memory", path);
@@ -247,13 +248,13 @@ int vt_input_tiff_open(const char *path, uint64_t max_pixels, struct vt_source *
     t->tif = TIFFOpenExt(path, "rm", opts); /* "m": no mmap, or every page read counts as RSS */
     TIFFOpenOptionsFree(opts);
     if (!t->tif) {
-        rc = vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': %s", path, tiff_message(t));
+        rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': %s", path, tiff_message(t));
         goto out_free;
     }
     uint32_t sample = 0;
     if (!TIFFGetField(t->tif, TIFFTAG_IMAGEWIDTH, &t->width) ||
         !TIFFGetField(t->tif, TIFFTAG_IMAGELENGTH, &t->height)) {
-        rc = vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': no image size", path);
+        rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': no image size", path);
         goto out_free;
     }
     rc = vt_input_check_size(path, t->width, t->height, max_pixels, err);
@@ -280,7 +281,7 @@ out_free:
 
 /* Decodes chunk (cx, cy) of plane s into t->chunk[s] unless it is already there. */
 static int tiff_load_chunk(struct tiff_input *t, uint32_t cx, uint32_t cy, uint16_t s,
-                           struct vt_error *err)
+                           struct vts_error *err)
 {
     uint32_t px = cx * t->chunk_w, py = cy * t->chunk_h;
     uint64_t index;
@@ -308,9 +309,9 @@ static int tiff_load_chunk(struct tiff_input *t, uint32_t cx, uint32_t cy, uint1
     }
     if (!ok) {
         if (t->layout == TIFF_TILES)
-            return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': tile at %u,%u: %s",
+            return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': tile at %u,%u: %s",
                                 t->name, px, py, tiff_message(t));
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': %s at row %u: %s", t->name,
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': %s at row %u: %s", t->name,
                             t->layout == TIFF_STRIPS ? "strip" : "scanline", py, tiff_message(t));
     }
     t->cached[s] = index + 1;
@@ -354,7 +355,7 @@ static void tiff_convert_row(const struct tiff_input *t, const unsigned char *sr
 }
 
 static int tiff_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,
-                            struct vt_error *err)
+                            struct vts_error *err)
 {
     struct tiff_input *t = ctx;
     size_t texel = vt_image_texel_bytes(dst);

@@ -15,6 +15,7 @@
 #include "vt_atomic_file.h"
 #include "vt_checked.h"
 #include "vt_codec_impl.h"
+#include "vt_error.h"
 
 #define PNG_FILE_MAX_EDGE     0x7fffffffu /* PNG_UINT_31_MAX */
 #define PNG_FILE_BUFFER_BYTES (1u << 20)  /* output is written in pieces of this size */
@@ -31,14 +32,14 @@ struct vt_png_file_writer {
     unsigned char *buffer;       /* PNG_FILE_BUFFER_BYTES of output not yet written */
     size_t buffered;             /* bytes in buffer */
     unsigned long long file_pos; /* bytes written to the file before buffer */
-    struct vt_error error;       /* first error raised inside a libpng callback */
+    struct vts_error error;      /* first error raised inside a libpng callback */
 };
 
 /* The status to return after libpng or a callback stopped: the recorded one, else fallback (a
  * callee that failed without filling its error) with a generic message. */
-static int png_file_stop_status(struct vt_error *error, int fallback)
+static int png_file_stop_status(struct vts_error *error, int fallback)
 {
-    if (error->status == VT_OK)
+    if (error->status == VTS_OK)
         vt_error_set(error, fallback, "libpng stopped without a message");
     return error->status;
 }
@@ -54,8 +55,8 @@ static void png_file_ignore_warning(png_structp png, png_const_charp msg)
 static void png_file_writer_error(png_structp png, png_const_charp msg)
 {
     struct vt_png_file_writer *w = png_get_error_ptr(png);
-    if (w->error.status == VT_OK)
-        vt_error_set(&w->error, strstr(msg, "memory") ? VT_ERR_NOMEM : VT_ERR_ARG,
+    if (w->error.status == VTS_OK)
+        vt_error_set(&w->error, strstr(msg, "memory") ? VTS_ERR_NOMEM : VTS_ERR_ARG,
                      "cannot write '%s': %s", w->file.final_path, msg);
     png_longjmp(png, 1);
 }
@@ -96,7 +97,7 @@ static void png_file_writer_flush(png_structp png)
 static int png_file_writer_start_run(struct vt_png_file_writer *w)
 {
     if (setjmp(png_jmpbuf(w->png)))
-        return png_file_stop_status(&w->error, VT_ERR_IO);
+        return png_file_stop_status(&w->error, VTS_ERR_IO);
     png_set_write_fn(w->png, w, png_file_writer_write, png_file_writer_flush);
     png_set_user_limits(w->png, PNG_FILE_MAX_EDGE, PNG_FILE_MAX_EDGE);
     png_set_compression_level(w->png, VT_PNG_FILE_LEVEL);
@@ -125,7 +126,7 @@ static int png_file_writer_rows_run(struct vt_png_file_writer *w, const unsigned
                                     uint32_t row_count, size_t stride)
 {
     if (setjmp(png_jmpbuf(w->png)))
-        return png_file_stop_status(&w->error, VT_ERR_IO);
+        return png_file_stop_status(&w->error, VTS_ERR_IO);
     png_file_writer_rows_body(w, rows, row_count, stride);
     return 0;
 }
@@ -133,47 +134,47 @@ static int png_file_writer_rows_run(struct vt_png_file_writer *w, const unsigned
 static int png_file_writer_end_run(struct vt_png_file_writer *w)
 {
     if (setjmp(png_jmpbuf(w->png)))
-        return png_file_stop_status(&w->error, VT_ERR_IO);
+        return png_file_stop_status(&w->error, VTS_ERR_IO);
     png_write_end(w->png, NULL);
     if (!png_file_writer_flush_buffer(w))
-        return png_file_stop_status(&w->error, VT_ERR_IO);
+        return png_file_stop_status(&w->error, VTS_ERR_IO);
     return 0;
 }
 
 /* Marks the writer stopped after a failed *_run and copies its error to err. */
-static int png_file_writer_fail(struct vt_png_file_writer *w, struct vt_error *err)
+static int png_file_writer_fail(struct vt_png_file_writer *w, struct vts_error *err)
 {
     w->stopped = true;
     return vt_error_set(err, w->error.status, "%s", w->error.message);
 }
 
 static int png_file_writer_check_args(const char *path, uint32_t width, uint32_t height,
-                                      uint32_t channels, uint32_t bit_depth, struct vt_error *err)
+                                      uint32_t channels, uint32_t bit_depth, struct vts_error *err)
 {
     if (!path || !path[0])
-        return vt_error_set(err, VT_ERR_ARG, "cannot write a PNG: empty path");
+        return vt_error_set(err, VTS_ERR_ARG, "cannot write a PNG: empty path");
     if (width == 0 || height == 0 || width > PNG_FILE_MAX_EDGE || height > PNG_FILE_MAX_EDGE)
-        return vt_error_set(err, VT_ERR_ARG, "cannot write '%s': image size %ux%u", path, width,
+        return vt_error_set(err, VTS_ERR_ARG, "cannot write '%s': image size %ux%u", path, width,
                             height);
     if (channels < 1 || channels > 4 || (bit_depth != 8 && bit_depth != 16))
-        return vt_error_set(err, VT_ERR_ARG, "cannot write '%s': %u channels of %u bits", path,
+        return vt_error_set(err, VTS_ERR_ARG, "cannot write '%s': %u channels of %u bits", path,
                             channels, bit_depth);
     size_t row_bytes;
     if (!vt_size_mul3(width, channels, bit_depth / 8, &row_bytes))
-        return vt_error_set(err, VT_ERR_LIMIT, "cannot write '%s': rows of %u texels are too long",
+        return vt_error_set(err, VTS_ERR_LIMIT, "cannot write '%s': rows of %u texels are too long",
                             path, width);
     return 0;
 }
 
 struct vt_png_file_writer *vt_png_file_writer_create(const char *path, uint32_t width,
                                                      uint32_t height, uint32_t channels,
-                                                     uint32_t bit_depth, struct vt_error *err)
+                                                     uint32_t bit_depth, struct vts_error *err)
 {
     if (png_file_writer_check_args(path, width, height, channels, bit_depth, err) < 0)
         return NULL;
     struct vt_png_file_writer *w = calloc(1, sizeof *w);
     if (!w) {
-        vt_error_set(err, VT_ERR_NOMEM, "cannot write '%s': out of memory", path);
+        vt_error_set(err, VTS_ERR_NOMEM, "cannot write '%s': out of memory", path);
         return NULL;
     }
     w->width = width;
@@ -186,7 +187,7 @@ struct vt_png_file_writer *vt_png_file_writer_create(const char *path, uint32_t 
                                      png_file_ignore_warning);
     w->info = w->png ? png_create_info_struct(w->png) : NULL;
     if (!w->buffer || !w->info) {
-        vt_error_set(err, VT_ERR_NOMEM, "cannot write '%s': out of memory", path);
+        vt_error_set(err, VTS_ERR_NOMEM, "cannot write '%s': out of memory", path);
         goto out_destroy;
     }
     if (vt_atomic_file_create(&w->file, path, "tmp", err) < 0)
@@ -204,16 +205,16 @@ out_destroy:
 }
 
 int vt_png_file_writer_rows(struct vt_png_file_writer *w, const void *rows, uint32_t row_count,
-                            size_t stride, struct vt_error *err)
+                            size_t stride, struct vts_error *err)
 {
     if (w->stopped || !w->file_open)
-        return vt_error_set(err, VT_ERR_ARG, "cannot write '%s': the writer has stopped",
+        return vt_error_set(err, VTS_ERR_ARG, "cannot write '%s': the writer has stopped",
                             w->file.final_path);
     if (row_count > w->height - w->rows_written)
-        return vt_error_set(err, VT_ERR_ARG, "cannot write '%s': %u rows past row %u of %u",
+        return vt_error_set(err, VTS_ERR_ARG, "cannot write '%s': %u rows past row %u of %u",
                             w->file.final_path, row_count, w->rows_written, w->height);
     if (row_count > 1 && stride < w->row_bytes)
-        return vt_error_set(err, VT_ERR_ARG, "cannot write '%s': stride %zu < row size %zu",
+        return vt_error_set(err, VTS_ERR_ARG, "cannot write '%s': stride %zu < row size %zu",
                             w->file.final_path, stride, w->row_bytes);
     if (row_count == 0)
         return 0;
@@ -222,13 +223,13 @@ int vt_png_file_writer_rows(struct vt_png_file_writer *w, const void *rows, uint
     return 0;
 }
 
-int vt_png_file_writer_finish(struct vt_png_file_writer *w, struct vt_error *err)
+int vt_png_file_writer_finish(struct vt_png_file_writer *w, struct vts_error *err)
 {
     if (w->stopped || !w->file_open)
-        return vt_error_set(err, VT_ERR_ARG, "cannot write '%s': the writer has stopped",
+        return vt_error_set(err, VTS_ERR_ARG, "cannot write '%s': the writer has stopped",
                             w->file.final_path);
     if (w->rows_written != w->height)
-        return vt_error_set(err, VT_ERR_ARG, "cannot write '%s': %u of %u rows given",
+        return vt_error_set(err, VTS_ERR_ARG, "cannot write '%s': %u of %u rows given",
                             w->file.final_path, w->rows_written, w->height);
     if (png_file_writer_end_run(w) < 0)
         return png_file_writer_fail(w, err);
@@ -256,14 +257,14 @@ struct png_file_reader {
     const char *path;
     FILE *fp;
     unsigned long long pos; /* bytes read so far, for messages */
-    struct vt_error error;  /* first error raised inside a libpng callback */
+    struct vts_error error; /* first error raised inside a libpng callback */
 };
 
 static void png_file_reader_error(png_structp png, png_const_charp msg)
 {
     struct png_file_reader *rd = png_get_error_ptr(png);
-    if (rd->error.status == VT_OK)
-        vt_error_set(&rd->error, strstr(msg, "memory") ? VT_ERR_NOMEM : VT_ERR_BAD_INPUT,
+    if (rd->error.status == VTS_OK)
+        vt_error_set(&rd->error, strstr(msg, "memory") ? VTS_ERR_NOMEM : VTS_ERR_BAD_INPUT,
                      "cannot read '%s': %s", rd->path, msg);
     png_longjmp(png, 1);
 }
@@ -276,9 +277,9 @@ static void png_file_reader_read(png_structp png, png_bytep data, size_t length)
     if (n == length)
         return;
     if (ferror(rd->fp))
-        vt_error_set(&rd->error, VT_ERR_IO, "cannot read '%s': %s", rd->path, strerror(errno));
+        vt_error_set(&rd->error, VTS_ERR_IO, "cannot read '%s': %s", rd->path, strerror(errno));
     else
-        vt_error_set(&rd->error, VT_ERR_BAD_INPUT, "cannot read '%s': truncated at byte %llu",
+        vt_error_set(&rd->error, VTS_ERR_BAD_INPUT, "cannot read '%s': truncated at byte %llu",
                      rd->path, rd->pos);
     png_error(png, "read failed");
 }
@@ -289,7 +290,7 @@ static int png_file_reader_setup(png_structp png, png_infop info, struct png_fil
 {
     png_uint_32 width = png_get_image_width(png, info), height = png_get_image_height(png, info);
     if ((unsigned long long)width * height > VT_PNG_FILE_MAX_PIXELS)
-        return vt_error_set(&rd->error, VT_ERR_LIMIT,
+        return vt_error_set(&rd->error, VTS_ERR_LIMIT,
                             "cannot read '%s': %ux%u texels exceed the limit of %llu", rd->path,
                             (unsigned)width, (unsigned)height, VT_PNG_FILE_MAX_PIXELS);
     png_set_expand(png); /* palette -> RGB(A), gray < 8 bits -> 8 bits, tRNS -> alpha */
@@ -300,7 +301,7 @@ static int png_file_reader_setup(png_structp png, png_infop info, struct png_fil
     *channels = png_get_channels(png, info);
     int depth = png_get_bit_depth(png, info);
     if (*channels < 1 || *channels > 4 || (depth != 8 && depth != 16))
-        return vt_error_set(&rd->error, VT_ERR_BAD_INPUT,
+        return vt_error_set(&rd->error, VTS_ERR_BAD_INPUT,
                             "cannot read '%s': %u channels of %d bits after expansion", rd->path,
                             *channels, depth);
     *sample = depth == 16 ? VTS_SAMPLE_U16 : VTS_SAMPLE_U8;
@@ -319,13 +320,13 @@ static int png_file_reader_body(png_structp png, png_infop info, struct png_file
     int passes = 0;
     if (png_file_reader_setup(png, info, rd, &channels, &sample, &passes) < 0)
         return rd->error.status;
-    struct vt_error alloc_error;
+    struct vts_error alloc_error;
     if (vt_image_alloc(out, png_get_image_width(png, info), png_get_image_height(png, info),
                        channels, sample, &alloc_error) < 0)
         return vt_error_set(&rd->error, alloc_error.status, "cannot read '%s': %s", rd->path,
                             alloc_error.message);
     if (png_get_rowbytes(png, info) != out->stride)
-        return vt_error_set(&rd->error, VT_ERR_BAD_INPUT, "cannot read '%s': unexpected row size",
+        return vt_error_set(&rd->error, VTS_ERR_BAD_INPUT, "cannot read '%s': unexpected row size",
                             rd->path);
     for (int pass = 0; pass < passes; pass++)
         for (uint32_t y = 0; y < out->height; y++)
@@ -338,11 +339,11 @@ static int png_file_reader_run(png_structp png, png_infop info, struct png_file_
                                struct vt_image *out)
 {
     if (setjmp(png_jmpbuf(png)))
-        return png_file_stop_status(&rd->error, VT_ERR_BAD_INPUT);
+        return png_file_stop_status(&rd->error, VTS_ERR_BAD_INPUT);
     return png_file_reader_body(png, info, rd, out);
 }
 
-int vt_png_file_read(const char *path, struct vt_image *out, struct vt_error *err)
+int vt_png_file_read(const char *path, struct vt_image *out, struct vts_error *err)
 {
     memset(out, 0, sizeof *out);
     struct png_file_reader rd = {.path = path};
@@ -352,21 +353,21 @@ int vt_png_file_read(const char *path, struct vt_image *out, struct vt_error *er
     int rc = 0;
     rd.fp = fopen(path, "rb");
     if (!rd.fp)
-        return vt_error_set(err, VT_ERR_IO, "cannot read '%s': %s", path, strerror(errno));
+        return vt_error_set(err, VTS_ERR_IO, "cannot read '%s': %s", path, strerror(errno));
     size_t n = fread(signature, 1, sizeof signature, rd.fp);
     if (n != sizeof signature && ferror(rd.fp)) {
-        rc = vt_error_set(err, VT_ERR_IO, "cannot read '%s': %s", path, strerror(errno));
+        rc = vt_error_set(err, VTS_ERR_IO, "cannot read '%s': %s", path, strerror(errno));
         goto out_close;
     }
     if (n != sizeof signature || png_sig_cmp(signature, 0, sizeof signature) != 0) {
-        rc = vt_error_set(err, VT_ERR_BAD_INPUT, "cannot read '%s': not a PNG file", path);
+        rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': not a PNG file", path);
         goto out_close;
     }
     png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &rd, png_file_reader_error,
                                  png_file_ignore_warning);
     info = png ? png_create_info_struct(png) : NULL;
     if (!info) {
-        rc = vt_error_set(err, VT_ERR_NOMEM, "cannot read '%s': out of memory", path);
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", path);
         goto out_destroy;
     }
     rc = png_file_reader_run(png, info, &rd, out);

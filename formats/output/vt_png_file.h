@@ -10,7 +10,7 @@
 #include "vt_error.h"
 #include "vt_image.h"
 
-/* vt_png_file_read() refuses images with more texels than this (VT_ERR_LIMIT). */
+/* vt_png_file_read() refuses images with more texels than this (VTS_ERR_LIMIT). */
 #define VT_PNG_FILE_MAX_PIXELS (1ull << 30)
 
 /* zlib level of the writer, with the SUB filter on every row: speed over size (on a 256x256 RGBA8
@@ -21,26 +21,26 @@ struct vt_png_file_writer;
 
 /* Starts a width x height PNG at path with channels 1..4 (gray, gray+alpha, RGB, RGBA) and
  * bit_depth 8 or 16. Rows go to a hidden temporary file next to path; nothing appears under path
- * before vt_png_file_writer_finish() succeeds. Returns NULL and fills err on failure (VT_ERR_ARG,
- * VT_ERR_IO naming the path, VT_ERR_NOMEM). Free with vt_png_file_writer_destroy(). Not
+ * before vt_png_file_writer_finish() succeeds. Returns NULL and fills err on failure (VTS_ERR_ARG,
+ * VTS_ERR_IO naming the path, VTS_ERR_NOMEM). Free with vt_png_file_writer_destroy(). Not
  * thread-safe: one thread at a time per writer. */
 struct vt_png_file_writer *vt_png_file_writer_create(const char *path, uint32_t width,
                                                      uint32_t height, uint32_t channels,
-                                                     uint32_t bit_depth, struct vt_error *err);
+                                                     uint32_t bit_depth, struct vts_error *err);
 
 /* Appends row_count rows, top to bottom; row i starts at (const char *)rows + i * stride and holds
  * width * channels samples, interleaved, 16-bit ones in host order. stride >= the row size unless
- * row_count <= 1. Returns 0, VT_ERR_ARG (more rows than the height, short stride), VT_ERR_IO (with
- * the path; ENOSPC included) or VT_ERR_NOMEM. After an error other than VT_ERR_ARG the writer is
- * stopped: every later call fails and only destroy is left. */
+ * row_count <= 1. Returns 0, VTS_ERR_ARG (more rows than the height, short stride), VTS_ERR_IO
+ * (with the path; ENOSPC included) or VTS_ERR_NOMEM. After an error other than VTS_ERR_ARG the
+ * writer is stopped: every later call fails and only destroy is left. */
 int vt_png_file_writer_rows(struct vt_png_file_writer *w, const void *rows, uint32_t row_count,
-                            size_t stride, struct vt_error *err);
+                            size_t stride, struct vts_error *err);
 
 /* Ends the PNG, flushes it to disk and renames it over path (vt_atomic_file_commit). Every row must
- * have been given (VT_ERR_ARG otherwise). Returns 0 or a negative status; on failure nothing is
+ * have been given (VTS_ERR_ARG otherwise). Returns 0 or a negative status; on failure nothing is
  * left under path (a previous file there is intact). Call at most once; destroy the writer either
  * way. */
-int vt_png_file_writer_finish(struct vt_png_file_writer *w, struct vt_error *err);
+int vt_png_file_writer_finish(struct vt_png_file_writer *w, struct vts_error *err);
 
 /* Frees the writer; without a successful finish, removes the temporary file so that no file
  * appears under path. Accepts NULL. */
@@ -49,10 +49,10 @@ void vt_png_file_writer_destroy(struct vt_png_file_writer *w);
 /* Reads the whole PNG at path into *out, freshly allocated (free with vt_image_release()); any
  * colour type and bit depth, expanded: palette -> RGB or RGBA, gray below 8 bits -> 8 bits,
  * a tRNS chunk -> an alpha channel. 8-bit images give VTS_SAMPLE_U8, 16-bit ones VTS_SAMPLE_U16
- * in host order; interlaced images are de-interlaced. Returns 0, or VT_ERR_IO, VT_ERR_BAD_INPUT
- * ("cannot read 'x.png': not a PNG file", truncated or corrupt data), VT_ERR_LIMIT (more than
- * VT_PNG_FILE_MAX_PIXELS texels) or VT_ERR_NOMEM, with a message naming path; *out is then zeroed.
+ * in host order; interlaced images are de-interlaced. Returns 0, or VTS_ERR_IO, VTS_ERR_BAD_INPUT
+ * ("cannot read 'x.png': not a PNG file", truncated or corrupt data), VTS_ERR_LIMIT (more than
+ * VT_PNG_FILE_MAX_PIXELS texels) or VTS_ERR_NOMEM, with a message naming path; *out is then zeroed.
  * Thread-safe. */
-int vt_png_file_read(const char *path, struct vt_image *out, struct vt_error *err);
+int vt_png_file_read(const char *path, struct vt_image *out, struct vts_error *err);
 
 #endif

@@ -8,6 +8,7 @@
 
 #include "vt_atlas_skyline.h"
 #include "vt_checked.h"
+#include "vt_error.h"
 
 #define LOG2_MAX 17 /* tile content up to 2^16: block edges 2^0..2^16 */
 
@@ -51,7 +52,7 @@ static int bucket_push(struct bucket *b, struct block blk)
         size_t cap = b->capacity ? b->capacity * 2 : 16;
         struct block *n = realloc(b->items, cap * sizeof *n);
         if (!n)
-            return VT_ERR_NOMEM;
+            return VTS_ERR_NOMEM;
         b->items = n;
         b->capacity = cap;
     }
@@ -93,13 +94,13 @@ static int buddy_alloc(struct buddy *bd, unsigned lw, unsigned lh, struct block 
     for (unsigned k = lw; k < best_w; k++) {
         struct block r = {blk.tile, blk.x + (1u << k), blk.y};
         if (bucket_push(&bd->buckets[k][lh], r))
-            return VT_ERR_NOMEM;
+            return VTS_ERR_NOMEM;
     }
     /* Below the cell, the block's full width: heights 2^lh .. 2^(best_h-1) at y + 2^k. */
     for (unsigned k = lh; k < best_h; k++) {
         struct block r = {blk.tile, blk.x, blk.y + (1u << k)};
         if (bucket_push(&bd->buckets[best_w][k], r))
-            return VT_ERR_NOMEM;
+            return VTS_ERR_NOMEM;
     }
     return 0;
 }
@@ -133,23 +134,23 @@ static int cmp_small_ref(const void *a, const void *b)
 }
 
 static int check_args(const struct vt_atlas_rect *rects, uint32_t count,
-                      const struct vt_atlas_pack_options *o, struct vt_error *err)
+                      const struct vt_atlas_pack_options *o, struct vts_error *err)
 {
     uint32_t T = o->tile_content;
     if (T == 0 || T > (1u << (LOG2_MAX - 1)) || (T & (T - 1)))
-        return vt_error_set(err, VT_ERR_ARG, "tile content %u is not a power of two 1..65536", T);
+        return vt_error_set(err, VTS_ERR_ARG, "tile content %u is not a power of two 1..65536", T);
     if (o->max_edge < T)
-        return vt_error_set(err, VT_ERR_ARG, "atlas size limit %u is below the tile content %u",
+        return vt_error_set(err, VTS_ERR_ARG, "atlas size limit %u is below the tile content %u",
                             o->max_edge, T);
     if (o->gutter && ((o->gutter & (o->gutter - 1)) || o->gutter >= T))
-        return vt_error_set(err, VT_ERR_ARG,
+        return vt_error_set(err, VTS_ERR_ARG,
                             "gutter %u is not 0 or a power of two below the tile content %u",
                             o->gutter, T);
     if (count == 0)
-        return vt_error_set(err, VT_ERR_ARG, "no texture to pack");
+        return vt_error_set(err, VTS_ERR_ARG, "no texture to pack");
     for (uint32_t i = 0; i < count; i++)
         if (rects[i].width == 0 || rects[i].height == 0)
-            return vt_error_set(err, VT_ERR_ARG, "texture %u has a zero size", i);
+            return vt_error_set(err, VTS_ERR_ARG, "texture %u has a zero size", i);
     return 0;
 }
 
@@ -203,7 +204,7 @@ static void shelf_axis(uint32_t e, uint32_t T, uint32_t G, uint32_t *cell, uint3
  * each cell takes the lowest shelf that fits it, else opens a shelf in the first tile with room,
  * else a new tile). Every position and size is a multiple of G. */
 static int pack_shelves(struct vt_atlas_rect *rects, uint32_t count, uint32_t T, uint32_t G,
-                        uint32_t *small_tiles, uint32_t *tile_of, struct vt_error *err)
+                        uint32_t *small_tiles, uint32_t *tile_of, struct vts_error *err)
 {
     size_t n = 0;
     for (uint32_t i = 0; i < count; i++)
@@ -215,7 +216,7 @@ static int pack_shelves(struct vt_atlas_rect *rects, uint32_t count, uint32_t T,
     uint32_t ntiles = 0;
     int rc = 0;
     if (!refs || !shelves || !tile_top) {
-        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory packing %zu cells", n);
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory packing %zu cells", n);
         goto out;
     }
     n = 0;
@@ -270,7 +271,7 @@ out:
 /* Places the sub-tile cells inside numbered tiles (x, y relative to the tile; tile number kept
  * in alignment until the tiles are placed). */
 static int pack_small(struct vt_atlas_rect *rects, uint32_t count, uint32_t T, uint32_t G,
-                      uint32_t *small_tiles, uint32_t *tile_of, struct vt_error *err)
+                      uint32_t *small_tiles, uint32_t *tile_of, struct vts_error *err)
 {
     size_t n = 0;
     for (uint32_t i = 0; i < count; i++)
@@ -279,7 +280,7 @@ static int pack_small(struct vt_atlas_rect *rects, uint32_t count, uint32_t T, u
     struct buddy *bd = calloc(1, sizeof *bd);
     int rc = 0;
     if (!refs || !bd) {
-        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory packing %zu cells", n);
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory packing %zu cells", n);
         goto out;
     }
     n = 0;
@@ -295,7 +296,7 @@ static int pack_small(struct vt_atlas_rect *rects, uint32_t count, uint32_t T, u
     for (size_t k = 0; k < n; k++) {
         struct block blk;
         if (buddy_alloc(bd, refs[k].lw, refs[k].lh, &blk)) {
-            rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory packing %zu cells", n);
+            rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory packing %zu cells", n);
             goto out;
         }
         struct vt_atlas_rect *r = &rects[refs[k].index];
@@ -349,7 +350,7 @@ static void fill_stats(const struct vt_atlas_rect *rects, uint32_t count, uint32
 
 int vt_atlas_pack(struct vt_atlas_rect *rects, uint32_t count,
                   const struct vt_atlas_pack_options *options, struct vt_atlas_pack_stats *stats,
-                  struct vt_error *err)
+                  struct vts_error *err)
 {
     int rc = check_args(rects, count, options, err);
     if (rc)
@@ -360,7 +361,7 @@ int vt_atlas_pack(struct vt_atlas_rect *rects, uint32_t count,
     struct vt_atlas_tile_item *items = NULL;
     uint32_t small_tiles = 0;
     if (!tile_of) {
-        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory packing %u cells", count);
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory packing %u cells", count);
         goto out;
     }
     if (options->gutter)
@@ -375,7 +376,7 @@ int vt_atlas_pack(struct vt_atlas_rect *rects, uint32_t count,
     size_t total = n + small_tiles;
     items = malloc(total * sizeof *items);
     if (!items) {
-        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory packing %u cells", count);
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory packing %u cells", count);
         goto out;
     }
     n = 0;
@@ -397,7 +398,7 @@ int vt_atlas_pack(struct vt_atlas_rect *rects, uint32_t count,
     /* Sub-tile tile t sits at tile (small_pos[2t], small_pos[2t + 1]). */
     uint32_t *small_pos = calloc((size_t)small_tiles * 2 + 1, sizeof *small_pos);
     if (!small_pos) {
-        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory packing %u cells", count);
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory packing %u cells", count);
         goto out;
     }
     for (size_t k = 0; k < total; k++) {

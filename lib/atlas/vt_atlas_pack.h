@@ -67,11 +67,11 @@ struct vt_atlas_pack_stats {
 
 /* Places the count rectangles (fills x, y, cell_width, cell_height, alignment of each) and fills
  * *stats (may be NULL). Deterministic: the same input gives the same placement. Returns 0,
- * VT_ERR_ARG (tile_content not a power of two, a zero-sized rectangle, count 0), VT_ERR_LIMIT
- * ("the atlas needs 70000 x 70000 texels, more than --max-size 65536") or VT_ERR_NOMEM. */
+ * VTS_ERR_ARG (tile_content not a power of two, a zero-sized rectangle, count 0), VTS_ERR_LIMIT
+ * ("the atlas needs 70000 x 70000 texels, more than --max-size 65536") or VTS_ERR_NOMEM. */
 int vt_atlas_pack(struct vt_atlas_rect *rects, uint32_t count,
                   const struct vt_atlas_pack_options *options, struct vt_atlas_pack_stats *stats,
-                  struct vt_error *err);
+                  struct vts_error *err);
 
 /* Smallest power of two >= v (v in 1..2^31). */
 uint32_t vt_atlas_next_pow2(uint32_t v);

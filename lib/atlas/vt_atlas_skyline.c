@@ -1,6 +1,7 @@
 /* Whole-tile packing for vt-atlas: a bottom-left skyline over tile columns, tried at several
  * atlas widths and two orders (vt_atlas_skyline.h). */
 #include "vt_atlas_skyline.h"
+#include "vt_error.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -130,7 +131,8 @@ static struct trial pick_trial(const struct trial *t, size_t n)
 /* Packs the tile items at several widths and two orders, keeps the best (see pick_trial) and
  * leaves its placement in items. */
 int vt_atlas_skyline_pack(struct vt_atlas_tile_item *items, size_t n, uint32_t max_tiles,
-                          uint32_t max_edge, uint32_t *out_w, uint32_t *out_h, struct vt_error *err)
+                          uint32_t max_edge, uint32_t *out_w, uint32_t *out_h,
+                          struct vts_error *err)
 {
     uint64_t area = 0;
     uint32_t min_w = 1, min_h = 1;
@@ -140,15 +142,16 @@ int vt_atlas_skyline_pack(struct vt_atlas_tile_item *items, size_t n, uint32_t m
         min_h = items[i].h > min_h ? items[i].h : min_h;
     }
     if (min_w > max_tiles || min_h > max_tiles)
-        return vt_error_set(
-            err, VT_ERR_LIMIT, "a texture is %u tiles %s, more than the atlas size limit %u allows",
-            min_w > max_tiles ? min_w : min_h, min_w > max_tiles ? "wide" : "tall", max_edge);
+        return vt_error_set(err, VTS_ERR_LIMIT,
+                            "a texture is %u tiles %s, more than the atlas size limit %u allows",
+                            min_w > max_tiles ? min_w : min_h, min_w > max_tiles ? "wide" : "tall",
+                            max_edge);
     uint32_t *heights = malloc(max_tiles * sizeof *heights);
     uint32_t *deque = malloc(max_tiles * sizeof *deque);
     uint64_t *prefix = malloc(((size_t)max_tiles + 1) * sizeof *prefix);
     int rc = 0;
     if (!heights || !deque || !prefix) {
-        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory packing %zu cells", n);
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory packing %zu cells", n);
         goto out;
     }
     double side = sqrt((double)area);
@@ -178,7 +181,7 @@ int vt_atlas_skyline_pack(struct vt_atlas_tile_item *items, size_t n, uint32_t m
     }
     if (!best.w) {
         rc = vt_error_set(
-            err, VT_ERR_LIMIT,
+            err, VTS_ERR_LIMIT,
             "the textures (%llu tiles) do not fit in the atlas size limit %u (%u x %u tiles)",
             (unsigned long long)area, max_edge, max_tiles, max_tiles);
         goto out;

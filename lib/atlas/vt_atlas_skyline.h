@@ -19,9 +19,9 @@ struct vt_atlas_tile_item {
 
 /* Places the n items (x, y filled, in tiles) in an atlas of at most max_tiles x max_tiles tiles
  * (max_edge texels, for messages) and returns its size in tiles in *out_w, *out_h. Returns 0,
- * VT_ERR_LIMIT (an item or the whole does not fit) or VT_ERR_NOMEM. Reorders items. */
+ * VTS_ERR_LIMIT (an item or the whole does not fit) or VTS_ERR_NOMEM. Reorders items. */
 int vt_atlas_skyline_pack(struct vt_atlas_tile_item *items, size_t n, uint32_t max_tiles,
                           uint32_t max_edge, uint32_t *out_w, uint32_t *out_h,
-                          struct vt_error *err);
+                          struct vts_error *err);
 
 #endif

@@ -7,6 +7,7 @@
 
 #include "vt_atlas_tile.h"
 #include "vt_checked.h"
+#include "vt_error.h"
 #include "vt_mip_chain.h"
 #include "vt_pool.h"
 #include "vts.h"
@@ -42,7 +43,7 @@ static uint32_t log2_u32(uint32_t v)
 
 /* ---- the chain cache's build callback: key = entry * slots + slot ---- */
 
-static int build_chain(void *user, uint64_t key, struct vt_mip_chain *c, struct vt_error *err)
+static int build_chain(void *user, uint64_t key, struct vt_mip_chain *c, struct vts_error *err)
 {
     struct vt_atlas_build *b = user;
     uint32_t e = (uint32_t)(key / b->t.nslots), s = (uint32_t)(key % b->t.nslots);
@@ -120,7 +121,7 @@ static bool tile_next(void *ctx, uint64_t *job)
     }
 }
 
-static int tile_do(void *ctx, unsigned worker, uint64_t job, struct vt_error *err)
+static int tile_do(void *ctx, unsigned worker, uint64_t job, struct vts_error *err)
 {
     struct tile_run *r = ctx;
     struct vt_atlas_build *b = r->b;
@@ -155,7 +156,7 @@ static int tile_progress(void *ctx)
 }
 
 int vt_atlas_build_tiles(struct vt_atlas_build *b, vt_atlas_emit_fn emit, void *user,
-                         struct vt_error *err)
+                         struct vts_error *err)
 {
     struct tile_run r = {.b = b, .emit = emit, .user = user, .total = b->first[b->level_count]};
     struct vt_pool_fns fns = {tile_next, tile_do, tile_progress};
@@ -163,12 +164,12 @@ int vt_atlas_build_tiles(struct vt_atlas_build *b, vt_atlas_emit_fn emit, void *
 }
 
 int vt_atlas_build_render(struct vt_atlas_build *b, uint32_t s, uint32_t L, uint32_t x, uint32_t y,
-                          struct vt_image *dst, struct vt_error *err)
+                          struct vt_image *dst, struct vts_error *err)
 {
     if (s >= b->t.nslots || L >= b->level_count || dst->sample != VTS_SAMPLE_U8 ||
         dst->channels != b->t.slots[s].fmt.channels || (uint64_t)x + dst->width > b->t.lw[L] ||
         (uint64_t)y + dst->height > b->t.lh[L])
-        return vt_error_set(err, VT_ERR_ARG, "render: bad region or image");
+        return vt_error_set(err, VTS_ERR_ARG, "render: bad region or image");
     struct vt_atlas_tile_worker *w = &b->workers[b->o.threads];
     int rc = 0;
     for (uint32_t j = 0; j < dst->height && rc == 0; j++) {
@@ -203,7 +204,7 @@ static bool scan_next(void *ctx, uint64_t *job)
     return true;
 }
 
-static int scan_do(void *ctx, unsigned worker, uint64_t job, struct vt_error *err)
+static int scan_do(void *ctx, unsigned worker, uint64_t job, struct vts_error *err)
 {
     struct scan_run *r = ctx;
     struct vt_atlas_build *b = r->b;
@@ -224,7 +225,7 @@ static int scan_do(void *ctx, unsigned worker, uint64_t job, struct vt_error *er
         return rc;
     const struct vt_source_info *in = &src.info;
     if (in->width != t->width || in->height != t->height) {
-        rc = vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': %ux%u texels, but the layout says %ux%u",
+        rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': %ux%u texels, but the layout says %ux%u",
                           path, in->width, in->height, t->width, t->height);
         goto out;
     }
@@ -295,29 +296,29 @@ static void geometry(struct vt_atlas_build *b)
     }
 }
 
-static int alloc_tables(struct vt_atlas_build *b, struct vt_error *err)
+static int alloc_tables(struct vt_atlas_build *b, struct vts_error *err)
 {
     size_t n;
     uint32_t ne = b->t.lay->entry_count;
     if (!vt_size_mul(ne ? ne : 1, b->t.nslots, &n))
-        return vt_error_set(err, VT_ERR_LIMIT, "too many entries");
+        return vt_error_set(err, VTS_ERR_LIMIT, "too many entries");
     b->tex = calloc(n, sizeof *b->tex);
     b->t.lmax = calloc(ne ? ne : 1, 1);
     b->workers = calloc((size_t)b->o.threads + 1, sizeof *b->workers);
     if (!b->tex || !b->t.lmax || !b->workers)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory for the atlas tables");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the atlas tables");
     for (uint32_t e = 0; e < ne; e++)
         b->t.lmax[e] = (uint8_t)log2_u32(b->t.lay->entries[e].alignment);
     for (unsigned t = 0; t <= b->o.threads; t++) {
         struct vt_atlas_tile_worker *w = &b->workers[t];
         w->cls = malloc((size_t)b->t.content * b->t.content * sizeof *w->cls);
         if (!w->cls)
-            return vt_error_set(err, VT_ERR_NOMEM, "out of memory for tile buffers");
+            return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for tile buffers");
     }
     return 0;
 }
 
-static int alloc_payloads(struct vt_atlas_build *b, struct vt_error *err)
+static int alloc_payloads(struct vt_atlas_build *b, struct vts_error *err)
 {
     for (unsigned t = 0; t < b->o.threads; t++)
         for (uint32_t s = 0; s < b->t.nslots; s++) {
@@ -330,16 +331,16 @@ static int alloc_payloads(struct vt_atlas_build *b, struct vt_error *err)
 }
 
 struct vt_atlas_build *vt_atlas_build_create(const struct vt_atlas_build_options *o,
-                                             struct vt_error *err)
+                                             struct vts_error *err)
 {
     if (!o->layout || !o->open || o->layer_count < 1 || o->layer_count > VT_LAYOUT_MAX_LAYERS ||
         o->threads < 1 || o->threads > 256) {
-        vt_error_set(err, VT_ERR_ARG, "atlas build: bad options");
+        vt_error_set(err, VTS_ERR_ARG, "atlas build: bad options");
         return NULL;
     }
     struct vt_atlas_build *b = calloc(1, sizeof *b);
     if (!b) {
-        vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
         return NULL;
     }
     b->o = *o;
@@ -350,7 +351,7 @@ struct vt_atlas_build *vt_atlas_build_create(const struct vt_atlas_build_options
         b->o.max_pixels = 1ull << 34;
     for (uint32_t s = 0; s < b->t.nslots; s++) {
         if (o->layers[s] >= b->t.lay->layer_count) {
-            vt_error_set(err, VT_ERR_ARG, "atlas build: layer %u out of range", o->layers[s]);
+            vt_error_set(err, VTS_ERR_ARG, "atlas build: layer %u out of range", o->layers[s]);
             goto fail;
         }
         b->t.slots[s].layer = o->layers[s];
@@ -358,7 +359,7 @@ struct vt_atlas_build *vt_atlas_build_create(const struct vt_atlas_build_options
     size_t keys;
     uint32_t ne = b->t.lay->entry_count;
     if (!vt_size_mul(ne ? ne : 1, b->t.nslots, &keys)) {
-        vt_error_set(err, VT_ERR_LIMIT, "too many entries");
+        vt_error_set(err, VTS_ERR_LIMIT, "too many entries");
         goto fail;
     }
     if (vt_atlas_cache_init(&b->t.cache, keys, budget, build_chain, b, err))

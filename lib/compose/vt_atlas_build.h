@@ -28,13 +28,13 @@
  * read image files itself: tools pass vt_image_input_open() through this. Called from worker
  * threads at once (each call opens an independent source). Fills err naming the file on failure. */
 typedef int (*vt_atlas_open_fn)(void *user, const char *path, struct vt_source *out,
-                                struct vt_error *err);
+                                struct vts_error *err);
 
 /* Receives the payload of one tile of one built layer (slot 0 .. layer_count-1), or NULL for an
  * empty tile. Called from worker threads, each (slot, level, tx, ty) exactly once. */
 typedef int (*vt_atlas_emit_fn)(void *user, unsigned worker, uint32_t slot, uint32_t level,
                                 uint32_t tx, uint32_t ty, const struct vt_image *payload,
-                                struct vt_error *err);
+                                struct vts_error *err);
 
 /* Progress: tile positions done of total; non-zero cancels. Called on the calling thread. */
 typedef int (*vt_atlas_progress_fn)(void *user, uint64_t done, uint64_t total);
@@ -70,7 +70,7 @@ struct vt_atlas_build;
  * size is the one the layout records, and scans alpha channels to decide the layer formats.
  * Returns NULL and fills err ("'wood.png': ...") on failure. Free with vt_atlas_build_destroy(). */
 struct vt_atlas_build *vt_atlas_build_create(const struct vt_atlas_build_options *o,
-                                             struct vt_error *err);
+                                             struct vts_error *err);
 
 void vt_atlas_build_format(const struct vt_atlas_build *b, uint32_t slot,
                            struct vt_atlas_layer_format *out);
@@ -80,15 +80,15 @@ uint32_t vt_atlas_build_level_count(const struct vt_atlas_build *b);
 uint64_t vt_atlas_build_tile_count(const struct vt_atlas_build *b);
 
 /* Computes and emits every tile of every built layer, on the option's threads. Returns 0, the
- * first error (lowest tile) or VT_ERR_CANCELLED. */
+ * first error (lowest tile) or VTS_ERR_CANCELLED. */
 int vt_atlas_build_tiles(struct vt_atlas_build *b, vt_atlas_emit_fn emit, void *user,
-                         struct vt_error *err);
+                         struct vts_error *err);
 
 /* Texels [x, x + dst->width) x [y, y + dst->height) of level `level` of slot into dst (8-bit, the
  * slot's channels), as the tiles' content holds them (empty space: zero, a flat normal for normal
  * layers). Single-threaded; for --export-atlas. */
 int vt_atlas_build_render(struct vt_atlas_build *b, uint32_t slot, uint32_t level, uint32_t x,
-                          uint32_t y, struct vt_image *dst, struct vt_error *err);
+                          uint32_t y, struct vt_image *dst, struct vts_error *err);
 
 struct vt_atlas_build_stats {
     uint64_t chains_built; /* texture decodes (a texture evicted and needed again counts again) */

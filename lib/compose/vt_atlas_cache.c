@@ -1,5 +1,6 @@
 /* Texture-chain cache of the atlas compositor (see vt_atlas_cache.h). */
 #include "vt_atlas_cache.h"
+#include "vt_error.h"
 
 #include <stdlib.h>
 
@@ -52,7 +53,7 @@ static void evict(struct vt_atlas_cache *c)
 
 /* The chain of key, referenced (release with chain_release). */
 static int chain_acquire(struct vt_atlas_cache *c, uint64_t key, struct vt_atlas_cache_node **out,
-                         struct vt_error *err)
+                         struct vts_error *err)
 {
     pthread_mutex_lock(&c->mu);
     for (;;) {
@@ -71,7 +72,7 @@ static int chain_acquire(struct vt_atlas_cache *c, uint64_t key, struct vt_atlas
     struct vt_atlas_cache_node *n = calloc(1, sizeof *n);
     if (!n) {
         pthread_mutex_unlock(&c->mu);
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory for a texture chain");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for a texture chain");
     }
     n->key = key;
     n->state = CHAIN_LOADING;
@@ -119,7 +120,7 @@ void vt_atlas_cache_unpin_all(struct vt_atlas_cache *c, struct vt_atlas_cache_pi
 }
 
 int vt_atlas_cache_get(struct vt_atlas_cache *c, struct vt_atlas_cache_pins *p, uint64_t key,
-                       const struct vt_mip_chain **out, struct vt_error *err)
+                       const struct vt_mip_chain **out, struct vts_error *err)
 {
     for (uint32_t i = 0; i < p->count; i++)
         if (p->pins[i].key == key) {
@@ -145,19 +146,19 @@ int vt_atlas_cache_get(struct vt_atlas_cache *c, struct vt_atlas_cache_pins *p, 
 }
 
 int vt_atlas_cache_init(struct vt_atlas_cache *c, size_t key_count, uint64_t budget_bytes,
-                        vt_atlas_cache_build_fn build, void *build_user, struct vt_error *err)
+                        vt_atlas_cache_build_fn build, void *build_user, struct vts_error *err)
 {
     *c = (struct vt_atlas_cache){.budget = budget_bytes, .build = build, .build_user = build_user};
     if (pthread_mutex_init(&c->mu, NULL))
-        return vt_error_set(err, VT_ERR_NOMEM, "cannot create a mutex");
+        return vt_error_set(err, VTS_ERR_NOMEM, "cannot create a mutex");
     if (pthread_cond_init(&c->cv, NULL)) {
         pthread_mutex_destroy(&c->mu);
-        return vt_error_set(err, VT_ERR_NOMEM, "cannot create a condition variable");
+        return vt_error_set(err, VTS_ERR_NOMEM, "cannot create a condition variable");
     }
     c->sync_ok = true;
     c->table = calloc(key_count, sizeof *c->table);
     if (!c->table)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory for the atlas tables");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the atlas tables");
     c->key_count = key_count;
     return 0;
 }

@@ -19,7 +19,7 @@
 
 /* Builds the chain for key into *out (called without the cache lock). 0 or a negative status. */
 typedef int (*vt_atlas_cache_build_fn)(void *user, uint64_t key, struct vt_mip_chain *out,
-                                       struct vt_error *err);
+                                       struct vts_error *err);
 
 struct vt_atlas_cache_node; /* private to vt_atlas_cache.c */
 
@@ -45,17 +45,17 @@ struct vt_atlas_cache {
 };
 
 /* Sets up an empty cache for keys 0..key_count-1 holding about budget_bytes of unreferenced
- * chains. 0 or VT_ERR_NOMEM; on failure c may still be passed to vt_atlas_cache_release. */
+ * chains. 0 or VTS_ERR_NOMEM; on failure c may still be passed to vt_atlas_cache_release. */
 int vt_atlas_cache_init(struct vt_atlas_cache *c, size_t key_count, uint64_t budget_bytes,
-                        vt_atlas_cache_build_fn build, void *build_user, struct vt_error *err);
+                        vt_atlas_cache_build_fn build, void *build_user, struct vts_error *err);
 
 /* Frees every chain and the cache's own memory. Every pin must be released first. NULL-safe. */
 void vt_atlas_cache_release(struct vt_atlas_cache *c);
 
 /* The chain of key, pinned in p until vt_atlas_cache_unpin_all (or until VT_ATLAS_CACHE_PINS
- * other chains are pinned in p). 0 or the status of the build callback / VT_ERR_NOMEM. */
+ * other chains are pinned in p). 0 or the status of the build callback / VTS_ERR_NOMEM. */
 int vt_atlas_cache_get(struct vt_atlas_cache *c, struct vt_atlas_cache_pins *p, uint64_t key,
-                       const struct vt_mip_chain **out, struct vt_error *err);
+                       const struct vt_mip_chain **out, struct vts_error *err);
 
 /* Releases every chain pinned in p. */
 void vt_atlas_cache_unpin_all(struct vt_atlas_cache *c, struct vt_atlas_cache_pins *p);

@@ -1,5 +1,6 @@
 /* Per-tile compositing of an atlas (see vt_atlas_tile.h and docs/atlas-build.md). */
 #include "vt_atlas_tile.h"
+#include "vt_error.h"
 
 #include <assert.h>
 #include <stdlib.h>
@@ -10,7 +11,7 @@ static uint32_t ceil_shift(uint32_t v, uint32_t k)
     return k >= 32 ? 1 : (uint32_t)(((uint64_t)v + (1ull << k) - 1) >> k);
 }
 
-int vt_atlas_tile_build_grid(struct vt_atlas_tile *t, struct vt_error *err)
+int vt_atlas_tile_build_grid(struct vt_atlas_tile *t, struct vts_error *err)
 {
     const struct vt_layout *lay = t->lay;
     uint64_t target = lay->entry_count * 4ull < 4096 ? 4096 : lay->entry_count * 4ull;
@@ -26,7 +27,7 @@ int vt_atlas_tile_build_grid(struct vt_atlas_tile *t, struct vt_error *err)
     t->goff = calloc(nb + 1, sizeof *t->goff);
     t->gsat = calloc(((size_t)t->gw + 1) * (t->gh + 1), sizeof *t->gsat);
     if (!t->goff || !t->gsat)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory for the atlas grid");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the atlas grid");
     for (int pass = 0; pass < 2; pass++) {
         for (uint32_t e = 0; e < lay->entry_count; e++) {
             const struct vt_layout_entry *en = &lay->entries[e];
@@ -48,7 +49,7 @@ int vt_atlas_tile_build_grid(struct vt_atlas_tile *t, struct vt_error *err)
                 t->goff[i + 1] += t->goff[i];
             t->gidx = malloc(((size_t)t->goff[nb] + 1) * sizeof *t->gidx);
             if (!t->gidx)
-                return vt_error_set(err, VT_ERR_NOMEM, "out of memory for the atlas grid");
+                return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the atlas grid");
         }
     }
     /* summed-area table of occupied buckets: sat[(y) * (gw+1) + x] = buckets in [0,x) x [0,y) */
@@ -110,7 +111,7 @@ int32_t vt_atlas_tile_classify(const struct vt_atlas_tile *t, uint32_t L, uint32
  * padding and the gutter before x/y repeat the texture's edge. */
 static int owned_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, uint32_t s,
                        uint32_t e, uint32_t L, int64_t X, int64_t Y, const uint8_t **out,
-                       struct vt_error *err)
+                       struct vts_error *err)
 {
     const struct vt_mip_chain *c;
     int rc = vt_atlas_cache_get(&t->cache, &w->pins, (uint64_t)e * t->nslots + s, &c, err);
@@ -130,7 +131,7 @@ static int owned_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, 
  * premultiplied). *cov receives the covered fraction of its footprint (0..1). */
 static int mixed_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, uint32_t s,
                        uint32_t L, uint32_t X, uint32_t Y, float *out, float *cov,
-                       struct vt_error *err)
+                       struct vts_error *err)
 {
     const struct vt_atlas_tile_slot *sl = &t->slots[s];
     uint32_t ch = sl->fmt.channels;
@@ -173,7 +174,7 @@ static int mixed_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, 
 /* Writes the value of texel (X, Y) of level L whose class is k into o. */
 int vt_atlas_tile_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, uint32_t s,
                         uint32_t L, uint32_t X, uint32_t Y, int32_t k, uint8_t *o,
-                        struct vt_error *err)
+                        struct vts_error *err)
 {
     const struct vt_atlas_tile_slot *sl = &t->slots[s];
     uint32_t ch = sl->fmt.channels;
@@ -233,7 +234,7 @@ static int32_t group_owner(const struct vt_atlas_tile *t, uint32_t L, int32_t k,
 
 int vt_atlas_tile_fill_payload(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, uint32_t s,
                                uint32_t L, uint32_t cx0, uint32_t cy0, uint32_t cw, uint32_t chh,
-                               struct vt_error *err)
+                               struct vts_error *err)
 {
     struct vt_image *p = &w->payload[s];
     uint32_t ch = t->slots[s].fmt.channels, bd = t->border;

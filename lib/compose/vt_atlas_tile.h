@@ -47,8 +47,8 @@ struct vt_atlas_tile {
     uint64_t texels_mixed; /* updated atomically */
 };
 
-/* Builds the entry grid of t->lay. 0 or VT_ERR_NOMEM; free with vt_atlas_tile_release_grid. */
-int vt_atlas_tile_build_grid(struct vt_atlas_tile *t, struct vt_error *err);
+/* Builds the entry grid of t->lay. 0 or VTS_ERR_NOMEM; free with vt_atlas_tile_release_grid. */
+int vt_atlas_tile_build_grid(struct vt_atlas_tile *t, struct vts_error *err);
 
 /* Frees the grid (NULL pointers allowed). */
 void vt_atlas_tile_release_grid(struct vt_atlas_tile *t);
@@ -62,7 +62,7 @@ int32_t vt_atlas_tile_classify(const struct vt_atlas_tile *t, uint32_t L, uint32
 /* Writes the value (slot s, u8) of texel (X, Y) of level L whose class is k into o. */
 int vt_atlas_tile_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, uint32_t s,
                         uint32_t L, uint32_t X, uint32_t Y, int32_t k, uint8_t *o,
-                        struct vt_error *err);
+                        struct vts_error *err);
 
 /* Classes of the content texels of the tile at (cx0, cy0), cw x chh, into w->cls; returns
  * whether any is not empty. */
@@ -73,6 +73,6 @@ bool vt_atlas_tile_classify_content(const struct vt_atlas_tile *t, struct vt_atl
 /* Fills w->payload[s] (content plus borders) of that tile, after _classify_content. */
 int vt_atlas_tile_fill_payload(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, uint32_t s,
                                uint32_t L, uint32_t cx0, uint32_t cy0, uint32_t cw, uint32_t chh,
-                               struct vt_error *err);
+                               struct vts_error *err);
 
 #endif

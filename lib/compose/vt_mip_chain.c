@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "vt_checked.h"
+#include "vt_error.h"
 
 static uint32_t ceil_shift(uint32_t v, uint32_t k)
 {
@@ -26,19 +27,19 @@ void vt_mip_chain_release(struct vt_mip_chain *c)
     memset(c, 0, sizeof *c);
 }
 
-static int alloc_floats(float **out, uint64_t texels, uint32_t channels, struct vt_error *err)
+static int alloc_floats(float **out, uint64_t texels, uint32_t channels, struct vts_error *err)
 {
     size_t n;
     if (!vt_size_mul3((size_t)texels, channels, sizeof(float), &n) || n == 0)
-        return vt_error_set(err, VT_ERR_LIMIT, "a mip level of %llu texels is too large",
+        return vt_error_set(err, VTS_ERR_LIMIT, "a mip level of %llu texels is too large",
                             (unsigned long long)texels);
     *out = malloc(n);
-    return *out ? 0 : vt_error_set(err, VT_ERR_NOMEM, "out of memory for a mip level");
+    return *out ? 0 : vt_error_set(err, VTS_ERR_NOMEM, "out of memory for a mip level");
 }
 
 /* One 2:1 reduction of a whole w x h working image with edges clamped; *dst is allocated. */
 static int reduce_once(const struct vt_kernel *k, const struct vt_pixel_mode *m, const float *src,
-                       uint32_t w, uint32_t h, float **dst, struct vt_error *err)
+                       uint32_t w, uint32_t h, float **dst, struct vts_error *err)
 {
     uint32_t dw = ceil_shift(w, 1), dh = ceil_shift(h, 1), ch = m->channels;
     struct vt_fregion s = {0, 0, w, h, ch, (float *)(uintptr_t)src};
@@ -64,7 +65,7 @@ static int reduce_once(const struct vt_kernel *k, const struct vt_pixel_mode *m,
 
 /* Converts the source's texels (any channels and sample) into the layer's 8-bit layout. */
 static int to_layer_u8(const struct vt_mip_chain_spec *s, const struct vt_source_info *in,
-                       const struct vt_image *raw, struct vt_image *out, struct vt_error *err)
+                       const struct vt_image *raw, struct vt_image *out, struct vts_error *err)
 {
     uint32_t och = s->colour_channels + (s->alpha ? 1u : 0u);
     int rc = vt_image_alloc(out, raw->width, raw->height, och, VTS_SAMPLE_U8, err);
@@ -85,7 +86,7 @@ static int to_layer_u8(const struct vt_mip_chain_spec *s, const struct vt_source
         rowf = malloc((size_t)raw->width * raw->channels * sizeof(float));
         row8 = malloc((size_t)raw->width * raw->channels);
         if (!rowf || !row8) {
-            rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory converting a texture");
+            rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory converting a texture");
             goto out;
         }
         for (uint32_t y = 0; y < raw->height; y++) {
@@ -147,7 +148,7 @@ static void resample_nearest(const struct vt_image *src, struct vt_image *dst)
 
 /* Reduces an 8-bit image k times in the working space (the texture's own mip level k). */
 static int reduce_u8(const struct vt_mip_chain_spec *s, const struct vt_image *src, uint32_t k,
-                     struct vt_image *dst, struct vt_error *err)
+                     struct vt_image *dst, struct vts_error *err)
 {
     struct vt_pixel_mode m;
     vt_mip_chain_mode(s, &m);
@@ -179,7 +180,7 @@ static int reduce_u8(const struct vt_mip_chain_spec *s, const struct vt_image *s
 }
 
 /* Brings a layer-format image of the texture's size to the entry's size W x H. */
-static int resample(const struct vt_mip_chain_spec *s, struct vt_image *img, struct vt_error *err)
+static int resample(const struct vt_mip_chain_spec *s, struct vt_image *img, struct vts_error *err)
 {
     uint32_t tw = img->width, th = img->height, W = s->width, H = s->height;
     if (tw == W && th == H)
@@ -204,7 +205,7 @@ static int resample(const struct vt_mip_chain_spec *s, struct vt_image *img, str
 }
 
 /* Replaces img by repeat_u x repeat_v copies of it. */
-static int replicate(const struct vt_mip_chain_spec *s, struct vt_image *img, struct vt_error *err)
+static int replicate(const struct vt_mip_chain_spec *s, struct vt_image *img, struct vts_error *err)
 {
     if (s->repeat_u == 1 && s->repeat_v == 1)
         return 0;
@@ -227,7 +228,7 @@ static int replicate(const struct vt_mip_chain_spec *s, struct vt_image *img, st
 
 /* Levels 1.. of the chain from level 0. */
 static int build_levels(struct vt_mip_chain *c, const struct vt_mip_chain_spec *s,
-                        struct vt_error *err)
+                        struct vts_error *err)
 {
     struct vt_pixel_mode m;
     vt_mip_chain_mode(s, &m);
@@ -268,7 +269,7 @@ static int build_levels(struct vt_mip_chain *c, const struct vt_mip_chain_spec *
 }
 
 int vt_mip_chain_from_source(struct vt_mip_chain *c, const struct vt_mip_chain_spec *s,
-                             struct vt_source *src, struct vt_error *err)
+                             struct vt_source *src, struct vts_error *err)
 {
     memset(c, 0, sizeof *c);
     uint64_t copies_w, copies_h, texels;
@@ -276,7 +277,7 @@ int vt_mip_chain_from_source(struct vt_mip_chain *c, const struct vt_mip_chain_s
         !vt_u64_mul(s->height, s->repeat_v, &copies_h) ||
         !vt_u64_mul(copies_w, copies_h, &texels) || texels > s->max_pixels ||
         copies_w > UINT32_MAX || copies_h > UINT32_MAX)
-        return vt_error_set(err, VT_ERR_LIMIT,
+        return vt_error_set(err, VTS_ERR_LIMIT,
                             "'%s': %ux%u copies of %ux%u texels exceed the limit of %llu texels",
                             src->name, s->repeat_u, s->repeat_v, s->width, s->height,
                             (unsigned long long)s->max_pixels);
@@ -300,7 +301,7 @@ int vt_mip_chain_from_source(struct vt_mip_chain *c, const struct vt_mip_chain_s
 }
 
 int vt_mip_chain_from_fill(struct vt_mip_chain *c, const struct vt_mip_chain_spec *s,
-                           const double fill[4], struct vt_error *err)
+                           const double fill[4], struct vts_error *err)
 {
     memset(c, 0, sizeof *c);
     uint32_t ch = s->colour_channels + (s->alpha ? 1u : 0u);

@@ -39,13 +39,13 @@ struct vt_mip_chain {
 /* Builds the chain from an opened source whose size must be the entry's size times a power of two
  * (a finer texture: its own mip level k is used; a coarser one: texels are replicated); other
  * sizes are resampled nearest-neighbour. 16-bit and float sources are converted to 8 bits (float
- * as linear light). Returns 0, VT_ERR_LIMIT, VT_ERR_NOMEM or the source's read error. */
+ * as linear light). Returns 0, VTS_ERR_LIMIT, VTS_ERR_NOMEM or the source's read error. */
 int vt_mip_chain_from_source(struct vt_mip_chain *c, const struct vt_mip_chain_spec *s,
-                             struct vt_source *src, struct vt_error *err);
+                             struct vt_source *src, struct vts_error *err);
 
 /* A constant fill (RGBA in 0..1, stored values): every level is one texel. */
 int vt_mip_chain_from_fill(struct vt_mip_chain *c, const struct vt_mip_chain_spec *s,
-                           const double fill[4], struct vt_error *err);
+                           const double fill[4], struct vts_error *err);
 
 /* Frees the levels and zeroes *c. Accepts NULL. */
 void vt_mip_chain_release(struct vt_mip_chain *c);

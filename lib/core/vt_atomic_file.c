@@ -1,5 +1,6 @@
 #define _GNU_SOURCE /* O_TMPFILE */
 #include "vt_atomic_file.h"
+#include "vt_error.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -80,7 +81,7 @@ static int split_path(const char *path, char *dir, size_t dir_cap, const char **
 }
 
 int vt_atomic_file_create(struct vt_atomic_file *f, const char *final_path, const char *tag,
-                          struct vt_error *err)
+                          struct vts_error *err)
 {
     f->fd = -1;
     f->temp_path[0] = '\0';
@@ -89,7 +90,7 @@ int vt_atomic_file_create(struct vt_atomic_file *f, const char *final_path, cons
     size_t len = strlen(final_path);
     if (len == 0 || len >= sizeof f->final_path || split_path(final_path, dir, sizeof dir, &base) ||
         *base == '\0')
-        return vt_error_set(err, VT_ERR_ARG, "invalid output path '%s'", final_path);
+        return vt_error_set(err, VTS_ERR_ARG, "invalid output path '%s'", final_path);
     memcpy(f->final_path, final_path, len + 1);
 
     /* O_EXCL with a fresh name each try: no race with other writers of the same output. */
@@ -109,7 +110,7 @@ int vt_atomic_file_create(struct vt_atomic_file *f, const char *final_path, cons
                     : snprintf(f->temp_path, sizeof f->temp_path, "%s/.%s.%s-%s",
                                strcmp(dir, "/") == 0 ? "" : dir, base, tag, suffix);
         if (n < 0 || (size_t)n >= sizeof f->temp_path)
-            return vt_error_set(err, VT_ERR_ARG, "output path '%s' is too long", final_path);
+            return vt_error_set(err, VTS_ERR_ARG, "output path '%s' is too long", final_path);
         f->fd = open(f->temp_path, O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (f->fd >= 0) {
             temp_register(f->temp_path);
@@ -120,12 +121,12 @@ int vt_atomic_file_create(struct vt_atomic_file *f, const char *final_path, cons
     }
     int e = errno;
     f->temp_path[0] = '\0';
-    return vt_error_set(err, VT_ERR_IO, "cannot create a file next to '%s': %s", final_path,
+    return vt_error_set(err, VTS_ERR_IO, "cannot create a file next to '%s': %s", final_path,
                         strerror(e));
 }
 
 int vt_atomic_file_create_scratch(struct vt_atomic_file *f, const char *final_path,
-                                  struct vt_error *err)
+                                  struct vts_error *err)
 {
     char dir[VT_PATH_MAX];
     const char *base;
@@ -133,7 +134,7 @@ int vt_atomic_file_create_scratch(struct vt_atomic_file *f, const char *final_pa
     f->fd = -1;
     f->temp_path[0] = '\0';
     if (len == 0 || len >= sizeof f->final_path || split_path(final_path, dir, sizeof dir, &base))
-        return vt_error_set(err, VT_ERR_ARG, "invalid output path '%s'", final_path);
+        return vt_error_set(err, VTS_ERR_ARG, "invalid output path '%s'", final_path);
     memcpy(f->final_path, final_path, len + 1);
 #ifdef O_TMPFILE
     f->fd = open(dir, O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
@@ -144,7 +145,7 @@ int vt_atomic_file_create_scratch(struct vt_atomic_file *f, const char *final_pa
 }
 
 int vt_atomic_file_pwrite(struct vt_atomic_file *f, const void *buf, size_t len,
-                          unsigned long long off, struct vt_error *err)
+                          unsigned long long off, struct vts_error *err)
 {
     const unsigned char *p = buf;
     while (len > 0) {
@@ -152,7 +153,7 @@ int vt_atomic_file_pwrite(struct vt_atomic_file *f, const void *buf, size_t len,
         if (n < 0 && errno == EINTR)
             continue;
         if (n <= 0)
-            return vt_error_set(err, VT_ERR_IO, "cannot write '%s': %s", f->final_path,
+            return vt_error_set(err, VTS_ERR_IO, "cannot write '%s': %s", f->final_path,
                                 n < 0 ? strerror(errno) : "no space written");
         p += n;
         len -= (size_t)n;
@@ -174,18 +175,18 @@ static void sync_directory_of(const char *path)
     }
 }
 
-int vt_atomic_file_commit(struct vt_atomic_file *f, struct vt_error *err)
+int vt_atomic_file_commit(struct vt_atomic_file *f, struct vts_error *err)
 {
     if (f->fd < 0 || f->temp_path[0] == '\0')
-        return vt_error_set(err, VT_ERR_ARG, "'%s' is not open for writing", f->final_path);
+        return vt_error_set(err, VTS_ERR_ARG, "'%s' is not open for writing", f->final_path);
     int rc = 0;
     if (fsync(f->fd) != 0)
-        rc = vt_error_set(err, VT_ERR_IO, "cannot flush '%s': %s", f->final_path, strerror(errno));
+        rc = vt_error_set(err, VTS_ERR_IO, "cannot flush '%s': %s", f->final_path, strerror(errno));
     if (close(f->fd) != 0 && rc == 0)
-        rc = vt_error_set(err, VT_ERR_IO, "cannot close '%s': %s", f->final_path, strerror(errno));
+        rc = vt_error_set(err, VTS_ERR_IO, "cannot close '%s': %s", f->final_path, strerror(errno));
     f->fd = -1;
     if (rc == 0 && rename(f->temp_path, f->final_path) != 0)
-        rc = vt_error_set(err, VT_ERR_IO, "cannot rename onto '%s': %s", f->final_path,
+        rc = vt_error_set(err, VTS_ERR_IO, "cannot rename onto '%s': %s", f->final_path,
                           strerror(errno));
     temp_unregister(f->temp_path);
     if (rc != 0) {

@@ -18,9 +18,9 @@ struct vt_image {
 };
 
 /* Allocates a zeroed width x height image with a tight stride. Checks the byte count for overflow
- * (VT_ERR_LIMIT). Free with vt_image_release(). */
+ * (VTS_ERR_LIMIT). Free with vt_image_release(). */
 int vt_image_alloc(struct vt_image *img, uint32_t width, uint32_t height, uint32_t channels,
-                   uint32_t sample, struct vt_error *err);
+                   uint32_t sample, struct vts_error *err);
 
 /* Frees pixels allocated by vt_image_alloc() and zeroes the struct. Accepts NULL. */
 void vt_image_release(struct vt_image *img);

@@ -1,4 +1,5 @@
 #include "vt_pool.h"
+#include "vt_error.h"
 
 #include <errno.h>
 #include <pthread.h>
@@ -18,7 +19,7 @@ struct pool {
     bool stop;
     int status; /* of the failed job with the lowest number */
     uint64_t failed_job;
-    struct vt_error error;
+    struct vts_error error;
 };
 
 struct worker {
@@ -26,7 +27,7 @@ struct worker {
     unsigned index;
 };
 
-static void record_failure(struct pool *p, uint64_t job, int status, const struct vt_error *err)
+static void record_failure(struct pool *p, uint64_t job, int status, const struct vts_error *err)
 {
     if (p->status == 0 || job < p->failed_job) {
         p->status = status;
@@ -48,7 +49,7 @@ static void *worker_main(void *arg)
         pthread_mutex_unlock(&p->lock);
         if (!have)
             break;
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         int rc = p->fns->do_job(p->ctx, w->index, job, &err);
         if (rc < 0) {
             pthread_mutex_lock(&p->lock);
@@ -80,8 +81,8 @@ static void wait_with_progress(struct pool *p)
             int cancel = p->fns->on_progress(p->ctx);
             pthread_mutex_lock(&p->lock);
             if (cancel && p->status == 0) {
-                p->status = VT_ERR_CANCELLED;
-                vt_error_set(&p->error, VT_ERR_CANCELLED, "cancelled");
+                p->status = VTS_ERR_CANCELLED;
+                vt_error_set(&p->error, VTS_ERR_CANCELLED, "cancelled");
                 p->stop = true;
             }
         }
@@ -89,10 +90,10 @@ static void wait_with_progress(struct pool *p)
     pthread_mutex_unlock(&p->lock);
 }
 
-int vt_pool_run(unsigned threads, const struct vt_pool_fns *fns, void *ctx, struct vt_error *err)
+int vt_pool_run(unsigned threads, const struct vt_pool_fns *fns, void *ctx, struct vts_error *err)
 {
     if (threads < 1 || threads > 256)
-        return vt_error_set(err, VT_ERR_ARG, "thread count %u is outside 1..256", threads);
+        return vt_error_set(err, VTS_ERR_ARG, "thread count %u is outside 1..256", threads);
     struct pool p = {.fns = fns, .ctx = ctx};
     pthread_mutex_init(&p.lock, NULL);
     pthread_cond_init(&p.done_cond, NULL);
@@ -100,7 +101,7 @@ int vt_pool_run(unsigned threads, const struct vt_pool_fns *fns, void *ctx, stru
     struct worker *workers = calloc(threads, sizeof *workers);
     int rc = 0;
     if (!tids || !workers) {
-        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory starting %u threads", threads);
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory starting %u threads", threads);
         goto out;
     }
     unsigned started = 0;
@@ -114,7 +115,7 @@ int vt_pool_run(unsigned threads, const struct vt_pool_fns *fns, void *ctx, stru
             p.running--;
             pthread_mutex_unlock(&p.lock);
             if (started == 0)
-                rc = vt_error_set(err, VT_ERR_NOMEM, "cannot start a worker thread");
+                rc = vt_error_set(err, VTS_ERR_NOMEM, "cannot start a worker thread");
             break; /* run with the workers that did start */
         }
     }
@@ -122,7 +123,7 @@ int vt_pool_run(unsigned threads, const struct vt_pool_fns *fns, void *ctx, stru
     for (unsigned i = 0; i < started; i++)
         pthread_join(tids[i], NULL);
     if (fns->on_progress && rc == 0 && p.status == 0 && fns->on_progress(ctx))
-        p.status = vt_error_set(&p.error, VT_ERR_CANCELLED, "cancelled");
+        p.status = vt_error_set(&p.error, VTS_ERR_CANCELLED, "cancelled");
     if (rc == 0 && p.status != 0) {
         rc = p.status;
         if (err)

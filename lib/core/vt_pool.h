@@ -15,16 +15,16 @@ struct vt_pool_fns {
     bool (*next_job)(void *ctx, uint64_t *job);
     /* Runs one job on worker 0..threads-1. A negative return (with err filled) stops the pool:
      * no further job starts. */
-    int (*do_job)(void *ctx, unsigned worker, uint64_t job, struct vt_error *err);
+    int (*do_job)(void *ctx, unsigned worker, uint64_t job, struct vts_error *err);
     /* Optional. Called on the calling thread while workers run, and once at the end. A non-zero
-     * return cancels the run (VT_ERR_CANCELLED). */
+     * return cancels the run (VTS_ERR_CANCELLED). */
     int (*on_progress)(void *ctx);
 };
 
 /* Runs jobs on `threads` workers (1..256) until next_job says none are left or a job fails.
  * Returns 0, the status of the failed job with the lowest job number (its message in err), or
- * VT_ERR_CANCELLED. */
-int vt_pool_run(unsigned threads, const struct vt_pool_fns *fns, void *ctx, struct vt_error *err);
+ * VTS_ERR_CANCELLED. */
+int vt_pool_run(unsigned threads, const struct vt_pool_fns *fns, void *ctx, struct vts_error *err);
 
 /* Number of online processors (at least 1). */
 unsigned vt_pool_cpu_count(void);

@@ -1,20 +1,21 @@
 #include "vt_source.h"
+#include "vt_error.h"
 
 #include <string.h>
 
 #define SCAN_ROWS 64
 
 int vt_source_read(struct vt_source *src, uint32_t x, uint32_t y, struct vt_image *dst,
-                   struct vt_error *err)
+                   struct vts_error *err)
 {
     const struct vt_source_info *in = &src->info;
     if (dst->channels != in->channels || dst->sample != in->sample)
-        return vt_error_set(err, VT_ERR_ARG,
+        return vt_error_set(err, VTS_ERR_ARG,
                             "'%s': region buffer has %u channels of sample %u, source has %u of %u",
                             src->name, dst->channels, dst->sample, in->channels, in->sample);
     if (x >= in->width || y >= in->height || dst->width > in->width - x ||
         dst->height > in->height - y)
-        return vt_error_set(err, VT_ERR_RANGE,
+        return vt_error_set(err, VTS_ERR_RANGE,
                             "'%s': region %ux%u at %u,%u is outside the %ux%u image", src->name,
                             dst->width, dst->height, x, y, in->width, in->height);
     return src->ops->read_region(src->ctx, x, y, dst, err);
@@ -62,7 +63,7 @@ static bool band_opaque(const struct vt_image *b)
     return true;
 }
 
-int vt_source_alpha_opaque(struct vt_source *src, bool *opaque, struct vt_error *err)
+int vt_source_alpha_opaque(struct vt_source *src, bool *opaque, struct vts_error *err)
 {
     *opaque = true;
     if (!src->info.has_alpha)

@@ -27,7 +27,7 @@ struct vt_source_ops {
      * equal the source's (the caller allocates it). The region lies inside the image. Called by
      * one thread at a time. Returns 0 or a negative status with a message naming the file. */
     int (*read_region)(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,
-                       struct vt_error *err);
+                       struct vts_error *err);
     void (*close)(void *ctx); /* frees ctx */
 };
 
@@ -38,14 +38,14 @@ struct vt_source {
     char name[256]; /* for messages: the file name */
 };
 
-/* Reads a region after checking it lies inside the image (VT_ERR_RANGE otherwise) and that dst
- * has the source's channels and sample (VT_ERR_ARG). */
+/* Reads a region after checking it lies inside the image (VTS_ERR_RANGE otherwise) and that dst
+ * has the source's channels and sample (VTS_ERR_ARG). */
 int vt_source_read(struct vt_source *src, uint32_t x, uint32_t y, struct vt_image *dst,
-                   struct vt_error *err);
+                   struct vts_error *err);
 
 /* Reads the whole image top-down in bands and sets *opaque to whether every alpha sample is at
  * its maximum (1.0 for floats). Sources without alpha are opaque. */
-int vt_source_alpha_opaque(struct vt_source *src, bool *opaque, struct vt_error *err);
+int vt_source_alpha_opaque(struct vt_source *src, bool *opaque, struct vts_error *err);
 
 /* Closes the source (ops->close) and zeroes it. Accepts NULL and an already closed source. */
 void vt_source_close(struct vt_source *src);

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "vt_checked.h"
+#include "vt_error.h"
 #include "vts.h"
 
 /* ---- names ---- */
@@ -27,7 +28,7 @@ int vt_filter_parse(const char *name, enum vt_filter_kind *out)
             return 0;
         }
     }
-    return VT_ERR_ARG;
+    return VTS_ERR_ARG;
 }
 
 const char *vt_filter_name(enum vt_filter_kind kind)
@@ -661,29 +662,29 @@ size_t vt_filter_reduce_scratch(const struct vt_kernel *k, const struct vt_fregi
 static int check_reduce_args(const struct vt_kernel *k, const struct vt_edges *edges,
                              const struct vt_fregion *src, const struct vt_fregion *dst,
                              const struct axis *ax, const struct axis *ay, size_t scratch_floats,
-                             struct vt_error *err)
+                             struct vts_error *err)
 {
     if (src->channels != dst->channels || src->channels < 1 || src->channels > 4)
-        return vt_error_set(err, VT_ERR_ARG, "reduce: %u source channels, %u destination",
+        return vt_error_set(err, VTS_ERR_ARG, "reduce: %u source channels, %u destination",
                             src->channels, dst->channels);
     if (edges->level_w == 0 || edges->level_h == 0 || k->count < 1 || k->count > VT_KERNEL_MAX_TAPS)
-        return vt_error_set(err, VT_ERR_ARG, "reduce: empty level or bad kernel");
+        return vt_error_set(err, VTS_ERR_ARG, "reduce: empty level or bad kernel");
     if (!axis_covered(ax) || !axis_covered(ay))
         return vt_error_set(
-            err, VT_ERR_ARG,
+            err, VTS_ERR_ARG,
             "reduce: source %ux%u at (%lld,%lld) does not cover the %s taps of %ux%u at (%lld,%lld)",
             src->width, src->height, (long long)src->x0, (long long)src->y0,
             vt_filter_name(k->kind), dst->width, dst->height, (long long)dst->x0,
             (long long)dst->y0);
     if (scratch_floats < vt_filter_reduce_scratch(k, src, dst))
-        return vt_error_set(err, VT_ERR_ARG, "reduce: scratch of %zu floats is too small",
+        return vt_error_set(err, VTS_ERR_ARG, "reduce: scratch of %zu floats is too small",
                             scratch_floats);
     return 0;
 }
 
 int vt_filter_reduce(const struct vt_kernel *k, const struct vt_edges *edges,
                      const struct vt_fregion *src, struct vt_fregion *dst, float *scratch,
-                     size_t scratch_floats, struct vt_error *err)
+                     size_t scratch_floats, struct vts_error *err)
 {
     if (dst->width == 0 || dst->height == 0)
         return 0;

@@ -16,7 +16,7 @@ enum vt_filter_kind {
     VT_FILTER_KAISER = 3,   /* Kaiser-windowed sinc (alpha 4, width 3): sharp, less ringing */
 };
 
-/* Parses "box", "triangle", "lanczos3", "kaiser"; returns 0 or VT_ERR_ARG. */
+/* Parses "box", "triangle", "lanczos3", "kaiser"; returns 0 or VTS_ERR_ARG. */
 int vt_filter_parse(const char *name, enum vt_filter_kind *out);
 const char *vt_filter_name(enum vt_filter_kind kind);
 
@@ -75,13 +75,13 @@ struct vt_edges {
 /* Computes every texel of dst (a region of the coarser level) from src (a region of the finer
  * level) with kernel k: dst texel X reads finer texels 2X' + first ... where X' = X clamped to
  * [0, ceil(level_w / 2)) unless wrap_x (same for Y); each finer position is clamped to
- * [0, level_w) unless wrap. Every position read must lie inside src: otherwise VT_ERR_ARG and
+ * [0, level_w) unless wrap. Every position read must lie inside src: otherwise VTS_ERR_ARG and
  * dst is unspecified (a caller bug). Separable (horizontal then vertical); scratch must hold
  * scratch_floats >= vt_filter_reduce_scratch(k, src, dst) floats. Deterministic: the same
  * inputs give the same bits whatever the region split. */
 int vt_filter_reduce(const struct vt_kernel *k, const struct vt_edges *edges,
                      const struct vt_fregion *src, struct vt_fregion *dst, float *scratch,
-                     size_t scratch_floats, struct vt_error *err);
+                     size_t scratch_floats, struct vts_error *err);
 size_t vt_filter_reduce_scratch(const struct vt_kernel *k, const struct vt_fregion *src,
                                 const struct vt_fregion *dst);
 

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "vt_checked.h"
+#include "vt_error.h"
 #include "vts.h"
 
 void vt_layout_limits_default(struct vt_layout_limits *limits)
@@ -74,7 +75,7 @@ static void sort_names(struct vt_layout_name *idx, struct vt_layout_name *tmp, s
 
 /* Checks one entry against the atlas; the message names the entry. */
 static int check_entry(const struct vt_layout *l, uint32_t i, const char *name,
-                       struct vt_error *err)
+                       struct vts_error *err)
 {
     const struct vt_layout_entry *e = &l->entries[i];
     const char *what = NULL;
@@ -102,21 +103,21 @@ static int check_entry(const struct vt_layout *l, uint32_t i, const char *name,
     else if (!valid_scale(e->scale))
         what = "has a scale that is not a power of two in 2^-16..2^16";
     if (what)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': entry %u ('%s') %s", name, i,
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': entry %u ('%s') %s", name, i,
                             e->name ? e->name : "", what);
     for (uint32_t a = 0; a < e->alias_count; a++)
         if (!e->aliases[a] || !e->aliases[a][0])
-            return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': entry '%s' has an empty alias", name,
+            return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': entry '%s' has an empty alias", name,
                                 e->name);
     for (uint32_t k = 0; k < l->layer_count; k++) {
         const struct vt_layout_texture *t = &e->textures[k];
         if (t->path && (!t->path[0] || t->width == 0 || t->height == 0))
-            return vt_error_set(err, VT_ERR_BAD_INPUT,
+            return vt_error_set(err, VTS_ERR_BAD_INPUT,
                                 "'%s': entry '%s' layer '%s': texture without a path or size", name,
                                 e->name, l->layers[k].name);
         for (int c = 0; c < 4 && !t->path; c++)
             if (!(t->fill[c] >= 0 && t->fill[c] <= 1))
-                return vt_error_set(err, VT_ERR_BAD_INPUT,
+                return vt_error_set(err, VTS_ERR_BAD_INPUT,
                                     "'%s': entry '%s' layer '%s': fill outside 0..1", name, e->name,
                                     l->layers[k].name);
     }
@@ -238,19 +239,19 @@ static void sort_entries(uint32_t *idx, uint32_t n, const struct vt_layout_entry
     pthread_mutex_unlock(&lock);
 }
 
-static int check_overlaps(const struct vt_layout *l, const char *name, struct vt_error *err)
+static int check_overlaps(const struct vt_layout *l, const char *name, struct vts_error *err)
 {
     uint32_t n = l->entry_count;
     if (n < 2)
         return 0;
-    int rc = VT_ERR_NOMEM;
+    int rc = VTS_ERR_NOMEM;
     struct treap t = {.e = l->entries};
     uint32_t *start = malloc((size_t)n * sizeof *start), *end = malloc((size_t)n * sizeof *end);
     t.left = calloc((size_t)n + 1, sizeof *t.left);
     t.right = calloc((size_t)n + 1, sizeof *t.right);
     t.prio = malloc(((size_t)n + 1) * sizeof *t.prio);
     if (!start || !end || !t.left || !t.right || !t.prio) {
-        vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory checking %u cells", name, n);
+        vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory checking %u cells", name, n);
         goto out;
     }
     uint32_t seed = 2463534242u;
@@ -272,7 +273,7 @@ static int check_overlaps(const struct vt_layout *l, const char *name, struct vt
             t.root = treap_remove(&t, t.root, end[k] + 1);
         uint32_t below = treap_below(&t, ey + e->cell_height);
         if (below && (uint64_t)key(&t, below) + l->entries[below - 1].cell_height > ey) {
-            rc = vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': the cells of '%s' and '%s' overlap",
+            rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': the cells of '%s' and '%s' overlap",
                               name, l->entries[below - 1].name, e->name);
             goto out;
         }
@@ -288,7 +289,7 @@ out:
 }
 
 /* Builds l->by_name from every entry name and alias and checks that they are unique. */
-static int index_names(struct vt_layout *l, const char *name, struct vt_error *err)
+static int index_names(struct vt_layout *l, const char *name, struct vts_error *err)
 {
     free(l->by_name);
     l->by_name = NULL;
@@ -296,15 +297,15 @@ static int index_names(struct vt_layout *l, const char *name, struct vt_error *e
     size_t n = l->entry_count;
     for (uint32_t i = 0; i < l->entry_count; i++)
         if (!vt_size_add(n, l->entries[i].alias_count, &n))
-            return vt_error_set(err, VT_ERR_LIMIT, "'%s': too many names", name);
+            return vt_error_set(err, VTS_ERR_LIMIT, "'%s': too many names", name);
     size_t bytes;
     if (!vt_size_mul(n + 1, sizeof(struct vt_layout_name), &bytes))
-        return vt_error_set(err, VT_ERR_LIMIT, "'%s': too many names", name);
+        return vt_error_set(err, VTS_ERR_LIMIT, "'%s': too many names", name);
     struct vt_layout_name *idx = malloc(bytes), *tmp = malloc(bytes);
     if (!idx || !tmp) {
         free(idx);
         free(tmp);
-        return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory", name);
+        return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory", name);
     }
     size_t k = 0;
     for (uint32_t i = 0; i < l->entry_count; i++)
@@ -318,10 +319,10 @@ static int index_names(struct vt_layout *l, const char *name, struct vt_error *e
             continue;
         int rc;
         if (!p->alias && !q->alias)
-            rc = vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': entry '%s' given twice", name,
+            rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': entry '%s' given twice", name,
                               name_of(l, q));
         else
-            rc = vt_error_set(err, VT_ERR_BAD_INPUT,
+            rc = vt_error_set(err, VTS_ERR_BAD_INPUT,
                               "'%s': name '%s' given twice (entries '%s' and '%s')", name,
                               name_of(l, q), l->entries[p->entry].name, l->entries[q->entry].name);
         free(idx);
@@ -332,28 +333,28 @@ static int index_names(struct vt_layout *l, const char *name, struct vt_error *e
     return 0;
 }
 
-int vt_layout_check(struct vt_layout *l, const char *name, struct vt_error *err)
+int vt_layout_check(struct vt_layout *l, const char *name, struct vts_error *err)
 {
     if (l->width == 0 || l->height == 0)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': the atlas has an empty size", name);
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': the atlas has an empty size", name);
     if (!is_pow2(l->tile_content) || l->tile_content < 8 || l->tile_content > 16384 ||
         l->border > 64)
         return vt_error_set(
-            err, VT_ERR_BAD_INPUT,
+            err, VTS_ERR_BAD_INPUT,
             "'%s': tile content %u / border %u: content must be a power of two 8..16384 and border 0..64",
             name, l->tile_content, l->border);
     if (l->layer_count == 0 || l->layer_count > VT_LAYOUT_MAX_LAYERS)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': %u layers (1..%d)", name, l->layer_count,
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': %u layers (1..%d)", name, l->layer_count,
                             VT_LAYOUT_MAX_LAYERS);
     for (uint32_t i = 0; i < l->layer_count; i++) {
         const struct vt_layout_layer *a = &l->layers[i];
         if (!a->name || !valid_layer_name(a->name) || !a->map || !a->map[0] ||
             a->colour < VTS_COLOUR_SRGB || a->colour > VTS_COLOUR_DATA)
-            return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': layer %u: bad name, map or colour",
+            return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': layer %u: bad name, map or colour",
                                 name, i);
         for (uint32_t j = 0; j < i; j++)
             if (strcmp(a->name, l->layers[j].name) == 0)
-                return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': layer '%s' given twice", name,
+                return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': layer '%s' given twice", name,
                                     a->name);
     }
     for (uint32_t i = 0; i < l->entry_count; i++) {
@@ -365,7 +366,7 @@ int vt_layout_check(struct vt_layout *l, const char *name, struct vt_error *err)
     return rc ? rc : check_overlaps(l, name, err);
 }
 
-int vt_layout_index(struct vt_layout *layout, struct vt_error *err)
+int vt_layout_index(struct vt_layout *layout, struct vts_error *err)
 {
     return vt_layout_check(layout, "layout", err);
 }
@@ -412,7 +413,7 @@ bool vt_layout_uv_covered(const struct vt_layout_entry *e, double u, double v)
 }
 
 int vt_layout_alloc(struct vt_layout *layout, uint32_t layer_count, uint32_t entry_count,
-                    struct vt_error *err)
+                    struct vts_error *err)
 {
     memset(layout, 0, sizeof *layout);
     layout->layers = calloc(layer_count ? layer_count : 1, sizeof *layout->layers);
@@ -433,7 +434,8 @@ int vt_layout_alloc(struct vt_layout *layout, uint32_t layer_count, uint32_t ent
     return 0;
 nomem:
     vt_layout_release(layout);
-    return vt_error_set(err, VT_ERR_NOMEM, "out of memory for a layout of %u entries", entry_count);
+    return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for a layout of %u entries",
+                        entry_count);
 }
 
 void vt_layout_release(struct vt_layout *layout)

@@ -100,7 +100,7 @@ struct vt_layout {
     size_t name_count;              /* entries plus aliases */
 };
 
-/* Limits against hostile files; exceeding one fails with VT_ERR_LIMIT and a message. */
+/* Limits against hostile files; exceeding one fails with VTS_ERR_LIMIT and a message. */
 struct vt_layout_limits {
     uint64_t max_file_bytes; /* size of atlas.json (default 1 GiB) */
     uint32_t max_entries;    /* textures/materials: entries, and entries plus aliases (default
@@ -113,29 +113,29 @@ void vt_layout_limits_default(struct vt_layout_limits *limits);
  * failure). limits may be NULL (defaults). Checks: format and version, every field's type and
  * range, layer names unique, entry names and aliases all unique and non-empty, every copy inside
  * its cell, every cell inside the atlas, alignment a power of two dividing x/y/cell sizes, no two
- * cells overlapping, texture sizes non-zero. Returns 0, VT_ERR_IO, VT_ERR_BAD_INPUT ("'atlas.json':
- * entries[3].x: ..."), VT_ERR_LIMIT or VT_ERR_NOMEM. */
+ * cells overlapping, texture sizes non-zero. Returns 0, VTS_ERR_IO, VTS_ERR_BAD_INPUT
+ * ("'atlas.json': entries[3].x: ..."), VTS_ERR_LIMIT or VTS_ERR_NOMEM. */
 int vt_layout_read(const char *path, const struct vt_layout_limits *limits,
-                   struct vt_layout *layout, struct vt_error *err);
+                   struct vt_layout *layout, struct vts_error *err);
 
 /* As vt_layout_read() on size bytes in memory; name is used in messages and as the base of
  * relative texture paths. */
 int vt_layout_parse_memory(const void *data, size_t size, const char *name,
                            const struct vt_layout_limits *limits, struct vt_layout *layout,
-                           struct vt_error *err);
+                           struct vts_error *err);
 
 /* Checks a layout built in memory (the same checks as the reader) and builds its name index.
  * Call before vt_layout_write() or vt_layout_find() on a layout that was not read. */
-int vt_layout_index(struct vt_layout *layout, struct vt_error *err);
+int vt_layout_index(struct vt_layout *layout, struct vts_error *err);
 
 /* As vt_layout_index(), with messages naming name ("'atlas.json': the cells of 'a' and 'b'
  * overlap"). */
-int vt_layout_check(struct vt_layout *layout, const char *name, struct vt_error *err);
+int vt_layout_check(struct vt_layout *layout, const char *name, struct vts_error *err);
 
 /* Writes the layout as JSON to path atomically (temporary file + rename). Texture paths are
  * written as they are in texture.path (make them relative to the output's directory first if
  * the layout should move with it). Calls vt_layout_index() first. */
-int vt_layout_write(const char *path, struct vt_layout *layout, struct vt_error *err);
+int vt_layout_write(const char *path, struct vt_layout *layout, struct vts_error *err);
 
 /* Frees everything *layout holds (strings, arrays) and zeroes it. Accepts NULL. */
 void vt_layout_release(struct vt_layout *layout);
@@ -167,11 +167,11 @@ void vt_layout_map_uv(const struct vt_layout *layout, const struct vt_layout_ent
 bool vt_layout_uv_covered(const struct vt_layout_entry *e, double u, double v);
 
 /* Allocation helpers for writers (vt-atlas, tests): zeroed arrays of count layers/entries, and
- * per entry layer_count textures. Return 0 or VT_ERR_NOMEM. Strings are strdup()ed by the
+ * per entry layer_count textures. Return 0 or VTS_ERR_NOMEM. Strings are strdup()ed by the
  * caller and freed by vt_layout_release(), as are aliases (a malloc()ed array of strdup()ed
  * strings). */
 int vt_layout_alloc(struct vt_layout *layout, uint32_t layer_count, uint32_t entry_count,
-                    struct vt_error *err);
+                    struct vts_error *err);
 
 #ifdef __cplusplus
 }

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "vt_atomic_file.h"
+#include "vt_error.h"
 #include "vt_layout.h"
 #include "vt_obj.h"
 #include "vts.h"
@@ -17,12 +18,12 @@ static const char *const colour_names[] = {"srgb", "linear", "normal", "data"};
 /* Parsing context: the file name and the JSON path of the value being read, for messages. */
 struct ctx {
     const char *name;
-    struct vt_error *err;
+    struct vts_error *err;
 };
 
 static int bad(struct ctx *c, const char *where, const char *what)
 {
-    return vt_error_set(c->err, VT_ERR_BAD_INPUT, "'%s': %s: %s", c->name, where, what);
+    return vt_error_set(c->err, VTS_ERR_BAD_INPUT, "'%s': %s: %s", c->name, where, what);
 }
 
 static int get_uint(struct ctx *c, json_t *obj, const char *key, const char *where, uint64_t min,
@@ -69,7 +70,7 @@ static int get_string(struct ctx *c, json_t *obj, const char *key, const char *w
     if (!json_is_string(v) || strlen(json_string_value(v)) != json_string_length(v))
         return bad(c, path, "expected a string without NUL");
     *out = strdup(json_string_value(v));
-    return *out ? 0 : vt_error_set(c->err, VT_ERR_NOMEM, "'%s': out of memory", c->name);
+    return *out ? 0 : vt_error_set(c->err, VTS_ERR_NOMEM, "'%s': out of memory", c->name);
 }
 
 /* A pair [a, b] of integers in min..max. */
@@ -152,7 +153,7 @@ static int read_texture(struct ctx *c, json_t *o, const char *where, struct vt_l
     t->width = (uint32_t)w;
     t->height = (uint32_t)h;
     t->resolved = vt_obj_resolve_path(c->name, t->path);
-    return t->resolved ? 0 : vt_error_set(c->err, VT_ERR_NOMEM, "'%s': out of memory", c->name);
+    return t->resolved ? 0 : vt_error_set(c->err, VTS_ERR_NOMEM, "'%s': out of memory", c->name);
 }
 
 /* "aliases": optional array of non-empty strings (uniqueness is checked with the names). */
@@ -169,7 +170,7 @@ static int read_aliases(struct ctx *c, json_t *arr, const char *where, struct vt
         return 0;
     e->aliases = calloc(n, sizeof *e->aliases);
     if (!e->aliases)
-        return vt_error_set(c->err, VT_ERR_NOMEM, "'%s': out of memory", c->name);
+        return vt_error_set(c->err, VTS_ERR_NOMEM, "'%s': out of memory", c->name);
     for (size_t i = 0; i < n; i++) {
         json_t *v = json_array_get(arr, i);
         if (!json_is_string(v) || strlen(json_string_value(v)) != json_string_length(v) ||
@@ -177,7 +178,7 @@ static int read_aliases(struct ctx *c, json_t *arr, const char *where, struct vt
             return bad(c, path, "expected non-empty strings without NUL");
         e->aliases[i] = strdup(json_string_value(v));
         if (!e->aliases[i])
-            return vt_error_set(c->err, VT_ERR_NOMEM, "'%s': out of memory", c->name);
+            return vt_error_set(c->err, VTS_ERR_NOMEM, "'%s': out of memory", c->name);
         e->alias_count = (uint32_t)(i + 1);
     }
     return 0;
@@ -260,14 +261,14 @@ static int read_root(struct ctx *c, json_t *root, const struct vt_layout_limits 
     if (rc)
         return rc;
     if (version != VT_LAYOUT_VERSION)
-        return vt_error_set(c->err, VT_ERR_BAD_INPUT,
+        return vt_error_set(c->err, VTS_ERR_BAD_INPUT,
                             "'%s': layout version %llu; this build reads version %d", c->name,
                             (unsigned long long)version, VT_LAYOUT_VERSION);
     json_t *layers = json_object_get(root, "layers"), *entries = json_object_get(root, "entries");
     if (!json_is_array(entries))
         return bad(c, "entries", "expected an array");
     if (json_array_size(entries) > lim->max_entries)
-        return vt_error_set(c->err, VT_ERR_LIMIT, "'%s': %zu entries, more than the limit %u",
+        return vt_error_set(c->err, VTS_ERR_LIMIT, "'%s': %zu entries, more than the limit %u",
                             c->name, json_array_size(entries), lim->max_entries);
     size_t names = json_array_size(entries);
     for (size_t i = 0; i < json_array_size(entries); i++) {
@@ -276,7 +277,7 @@ static int read_root(struct ctx *c, json_t *root, const struct vt_layout_limits 
     }
     if (names > lim->max_entries)
         return vt_error_set(
-            c->err, VT_ERR_LIMIT,
+            c->err, VTS_ERR_LIMIT,
             "'%s': %zu material names (entries and aliases), more than the limit %u", c->name,
             names, lim->max_entries);
     size_t layer_count = json_is_array(layers) ? json_array_size(layers) : 0;
@@ -302,7 +303,7 @@ static int read_root(struct ctx *c, json_t *root, const struct vt_layout_limits 
 
 int vt_layout_parse_memory(const void *data, size_t size, const char *name,
                            const struct vt_layout_limits *limits, struct vt_layout *layout,
-                           struct vt_error *err)
+                           struct vts_error *err)
 {
     struct vt_layout_limits lim;
     if (limits)
@@ -311,12 +312,12 @@ int vt_layout_parse_memory(const void *data, size_t size, const char *name,
         vt_layout_limits_default(&lim);
     memset(layout, 0, sizeof *layout);
     if (size > lim.max_file_bytes)
-        return vt_error_set(err, VT_ERR_LIMIT, "'%s': %zu bytes, more than the limit %llu", name,
+        return vt_error_set(err, VTS_ERR_LIMIT, "'%s': %zu bytes, more than the limit %llu", name,
                             size, (unsigned long long)lim.max_file_bytes);
     json_error_t jerr;
     json_t *root = json_loadb(data, size, JSON_REJECT_DUPLICATES, &jerr);
     if (!root)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%d: %s", name, jerr.line, jerr.text);
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%d: %s", name, jerr.line, jerr.text);
     struct ctx c = {.name = name, .err = err};
     int rc = read_root(&c, root, &lim, layout);
     json_decref(root);
@@ -324,7 +325,7 @@ int vt_layout_parse_memory(const void *data, size_t size, const char *name,
 }
 
 int vt_layout_read(const char *path, const struct vt_layout_limits *limits,
-                   struct vt_layout *layout, struct vt_error *err)
+                   struct vt_layout *layout, struct vts_error *err)
 {
     struct vt_layout_limits lim;
     if (limits)
@@ -334,7 +335,7 @@ int vt_layout_read(const char *path, const struct vt_layout_limits *limits,
     memset(layout, 0, sizeof *layout);
     FILE *f = fopen(path, "rb");
     if (!f)
-        return vt_error_set(err, VT_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
+        return vt_error_set(err, VTS_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
     char *buf = NULL;
     size_t len = 0, cap = 0;
     int rc = 0;
@@ -344,9 +345,9 @@ int vt_layout_read(const char *path, const struct vt_layout_limits *limits,
             char *nbuf = len > lim.max_file_bytes ? NULL : realloc(buf, ncap);
             if (!nbuf) {
                 rc = len > lim.max_file_bytes
-                         ? vt_error_set(err, VT_ERR_LIMIT, "'%s': more than %llu bytes", path,
+                         ? vt_error_set(err, VTS_ERR_LIMIT, "'%s': more than %llu bytes", path,
                                         (unsigned long long)lim.max_file_bytes)
-                         : vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory", path);
+                         : vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory", path);
                 break;
             }
             buf = nbuf, cap = ncap;
@@ -355,7 +356,7 @@ int vt_layout_read(const char *path, const struct vt_layout_limits *limits,
         len += n;
         if (n == 0) {
             if (ferror(f))
-                rc = vt_error_set(err, VT_ERR_IO, "cannot read '%s': %s", path, strerror(errno));
+                rc = vt_error_set(err, VTS_ERR_IO, "cannot read '%s': %s", path, strerror(errno));
             break;
         }
     }
@@ -452,7 +453,7 @@ fail:
     return NULL;
 }
 
-int vt_layout_write(const char *path, struct vt_layout *layout, struct vt_error *err)
+int vt_layout_write(const char *path, struct vt_layout *layout, struct vts_error *err)
 {
     int rc = vt_layout_check(layout, path, err);
     if (rc)
@@ -460,14 +461,14 @@ int vt_layout_write(const char *path, struct vt_layout *layout, struct vt_error 
     for (uint32_t i = 0; i < layout->layer_count; i++)
         if (layout->layers[i].colour < VTS_COLOUR_SRGB ||
             layout->layers[i].colour > VTS_COLOUR_DATA)
-            return vt_error_set(err, VT_ERR_ARG, "'%s': layer %u has no colour", path, i);
+            return vt_error_set(err, VTS_ERR_ARG, "'%s': layer %u has no colour", path, i);
     json_t *root = layout_json(layout);
     char *text =
         root ? json_dumps(root, JSON_INDENT(1) | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(17))
              : NULL;
     json_decref(root);
     if (!text)
-        return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory writing the layout", path);
+        return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory writing the layout", path);
     struct vt_atomic_file f;
     rc = vt_atomic_file_create(&f, path, "tmp", err);
     if (!rc) {

@@ -5,6 +5,7 @@
 #include <strings.h>
 
 #include "vt_checked.h"
+#include "vt_error.h"
 #include "vt_obj.h"
 #include "vt_text.h"
 
@@ -17,9 +18,9 @@ struct mtl_parse {
     size_t cap;
 };
 
-static int mtl_bad(struct mtl_parse *p, const char *what, const char *tok, struct vt_error *err)
+static int mtl_bad(struct mtl_parse *p, const char *what, const char *tok, struct vts_error *err)
 {
-    return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: %s '%s'", p->src->name,
+    return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: %s '%s'", p->src->name,
                         (unsigned long long)p->src->start_line, what, tok);
 }
 
@@ -39,18 +40,18 @@ static void map_release(struct vt_mtl_map *m)
     map_defaults(m);
 }
 
-static int mtl_newmtl(struct mtl_parse *p, char *cur, struct vt_error *err)
+static int mtl_newmtl(struct mtl_parse *p, char *cur, struct vts_error *err)
 {
     struct vt_mtl *mtl = p->mtl;
     if (mtl->material_count >= p->limits->max_materials)
-        return vt_error_set(err, VT_ERR_LIMIT, "'%s':%llu: more than %lu materials (the limit)",
+        return vt_error_set(err, VTS_ERR_LIMIT, "'%s':%llu: more than %lu materials (the limit)",
                             p->src->name, (unsigned long long)p->src->start_line,
                             (unsigned long)p->limits->max_materials);
     if (mtl->material_count == p->cap) {
         size_t cap = p->cap ? p->cap * 2 : 16, bytes;
         struct vt_mtl_material *m;
         if (!vt_size_mul(cap, sizeof *m, &bytes) || !(m = realloc(mtl->materials, bytes)))
-            return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory for materials",
+            return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory for materials",
                                 p->src->name);
         mtl->materials = m;
         p->cap = cap;
@@ -63,14 +64,14 @@ static int mtl_newmtl(struct mtl_parse *p, char *cur, struct vt_error *err)
     m->line = p->src->start_line;
     m->name = strdup(vt_text_rest(cur));
     if (!m->name)
-        return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory", p->src->name);
+        return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory", p->src->name);
     mtl->material_count++;
     return 0;
 }
 
 /* Kd/Ka/Ks r [g b] (one value means grey); "spectral" and "xyz" forms are counted as unknown. */
 static int mtl_colour(struct mtl_parse *p, struct vt_mtl_material *m, const char *kw, char *cur,
-                      struct vt_error *err)
+                      struct vts_error *err)
 {
     double rgb[3];
     const char *bad = NULL;
@@ -94,7 +95,7 @@ static int mtl_colour(struct mtl_parse *p, struct vt_mtl_material *m, const char
 
 /* d [-halo] f, Tr f, illum n. */
 static int mtl_scalar(struct mtl_parse *p, struct vt_mtl_material *m, const char *kw, char *cur,
-                      struct vt_error *err)
+                      struct vts_error *err)
 {
     char *tok = vt_text_token(&cur);
     if (tok && strcmp(kw, "d") == 0 && strcmp(tok, "-halo") == 0)
@@ -132,7 +133,7 @@ static int map_kind(const char *kw)
 /* Reads 1..max numbers of an option into out (unread ones keep their value). A token that is not a
  * number ends the list (it may be the file name). */
 static int map_numbers(struct mtl_parse *p, char **cur, const char *opt, double *out, int max,
-                       struct vt_error *err)
+                       struct vts_error *err)
 {
     int n = 0;
     while (n < max) {
@@ -150,7 +151,7 @@ static int map_numbers(struct mtl_parse *p, char **cur, const char *opt, double 
 }
 
 static int map_onoff(struct mtl_parse *p, char **cur, const char *opt, bool *out,
-                     struct vt_error *err)
+                     struct vts_error *err)
 {
     char *tok = vt_text_token(cur);
     if (tok && strcmp(tok, "on") == 0)
@@ -164,7 +165,7 @@ static int map_onoff(struct mtl_parse *p, char **cur, const char *opt, bool *out
 
 /* One option starting at tok; fills m and sets its bit. */
 static int map_option(struct mtl_parse *p, struct vt_mtl_map *m, const char *opt, char **cur,
-                      struct vt_error *err)
+                      struct vts_error *err)
 {
     static const struct {
         const char *name;
@@ -217,7 +218,7 @@ static int map_option(struct mtl_parse *p, struct vt_mtl_map *m, const char *opt
 
 /* map_* [options] file name (the rest of the line, spaces allowed). */
 static int mtl_map(struct mtl_parse *p, struct vt_mtl_material *m, int kind, char *cur,
-                   struct vt_error *err)
+                   struct vts_error *err)
 {
     struct vt_mtl_map map;
     map_defaults(&map);
@@ -233,20 +234,20 @@ static int mtl_map(struct mtl_parse *p, struct vt_mtl_material *m, int kind, cha
     }
     char *rest = vt_text_rest(cur);
     if (!*rest)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: map statement without a file name",
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: map statement without a file name",
                             p->src->name, (unsigned long long)p->src->start_line);
     map.file = vt_obj_resolve_path("", rest);
     map.path = vt_obj_resolve_path(p->src->name, rest);
     if (!map.file || !map.path) {
         map_release(&map);
-        return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory", p->src->name);
+        return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory", p->src->name);
     }
     map_release(&m->maps[kind]); /* a repeated statement replaces the earlier one */
     m->maps[kind] = map;
     return 0;
 }
 
-static int mtl_statement(struct mtl_parse *p, struct vt_error *err)
+static int mtl_statement(struct mtl_parse *p, struct vts_error *err)
 {
     char *cur = p->src->line;
     char *kw = vt_text_token(&cur);
@@ -272,7 +273,7 @@ static int mtl_statement(struct mtl_parse *p, struct vt_error *err)
 }
 
 static int mtl_parse(struct vt_text_src *src, const struct vt_obj_limits *limits,
-                     struct vt_mtl *mtl, struct vt_error *err)
+                     struct vt_mtl *mtl, struct vts_error *err)
 {
     struct mtl_parse p = {mtl, src, limits, 0};
     int rc;
@@ -285,7 +286,7 @@ static int mtl_parse(struct vt_text_src *src, const struct vt_obj_limits *limits
 }
 
 int vt_mtl_read(const char *path, const struct vt_obj_limits *limits, struct vt_mtl *mtl,
-                struct vt_error *err)
+                struct vts_error *err)
 {
     struct vt_obj_limits defaults;
     if (!limits) {
@@ -304,7 +305,7 @@ int vt_mtl_read(const char *path, const struct vt_obj_limits *limits, struct vt_
 
 int vt_mtl_parse_memory(const void *data, size_t size, const char *name,
                         const struct vt_obj_limits *limits, struct vt_mtl *mtl,
-                        struct vt_error *err)
+                        struct vts_error *err)
 {
     struct vt_obj_limits defaults;
     if (!limits) {

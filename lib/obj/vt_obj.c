@@ -11,6 +11,7 @@
 #include <strings.h>
 
 #include "vt_checked.h"
+#include "vt_error.h"
 #include "vt_text.h"
 
 void vt_obj_limits_default(struct vt_obj_limits *limits)
@@ -37,11 +38,11 @@ struct vt_obj {
     struct vt_obj_stats stats;
 };
 
-struct vt_obj *vt_obj_create(const struct vt_obj_limits *limits, struct vt_error *err)
+struct vt_obj *vt_obj_create(const struct vt_obj_limits *limits, struct vts_error *err)
 {
     struct vt_obj *obj = calloc(1, sizeof *obj);
     if (!obj) {
-        vt_error_set(err, VT_ERR_NOMEM, "cannot create an OBJ reader: out of memory");
+        vt_error_set(err, VTS_ERR_NOMEM, "cannot create an OBJ reader: out of memory");
         return NULL;
     }
     if (limits)
@@ -130,10 +131,10 @@ static uint64_t cur_line(const struct obj_parse *p)
 
 /* Appends one entry to a, growing it (and vt_components when comps is not NULL). */
 static int vec_push(struct obj_parse *p, struct vec_array *a, unsigned char **comps,
-                    const double xyz[3], const char *what, struct vt_error *err)
+                    const double xyz[3], const char *what, struct vts_error *err)
 {
     if (a->count >= p->obj->limits.max_vertices)
-        return vt_error_set(err, VT_ERR_LIMIT, "'%s':%llu: more than %lu %s (the limit)",
+        return vt_error_set(err, VTS_ERR_LIMIT, "'%s':%llu: more than %lu %s (the limit)",
                             p->src->name, (unsigned long long)cur_line(p),
                             (unsigned long)p->obj->limits.max_vertices, what);
     if (a->count == a->cap) {
@@ -142,16 +143,16 @@ static int vec_push(struct obj_parse *p, struct vec_array *a, unsigned char **co
             cap = p->obj->limits.max_vertices;
         size_t bytes;
         if (!vt_size_mul((size_t)cap, 3 * sizeof(double), &bytes))
-            return vt_error_set(err, VT_ERR_LIMIT, "'%s': too many %s", p->src->name, what);
+            return vt_error_set(err, VTS_ERR_LIMIT, "'%s': too many %s", p->src->name, what);
         double *grown = realloc(a->xyz, bytes);
         if (!grown)
-            return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory for %s", p->src->name,
+            return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory for %s", p->src->name,
                                 what);
         a->xyz = grown;
         if (comps) {
             unsigned char *c = realloc(*comps, (size_t)cap);
             if (!c)
-                return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory for %s", p->src->name,
+                return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory for %s", p->src->name,
                                     what);
             *comps = c;
         }
@@ -163,7 +164,7 @@ static int vec_push(struct obj_parse *p, struct vec_array *a, unsigned char **co
 }
 
 /* v x y z [w] [r g b]: keeps x y z. vt u [v [w]]. vn x y z. */
-static int obj_vertex(struct obj_parse *p, const char *kw, char *cur, struct vt_error *err)
+static int obj_vertex(struct obj_parse *p, const char *kw, char *cur, struct vts_error *err)
 {
     double vals[7] = {0};
     const char *bad = NULL;
@@ -178,10 +179,10 @@ static int obj_vertex(struct obj_parse *p, const char *kw, char *cur, struct vt_
     }
     int n = vt_text_numbers(&cur, vals, max, &bad);
     if (n < 0)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: bad number '%s' in '%s'",
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: bad number '%s' in '%s'",
                             p->src->name, (unsigned long long)cur_line(p), bad, kw);
     if (n < min || vt_text_token(&cur))
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: '%s' needs %d to %d numbers",
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: '%s' needs %d to %d numbers",
                             p->src->name, (unsigned long long)cur_line(p), kw, min, max);
     int rc = vec_push(p, a, comps, vals, what, err);
     if (rc == 0 && comps)
@@ -193,16 +194,16 @@ static const char *const index_names[3] = {"vertex", "texture", "normal"};
 
 /* Resolves one OBJ index (1-based, or negative counting back from the latest) into 0-based. */
 static int resolve_index(struct obj_parse *p, int kind, int64_t idx, uint32_t count,
-                         const char *tok, uint32_t *out, struct vt_error *err)
+                         const char *tok, uint32_t *out, struct vts_error *err)
 {
     static const char *const plural[3] = {"vertices", "texcoords", "normals"};
     if (idx == 0)
-        return vt_error_set(err, VT_ERR_BAD_INPUT,
+        return vt_error_set(err, VTS_ERR_BAD_INPUT,
                             "'%s':%llu: %s index 0 in '%s' (OBJ indices start at 1)", p->src->name,
                             (unsigned long long)cur_line(p), index_names[kind], tok);
     int64_t abs_idx = idx > 0 ? idx - 1 : (int64_t)count + idx;
     if (abs_idx < 0 || abs_idx >= (int64_t)count)
-        return vt_error_set(err, VT_ERR_BAD_INPUT,
+        return vt_error_set(err, VTS_ERR_BAD_INPUT,
                             "'%s':%llu: %s index %lld in '%s' out of range (%lu %s defined)",
                             p->src->name, (unsigned long long)cur_line(p), index_names[kind],
                             (long long)idx, tok, (unsigned long)count, plural[kind]);
@@ -212,7 +213,7 @@ static int resolve_index(struct obj_parse *p, int kind, int64_t idx, uint32_t co
 
 /* One corner token: v, v/vt, v//vn or v/vt/vn. */
 static int obj_corner(struct obj_parse *p, const char *tok, struct vt_obj_corner *c,
-                      struct vt_error *err)
+                      struct vts_error *err)
 {
     const struct vec_array *arrays[3] = {&p->obj->v, &p->obj->vt, &p->obj->vn};
     uint32_t *outs[3] = {&c->v, &c->vt, &c->vn};
@@ -225,7 +226,7 @@ static int obj_corner(struct obj_parse *p, const char *tok, struct vt_obj_corner
         if (e > s || kind == 0) {
             int64_t idx;
             if (!vt_text_index(s, e, &idx))
-                return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: bad %s index '%s'",
+                return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: bad %s index '%s'",
                                     p->src->name, (unsigned long long)cur_line(p),
                                     index_names[kind], tok);
             int rc = resolve_index(p, kind, idx, arrays[kind]->count, tok, outs[kind], err);
@@ -236,18 +237,18 @@ static int obj_corner(struct obj_parse *p, const char *tok, struct vt_obj_corner
             return 0;
         s = e + 1;
     }
-    return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: bad face corner '%s'", p->src->name,
+    return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: bad face corner '%s'", p->src->name,
                         (unsigned long long)cur_line(p), tok);
 }
 
 /* Turns a callback's non-zero return into the read's status, with a message if it left none. */
-static int callback_status(struct obj_parse *p, int rc, const char *what, struct vt_error *cb_err,
-                           struct vt_error *err)
+static int callback_status(struct obj_parse *p, int rc, const char *what, struct vts_error *cb_err,
+                           struct vts_error *err)
 {
     if (rc == 0)
         return 0;
-    int status = rc < 0 ? rc : VT_ERR_CANCELLED;
-    if (cb_err->status != VT_OK) {
+    int status = rc < 0 ? rc : VTS_ERR_CANCELLED;
+    if (cb_err->status != VTS_OK) {
         if (err)
             *err = *cb_err;
         return status;
@@ -256,7 +257,7 @@ static int callback_status(struct obj_parse *p, int rc, const char *what, struct
                         (unsigned long long)cur_line(p), what);
 }
 
-static int obj_face(struct obj_parse *p, char *cur, struct vt_error *err)
+static int obj_face(struct obj_parse *p, char *cur, struct vts_error *err)
 {
     struct vt_obj *obj = p->obj;
     uint32_t n = 0;
@@ -267,7 +268,7 @@ static int obj_face(struct obj_parse *p, char *cur, struct vt_error *err)
             size_t cap = obj->corner_cap ? obj->corner_cap * 2 : 16;
             struct vt_obj_corner *c = realloc(obj->corners, cap * sizeof *c);
             if (!c)
-                return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory for a face",
+                return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory for a face",
                                     p->src->name);
             obj->corners = c;
             obj->corner_cap = cap;
@@ -278,7 +279,7 @@ static int obj_face(struct obj_parse *p, char *cur, struct vt_error *err)
         n++;
     }
     if (n < 3)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: face with %lu corners (needs 3)",
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: face with %lu corners (needs 3)",
                             p->src->name, (unsigned long long)cur_line(p), (unsigned long)n);
     obj->stats.faces++;
     if (!p->cb || !p->cb->face)
@@ -289,15 +290,15 @@ static int obj_face(struct obj_parse *p, char *cur, struct vt_error *err)
                             obj->group ? obj->group : "",
                             obj->object ? obj->object : "",
                             cur_line(p)};
-    struct vt_error cb_err = {0};
+    struct vts_error cb_err = {0};
     return callback_status(p, p->cb->face(p->cb->user, obj, &f, &cb_err), "face", &cb_err, err);
 }
 
-static int set_name(struct obj_parse *p, char **slot, const char *value, struct vt_error *err)
+static int set_name(struct obj_parse *p, char **slot, const char *value, struct vts_error *err)
 {
     char *copy = strdup(value);
     if (!copy)
-        return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory", p->src->name);
+        return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory", p->src->name);
     free(*slot);
     *slot = copy;
     return 0;
@@ -321,24 +322,24 @@ static bool names_one_file(const char *rest)
     return false;
 }
 
-static int obj_mtllib_one(struct obj_parse *p, const char *file, struct vt_error *err)
+static int obj_mtllib_one(struct obj_parse *p, const char *file, struct vts_error *err)
 {
     if (!p->cb || !p->cb->mtllib)
         return 0;
     char *path = vt_obj_resolve_path(p->src->name, file);
     if (!path)
-        return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory", p->src->name);
-    struct vt_error cb_err = {0};
+        return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory", p->src->name);
+    struct vts_error cb_err = {0};
     int rc = p->cb->mtllib(p->cb->user, p->obj, path, cur_line(p), &cb_err);
     free(path);
     return callback_status(p, rc, "mtllib", &cb_err, err);
 }
 
-static int obj_mtllib(struct obj_parse *p, char *cur, struct vt_error *err)
+static int obj_mtllib(struct obj_parse *p, char *cur, struct vts_error *err)
 {
     char *rest = vt_text_rest(cur);
     if (!*rest)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: mtllib without a file name",
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: mtllib without a file name",
                             p->src->name, (unsigned long long)cur_line(p));
     if (names_one_file(rest))
         return obj_mtllib_one(p, rest, err);
@@ -351,17 +352,17 @@ static int obj_mtllib(struct obj_parse *p, char *cur, struct vt_error *err)
     return 0;
 }
 
-static int obj_usemtl(struct obj_parse *p, char *cur, struct vt_error *err)
+static int obj_usemtl(struct obj_parse *p, char *cur, struct vts_error *err)
 {
     int rc = set_name(p, &p->obj->material, vt_text_rest(cur), err);
     if (rc < 0 || !p->cb || !p->cb->usemtl)
         return rc;
-    struct vt_error cb_err = {0};
+    struct vts_error cb_err = {0};
     rc = p->cb->usemtl(p->cb->user, p->obj, p->obj->material, cur_line(p), &cb_err);
     return callback_status(p, rc, "usemtl", &cb_err, err);
 }
 
-static int obj_statement(struct obj_parse *p, struct vt_error *err)
+static int obj_statement(struct obj_parse *p, struct vts_error *err)
 {
     char *cur = p->src->line;
     char *kw = vt_text_token(&cur);
@@ -388,7 +389,7 @@ static int obj_statement(struct obj_parse *p, struct vt_error *err)
 }
 
 static int obj_parse(struct vt_obj *obj, struct vt_text_src *src, const struct vt_obj_callbacks *cb,
-                     struct vt_error *err)
+                     struct vts_error *err)
 {
     struct obj_parse p = {obj, src, cb};
     int rc;
@@ -402,7 +403,7 @@ static int obj_parse(struct vt_obj *obj, struct vt_text_src *src, const struct v
 }
 
 int vt_obj_read(struct vt_obj *obj, const char *path, const struct vt_obj_callbacks *cb,
-                struct vt_error *err)
+                struct vts_error *err)
 {
     struct vt_text_src src;
     obj_clear(obj);
@@ -415,7 +416,7 @@ int vt_obj_read(struct vt_obj *obj, const char *path, const struct vt_obj_callba
 }
 
 int vt_obj_parse_memory(struct vt_obj *obj, const void *data, size_t size, const char *name,
-                        const struct vt_obj_callbacks *cb, struct vt_error *err)
+                        const struct vt_obj_callbacks *cb, struct vts_error *err)
 {
     struct vt_text_src src;
     obj_clear(obj);

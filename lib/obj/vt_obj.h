@@ -20,7 +20,7 @@ extern "C" {
 /* Marks a corner without texcoord or normal. */
 #define VT_OBJ_NONE UINT32_MAX
 
-/* Limits against hostile or broken input; exceeding one fails with VT_ERR_LIMIT and file:line. */
+/* Limits against hostile or broken input; exceeding one fails with VTS_ERR_LIMIT and file:line. */
 struct vt_obj_limits {
     size_t max_line_bytes;  /* one logical line, continuations joined (default 1 MiB) */
     uint32_t max_vertices;  /* per kind: v, vt and vn each (default 2^28; at most 2^32 - 2) */
@@ -49,7 +49,7 @@ struct vt_obj_face {
 };
 
 /* Callbacks (each may be NULL). Return 0 to go on; any other value stops the read, which returns
- * that value if negative (else VT_ERR_CANCELLED). A callback may fill err to explain; if it does
+ * that value if negative (else VTS_ERR_CANCELLED). A callback may fill err to explain; if it does
  * not, the reader writes "'<file>':<line>: stopped by the <what> callback". Strings are valid only
  * during the call. The reader passed in gives access to the vertices read so far. */
 struct vt_obj;
@@ -57,34 +57,35 @@ struct vt_obj_callbacks {
     /* Once per file named on an mtllib line (a line may name several), in order; mtl_path is
      * resolved against the OBJ file's directory, backslashes turned into '/'. */
     int (*mtllib)(void *user, const struct vt_obj *obj, const char *mtl_path, uint64_t line,
-                  struct vt_error *err);
+                  struct vts_error *err);
     /* Each usemtl statement (usemtl may come before the mtllib that defines it). */
     int (*usemtl)(void *user, const struct vt_obj *obj, const char *name, uint64_t line,
-                  struct vt_error *err);
+                  struct vts_error *err);
     /* Each f statement. */
     int (*face)(void *user, const struct vt_obj *obj, const struct vt_obj_face *face,
-                struct vt_error *err);
+                struct vts_error *err);
     void *user;
 };
 
 /* Creates a reader with the given limits (NULL: defaults). Free with vt_obj_destroy(). Returns
  * NULL with err filled when out of memory. */
-struct vt_obj *vt_obj_create(const struct vt_obj_limits *limits, struct vt_error *err);
+struct vt_obj *vt_obj_create(const struct vt_obj_limits *limits, struct vts_error *err);
 
 /* Frees the reader and every array it holds. Accepts NULL. */
 void vt_obj_destroy(struct vt_obj *obj);
 
 /* Reads the OBJ file at path, calling cb (may be NULL) as statements are read. Clears the vertices
- * of any earlier read first. Returns 0, or VT_ERR_IO, VT_ERR_BAD_INPUT, VT_ERR_LIMIT, VT_ERR_NOMEM
- * (messages "'scene.obj':123: bad texture index '5/x'"), or a callback's status. After a failure
- * the arrays hold what was read up to the failing line. Not thread-safe on one reader. */
+ * of any earlier read first. Returns 0, or VTS_ERR_IO, VTS_ERR_BAD_INPUT, VTS_ERR_LIMIT,
+ * VTS_ERR_NOMEM (messages "'scene.obj':123: bad texture index '5/x'"), or a callback's status.
+ * After a failure the arrays hold what was read up to the failing line. Not thread-safe on one
+ * reader. */
 int vt_obj_read(struct vt_obj *obj, const char *path, const struct vt_obj_callbacks *cb,
-                struct vt_error *err);
+                struct vts_error *err);
 
 /* As vt_obj_read() on size bytes in memory; name is used in messages and, like a path, as the base
  * for mtllib paths. */
 int vt_obj_parse_memory(struct vt_obj *obj, const void *data, size_t size, const char *name,
-                        const struct vt_obj_callbacks *cb, struct vt_error *err);
+                        const struct vt_obj_callbacks *cb, struct vts_error *err);
 
 /* The values read so far (or by the last read). Arrays hold 3 doubles per entry; they are owned by
  * the reader and move when it grows (re-fetch after each callback). */
@@ -185,15 +186,15 @@ struct vt_mtl {
 };
 
 /* Reads the MTL file at path into *mtl (overwritten; release it after success or failure).
- * limits may be NULL. Returns 0, VT_ERR_IO, VT_ERR_BAD_INPUT, VT_ERR_LIMIT or VT_ERR_NOMEM with
+ * limits may be NULL. Returns 0, VTS_ERR_IO, VTS_ERR_BAD_INPUT, VTS_ERR_LIMIT or VTS_ERR_NOMEM with
  * "'<file>':<line>: <reason>". */
 int vt_mtl_read(const char *path, const struct vt_obj_limits *limits, struct vt_mtl *mtl,
-                struct vt_error *err);
+                struct vts_error *err);
 
 /* As vt_mtl_read() on size bytes in memory; name is used in messages and as the base for paths. */
 int vt_mtl_parse_memory(const void *data, size_t size, const char *name,
                         const struct vt_obj_limits *limits, struct vt_mtl *mtl,
-                        struct vt_error *err);
+                        struct vts_error *err);
 
 /* Frees what *mtl holds and zeroes it. Accepts NULL and a zeroed struct. */
 void vt_mtl_release(struct vt_mtl *mtl);

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "vt_checked.h"
+#include "vt_error.h"
 
 #define READ_CHUNK (64 * 1024)
 
@@ -29,11 +30,12 @@ static int src_fill(struct vt_text_src *s)
 /* Appends n bytes to the line, keeping room for a terminator; the limit counts the raw bytes of the
  * physical lines (continuation '\' and '\r' included). */
 static int line_append(struct vt_text_src *s, const unsigned char *bytes, size_t n,
-                       struct vt_error *err)
+                       struct vts_error *err)
 {
     if (n > s->max_line - s->line_len)
-        return vt_error_set(err, VT_ERR_LIMIT, "'%s':%llu: line longer than the limit of %zu bytes",
-                            s->name, (unsigned long long)s->start_line, s->max_line);
+        return vt_error_set(err, VTS_ERR_LIMIT,
+                            "'%s':%llu: line longer than the limit of %zu bytes", s->name,
+                            (unsigned long long)s->start_line, s->max_line);
     if (s->line_len + n + 1 > s->line_cap) {
         size_t cap = s->line_cap ? s->line_cap : 256;
         while (cap < s->line_len + n + 1)
@@ -42,7 +44,7 @@ static int line_append(struct vt_text_src *s, const unsigned char *bytes, size_t
             cap = s->max_line + 1;
         char *p = realloc(s->line, cap);
         if (!p)
-            return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory for a line", s->name);
+            return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory for a line", s->name);
         s->line = p;
         s->line_cap = cap;
     }
@@ -66,7 +68,7 @@ static bool line_end_physical(struct vt_text_src *s)
 
 /* Reads one logical line into s->line (NUL-terminated). Returns 1, 0 at the end of input, or a
  * negative status. */
-int vt_text_next_line(struct vt_text_src *s, struct vt_error *err)
+int vt_text_next_line(struct vt_text_src *s, struct vts_error *err)
 {
     s->line_len = 0;
     s->start_line = s->physical + 1;
@@ -74,7 +76,7 @@ int vt_text_next_line(struct vt_text_src *s, struct vt_error *err)
     for (;;) {
         int rc = src_fill(s);
         if (rc == -2)
-            return vt_error_set(err, VT_ERR_IO, "cannot read '%s': %s", s->name, strerror(errno));
+            return vt_error_set(err, VTS_ERR_IO, "cannot read '%s': %s", s->name, strerror(errno));
         if (rc == 0) {
             if (!any)
                 return 0;
@@ -86,7 +88,7 @@ int vt_text_next_line(struct vt_text_src *s, struct vt_error *err)
         const unsigned char *nl = memchr(start, '\n', s->len - s->pos);
         size_t n = nl ? (size_t)(nl - start) : s->len - s->pos;
         if (memchr(start, '\0', n))
-            return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: NUL byte in a text line",
+            return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: NUL byte in a text line",
                                 s->name, (unsigned long long)s->physical + 1);
         rc = line_append(s, start, n, err);
         if (rc < 0)
@@ -98,7 +100,7 @@ int vt_text_next_line(struct vt_text_src *s, struct vt_error *err)
     if (!s->line) { /* an empty last line: no buffer yet */
         s->line = malloc(1);
         if (!s->line)
-            return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory for a line", s->name);
+            return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory for a line", s->name);
         s->line_cap = 1;
     }
     s->line[s->line_len] = '\0';
@@ -106,18 +108,18 @@ int vt_text_next_line(struct vt_text_src *s, struct vt_error *err)
 }
 
 int vt_text_open(struct vt_text_src *s, const char *path, const struct vt_obj_limits *limits,
-                 struct vt_error *err)
+                 struct vts_error *err)
 {
     memset(s, 0, sizeof *s);
     s->name = path;
     s->max_line = limits->max_line_bytes < SIZE_MAX / 4 ? limits->max_line_bytes : SIZE_MAX / 4;
     s->buf = malloc(READ_CHUNK);
     if (!s->buf)
-        return vt_error_set(err, VT_ERR_NOMEM, "cannot read '%s': out of memory", path);
+        return vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", path);
     s->data = s->buf;
     s->file = fopen(path, "rb");
     if (!s->file) {
-        int rc = vt_error_set(err, VT_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
+        int rc = vt_error_set(err, VTS_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
         free(s->buf);
         s->buf = NULL;
         return rc;

@@ -23,9 +23,9 @@ struct vt_text_src {
     uint64_t start_line; /* where the current logical line starts */
 };
 
-/* Opens path for reading lines within limits->max_line_bytes. 0, VT_ERR_IO or VT_ERR_NOMEM. */
+/* Opens path for reading lines within limits->max_line_bytes. 0, VTS_ERR_IO or VTS_ERR_NOMEM. */
 int vt_text_open(struct vt_text_src *s, const char *path, const struct vt_obj_limits *limits,
-                 struct vt_error *err);
+                 struct vts_error *err);
 
 /* Reads lines from caller memory (which must outlive the source); name is used in messages. */
 void vt_text_memory(struct vt_text_src *s, const void *data, size_t size, const char *name,
@@ -35,8 +35,9 @@ void vt_text_memory(struct vt_text_src *s, const void *data, size_t size, const 
 void vt_text_close(struct vt_text_src *s);
 
 /* Reads the next logical line into s->line (NUL-terminated, continuations joined). Returns 1 when
- * a line was read, 0 at the end, or a negative status (VT_ERR_IO, VT_ERR_LIMIT, VT_ERR_NOMEM). */
-int vt_text_next_line(struct vt_text_src *s, struct vt_error *err);
+ * a line was read, 0 at the end, or a negative status (VTS_ERR_IO, VTS_ERR_LIMIT, VTS_ERR_NOMEM).
+ */
+int vt_text_next_line(struct vt_text_src *s, struct vts_error *err);
 
 /* Splits the next whitespace-separated token out of *cur (NUL-terminating it); NULL at the end. */
 char *vt_text_token(char **cur);

@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vt_error.h"
 #include "vt_offset_run.h"
 #include "vt_offset_scan.h"
 #include "vt_offset_src.h"
@@ -48,7 +49,7 @@ bool vt_offset_f32_warning(const struct vt_offset_stats *stats)
 }
 
 static int run_pass(struct vt_offset_run *r, const char *path, const void *mem, size_t size,
-                    int pass, struct vt_error *err)
+                    int pass, struct vts_error *err)
 {
     int rc = vt_offset_src_open(&r->src, path, mem, size, r->opt->limits.max_line_bytes, err);
     if (rc < 0)
@@ -72,7 +73,7 @@ static int run_pass(struct vt_offset_run *r, const char *path, const void *mem, 
 
 static int rewrite(const char *path, const void *mem, size_t size, const struct vt_layout *layout,
                    const struct vt_offset_options *opt, const struct vt_offset_sink *out,
-                   struct vt_offset_stats *stats, struct vt_error *err)
+                   struct vt_offset_stats *stats, struct vts_error *err)
 {
     struct vt_offset_options defaults;
     if (!opt) {
@@ -81,7 +82,7 @@ static int rewrite(const char *path, const void *mem, size_t size, const struct 
     }
     if (!layout || !out || !out->write || opt->digits > VT_UV_MAX_DIGITS || !opt->mtllib ||
         !opt->material)
-        return vt_error_set(err, VT_ERR_ARG, "vt_offset_rewrite: bad arguments");
+        return vt_error_set(err, VTS_ERR_ARG, "vt_offset_rewrite: bad arguments");
     struct vt_offset_run r = {0};
     r.layout = layout;
     r.opt = opt;
@@ -94,7 +95,7 @@ static int rewrite(const char *path, const void *mem, size_t size, const struct 
     if (rc == 0) {
         r.obuf = malloc(VT_OFFSET_OUT_CHUNK);
         if (!r.obuf)
-            rc = vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory", path);
+            rc = vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory", path);
     }
     if (rc == 0) {
         r.stats.vt_lines = r.nvt;
@@ -125,7 +126,7 @@ static int rewrite(const char *path, const void *mem, size_t size, const struct 
 
 int vt_offset_rewrite(const char *obj_path, const struct vt_layout *layout,
                       const struct vt_offset_options *opt, const struct vt_offset_sink *out,
-                      struct vt_offset_stats *stats, struct vt_error *err)
+                      struct vt_offset_stats *stats, struct vts_error *err)
 {
     return rewrite(obj_path, NULL, 0, layout, opt, out, stats, err);
 }
@@ -133,7 +134,7 @@ int vt_offset_rewrite(const char *obj_path, const struct vt_layout *layout,
 int vt_offset_rewrite_memory(const void *data, size_t size, const char *name,
                              const struct vt_layout *layout, const struct vt_offset_options *opt,
                              const struct vt_offset_sink *out, struct vt_offset_stats *stats,
-                             struct vt_error *err)
+                             struct vts_error *err)
 {
     static const unsigned char empty[1];
     return rewrite(name, data ? data : empty, data ? size : 0, layout, opt, out, stats, err);

@@ -51,7 +51,7 @@ unsigned vt_offset_default_digits(const struct vt_layout *layout);
 /* Where the rewritten OBJ goes: write() gets the text in order, in pieces of up to 1 MiB. It
  * returns 0 or a negative status with err filled. */
 struct vt_offset_sink {
-    int (*write)(void *user, const void *data, size_t size, struct vt_error *err);
+    int (*write)(void *user, const void *data, size_t size, struct vts_error *err);
     void *user;
 };
 
@@ -72,17 +72,17 @@ struct vt_offset_stats {
 };
 
 /* Rewrites the OBJ file at obj_path onto layout (read or indexed) into out. Returns 0, or
- * VT_ERR_IO, VT_ERR_BAD_INPUT ("'scene.obj':12: ..."), VT_ERR_LIMIT, VT_ERR_NOMEM or a status of
- * out->write; stats (may be NULL) is filled on success. */
+ * VTS_ERR_IO, VTS_ERR_BAD_INPUT ("'scene.obj':12: ..."), VTS_ERR_LIMIT, VTS_ERR_NOMEM or a status
+ * of out->write; stats (may be NULL) is filled on success. */
 int vt_offset_rewrite(const char *obj_path, const struct vt_layout *layout,
                       const struct vt_offset_options *opt, const struct vt_offset_sink *out,
-                      struct vt_offset_stats *stats, struct vt_error *err);
+                      struct vt_offset_stats *stats, struct vts_error *err);
 
 /* As vt_offset_rewrite() on size bytes in memory; name is used in messages. */
 int vt_offset_rewrite_memory(const void *data, size_t size, const char *name,
                              const struct vt_layout *layout, const struct vt_offset_options *opt,
                              const struct vt_offset_sink *out, struct vt_offset_stats *stats,
-                             struct vt_error *err);
+                             struct vts_error *err);
 
 /* True when the float32 round-off of stats exceeds VT_OFFSET_F32_WARN_TEXELS. */
 bool vt_offset_f32_warning(const struct vt_offset_stats *stats);

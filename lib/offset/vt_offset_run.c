@@ -4,9 +4,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vt_error.h"
 #include "vt_text.h"
 
-int vt_offset_run_flush(struct vt_offset_run *r, struct vt_error *err)
+int vt_offset_run_flush(struct vt_offset_run *r, struct vts_error *err)
 {
     if (r->olen == 0)
         return 0;
@@ -15,7 +16,7 @@ int vt_offset_run_flush(struct vt_offset_run *r, struct vt_error *err)
     return rc < 0 ? rc : 0;
 }
 
-int vt_offset_run_put(struct vt_offset_run *r, const void *data, size_t n, struct vt_error *err)
+int vt_offset_run_put(struct vt_offset_run *r, const void *data, size_t n, struct vts_error *err)
 {
     if (n > VT_OFFSET_OUT_CHUNK - r->olen) {
         int rc = vt_offset_run_flush(r, err);
@@ -31,7 +32,7 @@ int vt_offset_run_put(struct vt_offset_run *r, const void *data, size_t n, struc
     return 0;
 }
 
-int vt_offset_run_str(struct vt_offset_run *r, const char *s, struct vt_error *err)
+int vt_offset_run_str(struct vt_offset_run *r, const char *s, struct vts_error *err)
 {
     return vt_offset_run_put(r, s, strlen(s), err);
 }
@@ -39,12 +40,12 @@ int vt_offset_run_str(struct vt_offset_run *r, const char *s, struct vt_error *e
 /* Copies the line as vt_obj sees it into r->clean: '\r' before '\n' dropped, a continuing '\'
  * turned into a space, the '\n's removed. */
 static int clean_line(struct vt_offset_run *r, const unsigned char *p, size_t n,
-                      struct vt_error *err)
+                      struct vts_error *err)
 {
     if (n + 1 > r->clean_cap) {
         char *grown = realloc(r->clean, n + 1);
         if (!grown)
-            return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory for a line", r->src.name);
+            return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory for a line", r->src.name);
         r->clean = grown;
         r->clean_cap = n + 1;
     }
@@ -68,7 +69,7 @@ static int clean_line(struct vt_offset_run *r, const unsigned char *p, size_t n,
 
 /* The name on a usemtl line (vt_obj: the rest of the line, trimmed). */
 int vt_offset_run_usemtl_name(struct vt_offset_run *r, const unsigned char *line, size_t n,
-                              char **name, struct vt_error *err)
+                              char **name, struct vts_error *err)
 {
     int rc = clean_line(r, line, n, err);
     if (rc < 0)
@@ -96,8 +97,8 @@ bool vt_offset_run_constant_entry(const struct vt_layout *l, const struct vt_lay
     return true;
 }
 
-int vt_offset_run_changed_error(struct vt_offset_run *r, struct vt_error *err)
+int vt_offset_run_changed_error(struct vt_offset_run *r, struct vts_error *err)
 {
-    return vt_error_set(err, VT_ERR_IO, "'%s':%llu: the file changed while it was read",
+    return vt_error_set(err, VTS_ERR_IO, "'%s':%llu: the file changed while it was read",
                         r->src.name, (unsigned long long)r->src.line);
 }

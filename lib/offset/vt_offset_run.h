@@ -60,18 +60,18 @@ struct vt_offset_run {
 };
 
 /* Writes the buffered output (r->obuf) to r->out. */
-int vt_offset_run_flush(struct vt_offset_run *r, struct vt_error *err);
+int vt_offset_run_flush(struct vt_offset_run *r, struct vts_error *err);
 
 /* Appends n bytes to the output (buffered in VT_OFFSET_OUT_CHUNK pieces). */
-int vt_offset_run_put(struct vt_offset_run *r, const void *data, size_t n, struct vt_error *err);
+int vt_offset_run_put(struct vt_offset_run *r, const void *data, size_t n, struct vts_error *err);
 
 /* Appends a string to the output. */
-int vt_offset_run_str(struct vt_offset_run *r, const char *s, struct vt_error *err);
+int vt_offset_run_str(struct vt_offset_run *r, const char *s, struct vts_error *err);
 
 /* The name on a usemtl (or mtllib) line as vt_obj reads it (the rest of the line, trimmed) in
  * *name, which points into r->clean and stays valid until the next call. */
 int vt_offset_run_usemtl_name(struct vt_offset_run *r, const unsigned char *line, size_t n,
-                              char **name, struct vt_error *err);
+                              char **name, struct vts_error *err);
 
 /* The entry index of material name in the layout, or VT_OFFSET_MAT_MISSING. */
 uint32_t vt_offset_run_material(const struct vt_offset_run *r, const char *name);
@@ -79,7 +79,7 @@ uint32_t vt_offset_run_material(const struct vt_offset_run *r, const char *name)
 /* True when every layer of e is a constant fill (see vt_offset_run.c). */
 bool vt_offset_run_constant_entry(const struct vt_layout *l, const struct vt_layout_entry *e);
 
-/* VT_ERR_IO: the file changed between the passes (at the current line). */
-int vt_offset_run_changed_error(struct vt_offset_run *r, struct vt_error *err);
+/* VTS_ERR_IO: the file changed between the passes (at the current line). */
+int vt_offset_run_changed_error(struct vt_offset_run *r, struct vts_error *err);
 
 #endif

@@ -5,14 +5,15 @@
 #include <string.h>
 
 #include "vt_checked.h"
+#include "vt_error.h"
 #include "vt_offset_tok.h"
 #include "vt_text.h"
 #include "vt_uv_text.h"
 
-static int grow_vt(struct vt_offset_run *r, struct vt_error *err)
+static int grow_vt(struct vt_offset_run *r, struct vts_error *err)
 {
     if (r->nvt >= r->opt->limits.max_vertices || r->nvt >= UINT32_MAX - 1)
-        return vt_error_set(err, VT_ERR_LIMIT, "'%s':%llu: more than %lu texcoords (the limit)",
+        return vt_error_set(err, VTS_ERR_LIMIT, "'%s':%llu: more than %lu texcoords (the limit)",
                             r->src.name, (unsigned long long)r->src.line,
                             (unsigned long)r->opt->limits.max_vertices);
     if (r->nvt < r->cap)
@@ -23,7 +24,7 @@ static int grow_vt(struct vt_offset_run *r, struct vt_error *err)
     size_t uv_bytes, idx_bytes;
     if (!vt_size_mul((size_t)cap, 2 * sizeof(double), &uv_bytes) ||
         !vt_size_mul((size_t)cap, sizeof(uint32_t), &idx_bytes))
-        return vt_error_set(err, VT_ERR_LIMIT, "'%s': too many texcoords", r->src.name);
+        return vt_error_set(err, VTS_ERR_LIMIT, "'%s': too many texcoords", r->src.name);
     double *uv = realloc(r->uv, uv_bytes);
     if (uv)
         r->uv = uv;
@@ -32,17 +33,17 @@ static int grow_vt(struct vt_offset_run *r, struct vt_error *err)
         r->first = first;
     uint32_t *head = first ? realloc(r->head, idx_bytes) : NULL;
     if (!head)
-        return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory for texcoords", r->src.name);
+        return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory for texcoords", r->src.name);
     r->head = head;
     r->cap = (uint32_t)cap;
     return 0;
 }
 
 static int count_vertex(struct vt_offset_run *r, uint64_t *count, const char *what,
-                        struct vt_error *err)
+                        struct vts_error *err)
 {
     if (*count >= r->opt->limits.max_vertices)
-        return vt_error_set(err, VT_ERR_LIMIT, "'%s':%llu: more than %lu %s (the limit)",
+        return vt_error_set(err, VTS_ERR_LIMIT, "'%s':%llu: more than %lu %s (the limit)",
                             r->src.name, (unsigned long long)r->src.line,
                             (unsigned long)r->opt->limits.max_vertices, what);
     (*count)++;
@@ -50,7 +51,7 @@ static int count_vertex(struct vt_offset_run *r, uint64_t *count, const char *wh
 }
 
 static int pass1_vt(struct vt_offset_run *r, const unsigned char *cur, const unsigned char *end,
-                    struct vt_error *err)
+                    struct vts_error *err)
 {
     double vals[3] = {0, 0, 0};
     int n = 0;
@@ -58,16 +59,16 @@ static int pass1_vt(struct vt_offset_run *r, const unsigned char *cur, const uns
     char text[64];
     while (vt_offset_tok_next(&cur, end, &t)) {
         if (n == 3)
-            return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: 'vt' needs 1 to 3 numbers",
+            return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: 'vt' needs 1 to 3 numbers",
                                 r->src.name, (unsigned long long)r->src.line);
         if (!vt_uv_parse((const char *)t.s, (size_t)(t.e - t.s), &vals[n]))
-            return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: bad number '%s' in 'vt'",
+            return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: bad number '%s' in 'vt'",
                                 r->src.name, (unsigned long long)r->src.line,
                                 vt_offset_tok_text(&t, text));
         n++;
     }
     if (n == 0)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: 'vt' needs 1 to 3 numbers",
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: 'vt' needs 1 to 3 numbers",
                             r->src.name, (unsigned long long)r->src.line);
     int rc = grow_vt(r, err);
     if (rc < 0)
@@ -81,7 +82,7 @@ static int pass1_vt(struct vt_offset_run *r, const unsigned char *cur, const uns
 }
 
 /* Checks that vt i lies in what material m covers. */
-static int check_covered(struct vt_offset_run *r, uint32_t i, uint32_t m, struct vt_error *err)
+static int check_covered(struct vt_offset_run *r, uint32_t i, uint32_t m, struct vts_error *err)
 {
     const struct vt_layout_entry *e = &r->layout->entries[m];
     if (vt_offset_run_constant_entry(r->layout, e))
@@ -90,7 +91,7 @@ static int check_covered(struct vt_offset_run *r, uint32_t i, uint32_t m, struct
     if (vt_layout_uv_covered(e, u, v))
         return 0;
     return vt_error_set(
-        err, VT_ERR_BAD_INPUT,
+        err, VTS_ERR_BAD_INPUT,
         "'%s':%llu: vt %lu (%.9g %.9g) is outside the UV range of material '%s' in '%s' (u %ld..%ld, v %ld..%ld)",
         r->src.name, (unsigned long long)r->src.line, (unsigned long)i + 1, u, v, e->name,
         r->opt->layout_name, (long)e->origin_u, (long)e->origin_u + (long)e->repeat_u,
@@ -98,15 +99,15 @@ static int check_covered(struct vt_offset_run *r, uint32_t i, uint32_t m, struct
 }
 
 /* Records that the current material uses vt i. */
-static int use_vt(struct vt_offset_run *r, uint32_t i, struct vt_error *err)
+static int use_vt(struct vt_offset_run *r, uint32_t i, struct vts_error *err)
 {
     uint32_t m = r->mat;
     if (m == VT_OFFSET_MAT_NONE)
-        return vt_error_set(err, VT_ERR_BAD_INPUT,
+        return vt_error_set(err, VTS_ERR_BAD_INPUT,
                             "'%s':%llu: face with texture coordinates before any usemtl",
                             r->src.name, (unsigned long long)r->src.line);
     if (m == VT_OFFSET_MAT_MISSING)
-        return vt_error_set(err, VT_ERR_BAD_INPUT,
+        return vt_error_set(err, VTS_ERR_BAD_INPUT,
                             "'%s':%llu: material '%s' (usemtl on line %llu) is not in '%s'",
                             r->src.name, (unsigned long long)r->src.line, r->mat_name,
                             (unsigned long long)r->mat_line, r->opt->layout_name);
@@ -127,11 +128,11 @@ static int use_vt(struct vt_offset_run *r, uint32_t i, struct vt_error *err)
         return rc;
     if (r->extra_count == r->extra_cap) {
         if (r->extra_cap >= UINT32_MAX / 2)
-            return vt_error_set(err, VT_ERR_LIMIT, "'%s': too many shared texcoords", r->src.name);
+            return vt_error_set(err, VTS_ERR_LIMIT, "'%s': too many shared texcoords", r->src.name);
         uint32_t cap = r->extra_cap ? r->extra_cap * 2 : 256;
         struct vt_offset_extra *grown = realloc(r->extra, (size_t)cap * sizeof *grown);
         if (!grown)
-            return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory for shared texcoords",
+            return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory for shared texcoords",
                                 r->src.name);
         r->extra = grown;
         r->extra_cap = cap;
@@ -148,7 +149,7 @@ static int use_vt(struct vt_offset_run *r, uint32_t i, struct vt_error *err)
 /* One face corner: v, v/vt, v//vn or v/vt/vn, checked like vt_obj; *vt gets the 0-based texture
  * index or VT_OFFSET_NONE. */
 static int pass1_corner(struct vt_offset_run *r, const struct vt_offset_tok *t, uint32_t *vt,
-                        struct vt_error *err)
+                        struct vts_error *err)
 {
     static const char *const names[3] = {"vertex", "texture", "normal"};
     static const char *const plural[3] = {"vertices", "texcoords", "normals"};
@@ -163,18 +164,18 @@ static int pass1_corner(struct vt_offset_run *r, const struct vt_offset_tok *t, 
         if (e > s || kind == 0) {
             int64_t idx;
             if (!vt_text_index((const char *)s, (const char *)e, &idx))
-                return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: bad %s index '%s'",
+                return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: bad %s index '%s'",
                                     r->src.name, (unsigned long long)r->src.line, names[kind],
                                     vt_offset_tok_text(t, text));
             if (idx == 0)
-                return vt_error_set(err, VT_ERR_BAD_INPUT,
+                return vt_error_set(err, VTS_ERR_BAD_INPUT,
                                     "'%s':%llu: %s index 0 in '%s' (OBJ indices start at 1)",
                                     r->src.name, (unsigned long long)r->src.line, names[kind],
                                     vt_offset_tok_text(t, text));
             int64_t abs_idx = idx > 0 ? idx - 1 : (int64_t)counts[kind] + idx;
             if (abs_idx < 0 || abs_idx >= (int64_t)counts[kind])
                 return vt_error_set(
-                    err, VT_ERR_BAD_INPUT,
+                    err, VTS_ERR_BAD_INPUT,
                     "'%s':%llu: %s index %lld in '%s' out of range (%llu %s defined)", r->src.name,
                     (unsigned long long)r->src.line, names[kind], (long long)idx,
                     vt_offset_tok_text(t, text), (unsigned long long)counts[kind], plural[kind]);
@@ -185,12 +186,12 @@ static int pass1_corner(struct vt_offset_run *r, const struct vt_offset_tok *t, 
             return 0;
         s = e + 1;
     }
-    return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: bad face corner '%s'", r->src.name,
+    return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: bad face corner '%s'", r->src.name,
                         (unsigned long long)r->src.line, vt_offset_tok_text(t, text));
 }
 
 static int pass1_face(struct vt_offset_run *r, const unsigned char *cur, const unsigned char *end,
-                      struct vt_error *err)
+                      struct vts_error *err)
 {
     struct vt_offset_tok t;
     uint64_t corners = 0;
@@ -209,7 +210,7 @@ static int pass1_face(struct vt_offset_run *r, const unsigned char *cur, const u
         corners++;
     }
     if (corners < 3)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: face with %lu corners (needs 3)",
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: face with %lu corners (needs 3)",
                             r->src.name, (unsigned long long)r->src.line, (unsigned long)corners);
     r->stats.faces++;
     if (!any_vt)
@@ -218,7 +219,7 @@ static int pass1_face(struct vt_offset_run *r, const unsigned char *cur, const u
 }
 
 int vt_offset_scan_line(struct vt_offset_run *r, const unsigned char *line, size_t n,
-                        struct vt_error *err)
+                        struct vts_error *err)
 {
     const unsigned char *cur = line, *end = line + n;
     struct vt_offset_tok kw;
@@ -240,7 +241,7 @@ int vt_offset_scan_line(struct vt_offset_run *r, const unsigned char *line, size
             return rc;
         char *copy = strdup(name);
         if (!copy)
-            return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory", r->src.name);
+            return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory", r->src.name);
         free(r->mat_name);
         r->mat_name = copy;
         r->mat_line = r->src.line;
@@ -253,7 +254,7 @@ int vt_offset_scan_line(struct vt_offset_run *r, const unsigned char *line, size
         if (rc < 0)
             return rc;
         if (!*name)
-            return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: mtllib without a file name",
+            return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: mtllib without a file name",
                                 r->src.name, (unsigned long long)r->src.line);
         r->any_mtllib = true;
         return 0;
@@ -264,14 +265,14 @@ int vt_offset_scan_line(struct vt_offset_run *r, const unsigned char *line, size
 }
 
 /* Output indices: vt i's first copy is new_index[i], its k-th extra material new_index[i] + k. */
-int vt_offset_scan_number_outputs(struct vt_offset_run *r, struct vt_error *err)
+int vt_offset_scan_number_outputs(struct vt_offset_run *r, struct vts_error *err)
 {
     size_t bytes;
     if (!vt_size_mul((size_t)r->nvt + 1, sizeof(uint32_t), &bytes))
-        return vt_error_set(err, VT_ERR_LIMIT, "'%s': too many texcoords", r->src.name);
+        return vt_error_set(err, VTS_ERR_LIMIT, "'%s': too many texcoords", r->src.name);
     r->new_index = malloc(bytes);
     if (!r->new_index)
-        return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory for texcoords", r->src.name);
+        return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory for texcoords", r->src.name);
     uint64_t next = 0;
     for (uint32_t i = 0; i < r->nvt; i++) {
         r->new_index[i] = (uint32_t)next;
@@ -279,7 +280,7 @@ int vt_offset_scan_number_outputs(struct vt_offset_run *r, struct vt_error *err)
         for (uint32_t k = r->head[i]; k != VT_OFFSET_NONE; k = r->extra[k].next)
             next++;
         if (next > UINT32_MAX - 1)
-            return vt_error_set(err, VT_ERR_LIMIT,
+            return vt_error_set(err, VTS_ERR_LIMIT,
                                 "'%s': more than %lu texcoords once shared ones are duplicated",
                                 r->src.name, (unsigned long)UINT32_MAX - 1);
     }

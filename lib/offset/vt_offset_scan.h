@@ -12,9 +12,9 @@
 
 /* Scans one raw logical line (r->src.line is its number). Returns 0 or a negative status. */
 int vt_offset_scan_line(struct vt_offset_run *r, const unsigned char *line, size_t n,
-                        struct vt_error *err);
+                        struct vts_error *err);
 
 /* After pass 1: gives each vt its output index (r->new_index). */
-int vt_offset_scan_number_outputs(struct vt_offset_run *r, struct vt_error *err);
+int vt_offset_scan_number_outputs(struct vt_offset_run *r, struct vts_error *err);
 
 #endif

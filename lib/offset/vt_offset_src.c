@@ -1,5 +1,6 @@
 /* The raw logical line source of vt-offset (see vt_offset_src.h). */
 #include "vt_offset_src.h"
+#include "vt_error.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -9,7 +10,7 @@
 #define READ_CHUNK ((size_t)1 << 20)
 
 int vt_offset_src_open(struct vt_offset_src *s, const char *path, const void *mem, size_t mem_size,
-                       size_t max_line, struct vt_error *err)
+                       size_t max_line, struct vts_error *err)
 {
     memset(s, 0, sizeof *s);
     s->name = path;
@@ -23,13 +24,13 @@ int vt_offset_src_open(struct vt_offset_src *s, const char *path, const void *me
     }
     s->file = fopen(path, "rb");
     if (!s->file)
-        return vt_error_set(err, VT_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
+        return vt_error_set(err, VTS_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
     s->cap = READ_CHUNK;
     s->buf = malloc(s->cap);
     if (!s->buf) {
         fclose(s->file);
         s->file = NULL;
-        return vt_error_set(err, VT_ERR_NOMEM, "cannot read '%s': out of memory", path);
+        return vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", path);
     }
     s->data = s->buf;
     return 0;
@@ -44,7 +45,7 @@ void vt_offset_src_close(struct vt_offset_src *s)
 }
 
 /* Keeps the unread bytes, growing the buffer when the line being read fills it, and reads more. */
-static int src_fill(struct vt_offset_src *s, size_t *scan, struct vt_error *err)
+static int src_fill(struct vt_offset_src *s, size_t *scan, struct vts_error *err)
 {
     if (s->pos > 0) {
         memmove(s->buf, s->buf + s->pos, s->len - s->pos);
@@ -55,12 +56,12 @@ static int src_fill(struct vt_offset_src *s, size_t *scan, struct vt_error *err)
     if (s->len == s->cap) {
         /* a line of max_line counted bytes takes at most 2 * max_line + 2 raw ones */
         if (s->len > 2 * s->max_line + 2)
-            return vt_error_set(err, VT_ERR_LIMIT,
+            return vt_error_set(err, VTS_ERR_LIMIT,
                                 "'%s':%llu: line longer than the limit of %zu bytes", s->name,
                                 (unsigned long long)s->physical + 1, s->max_line);
         unsigned char *grown = realloc(s->buf, s->cap * 2);
         if (!grown)
-            return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory for a line", s->name);
+            return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory for a line", s->name);
         s->buf = grown;
         s->data = grown;
         s->cap *= 2;
@@ -68,7 +69,7 @@ static int src_fill(struct vt_offset_src *s, size_t *scan, struct vt_error *err)
     size_t got = fread(s->buf + s->len, 1, s->cap - s->len, s->file);
     if (got == 0) {
         if (ferror(s->file))
-            return vt_error_set(err, VT_ERR_IO, "cannot read '%s': %s", s->name, strerror(errno));
+            return vt_error_set(err, VTS_ERR_IO, "cannot read '%s': %s", s->name, strerror(errno));
         s->eof = true;
     }
     if (memchr(s->buf + s->len, '\0', got))
@@ -79,7 +80,7 @@ static int src_fill(struct vt_offset_src *s, size_t *scan, struct vt_error *err)
 
 /* The next logical line as raw bytes (with its '\n'): 1, 0 at the end, or a negative status. */
 int vt_offset_src_next(struct vt_offset_src *s, const unsigned char **line, size_t *line_len,
-                       struct vt_error *err)
+                       struct vts_error *err)
 {
     size_t scan = s->pos, end;
     uint64_t newlines = 0;
@@ -112,14 +113,15 @@ int vt_offset_src_next(struct vt_offset_src *s, const unsigned char **line, size
     const unsigned char *p = s->data + s->pos;
     size_t n = end - s->pos;
     if (n - newlines > s->max_line)
-        return vt_error_set(err, VT_ERR_LIMIT, "'%s':%llu: line longer than the limit of %zu bytes",
-                            s->name, (unsigned long long)s->line, s->max_line);
+        return vt_error_set(err, VTS_ERR_LIMIT,
+                            "'%s':%llu: line longer than the limit of %zu bytes", s->name,
+                            (unsigned long long)s->line, s->max_line);
     const unsigned char *nul = s->nul ? memchr(p, '\0', n) : NULL;
     if (nul) {
         uint64_t at_line = s->line;
         for (const unsigned char *q = p; q < nul; q++)
             at_line += *q == '\n';
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: NUL byte in a text line", s->name,
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: NUL byte in a text line", s->name,
                             (unsigned long long)at_line);
     }
     s->physical += newlines + (p[n - 1] != '\n');

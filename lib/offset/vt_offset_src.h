@@ -26,9 +26,9 @@ struct vt_offset_src {
 };
 
 /* Opens path (mem NULL) or the mem_size bytes at mem (path then only names it in messages; the
- * memory must outlive the source). Returns 0, VT_ERR_IO or VT_ERR_NOMEM. */
+ * memory must outlive the source). Returns 0, VTS_ERR_IO or VTS_ERR_NOMEM. */
 int vt_offset_src_open(struct vt_offset_src *s, const char *path, const void *mem, size_t mem_size,
-                       size_t max_line, struct vt_error *err);
+                       size_t max_line, struct vts_error *err);
 
 /* Closes the file and frees the buffer; s is zeroed. */
 void vt_offset_src_close(struct vt_offset_src *s);
@@ -36,6 +36,6 @@ void vt_offset_src_close(struct vt_offset_src *s);
 /* The next logical line as raw bytes (with its '\n'): 1, 0 at the end, or a negative status. The
  * line stays valid until the next call; s->line is its first physical line. */
 int vt_offset_src_next(struct vt_offset_src *s, const unsigned char **line, size_t *line_len,
-                       struct vt_error *err);
+                       struct vts_error *err);
 
 #endif

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vt_error.h"
 #include "vt_offset_tok.h"
 #include "vt_text.h"
 #include "vt_uv_text.h"
@@ -17,13 +18,13 @@ static const char *line_ending(const unsigned char *line, size_t n)
 }
 
 /* Writes one coordinate and measures its round-off against x, scaled to texels. */
-static int put_coord(struct vt_offset_run *r, double x, double texels, struct vt_error *err)
+static int put_coord(struct vt_offset_run *r, double x, double texels, struct vts_error *err)
 {
     char buf[VT_UV_FORMAT_SIZE];
     size_t n = vt_uv_format(x, r->digits, buf);
     double back;
     if (n == 0 || !vt_uv_parse(buf, n, &back))
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%llu: cannot write coordinate %.17g",
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: cannot write coordinate %.17g",
                             r->src.name, (unsigned long long)r->src.line, x);
     double e = fabs(back - x) * texels;
     double e32 = fabs((double)(float)back - x) * texels;
@@ -38,7 +39,7 @@ static int put_coord(struct vt_offset_run *r, double x, double texels, struct vt
 
 /* "U V" (and " W" from the original token) of vt i for material m. */
 static int put_uv(struct vt_offset_run *r, uint32_t i, uint32_t m, const struct vt_offset_tok *w,
-                  struct vt_error *err)
+                  struct vts_error *err)
 {
     double au, av;
     const struct vt_layout_entry *e = &r->layout->entries[m];
@@ -62,7 +63,7 @@ static int put_uv(struct vt_offset_run *r, uint32_t i, uint32_t m, const struct 
 }
 
 static int pass2_vt(struct vt_offset_run *r, const unsigned char *line, size_t n,
-                    const unsigned char *cur, struct vt_error *err)
+                    const unsigned char *cur, struct vts_error *err)
 {
     if (r->in_vt >= r->nvt)
         return vt_offset_run_changed_error(r, err);
@@ -138,13 +139,13 @@ static size_t format_index(int64_t value, char buf[24])
 }
 
 static int add_repl(struct vt_offset_run *r, size_t count, size_t s, size_t e, int64_t value,
-                    struct vt_error *err)
+                    struct vts_error *err)
 {
     if (count == r->repl_cap) {
         size_t cap = r->repl_cap ? r->repl_cap * 2 : 64;
         struct vt_offset_repl *grown = realloc(r->repl, cap * sizeof *grown);
         if (!grown)
-            return vt_error_set(err, VT_ERR_NOMEM, "'%s': out of memory for a face", r->src.name);
+            return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory for a face", r->src.name);
         r->repl = grown;
         r->repl_cap = cap;
     }
@@ -155,7 +156,7 @@ static int add_repl(struct vt_offset_run *r, size_t count, size_t s, size_t e, i
 /* An f line (face: strict, material m) or l line (not checked by pass 1: left alone when an index
  * does not resolve; first copies): rewrites the texture indices that change. */
 static int pass2_indices(struct vt_offset_run *r, const unsigned char *line, size_t n,
-                         const unsigned char *cur, bool face, struct vt_error *err)
+                         const unsigned char *cur, bool face, struct vts_error *err)
 {
     const unsigned char *end = line + n;
     uint32_t m = face ? r->mat : VT_OFFSET_NONE;
@@ -211,7 +212,7 @@ static int pass2_indices(struct vt_offset_run *r, const unsigned char *line, siz
 }
 
 int vt_offset_write_line(struct vt_offset_run *r, const unsigned char *line, size_t n,
-                         struct vt_error *err)
+                         struct vts_error *err)
 {
     const unsigned char *cur = line, *end = line + n;
     struct vt_offset_tok kw;

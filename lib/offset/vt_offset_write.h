@@ -12,6 +12,6 @@
 
 /* Writes the rewrite of one raw logical line. Returns 0 or a negative status. */
 int vt_offset_write_line(struct vt_offset_run *r, const unsigned char *line, size_t n,
-                         struct vt_error *err);
+                         struct vts_error *err);
 
 #endif

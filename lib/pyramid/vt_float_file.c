@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "vt_checked.h"
+#include "vt_error.h"
 
 struct vt_float_file {
     int fd;
@@ -15,22 +16,22 @@ struct vt_float_file {
 };
 
 struct vt_float_file *vt_float_file_create(const char *dir, uint32_t width, uint32_t height,
-                                           uint32_t channels, struct vt_error *err)
+                                           uint32_t channels, struct vts_error *err)
 {
     char path[4096];
     int n = snprintf(path, sizeof path, "%s/.vt-pass-XXXXXX", dir ? dir : ".");
     if (n < 0 || (size_t)n >= sizeof path) {
-        vt_error_set(err, VT_ERR_ARG, "temporary directory path is too long");
+        vt_error_set(err, VTS_ERR_ARG, "temporary directory path is too long");
         return NULL;
     }
     struct vt_float_file *f = calloc(1, sizeof *f);
     if (!f) {
-        vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
         return NULL;
     }
     f->fd = mkstemp(path);
     if (f->fd < 0) {
-        vt_error_set(err, VT_ERR_IO, "cannot create a temporary file in '%s': %s", dir ? dir : ".",
+        vt_error_set(err, VTS_ERR_IO, "cannot create a temporary file in '%s': %s", dir ? dir : ".",
                      strerror(errno));
         free(f);
         return NULL;
@@ -48,7 +49,7 @@ static uint64_t texel_offset(const struct vt_float_file *f, uint32_t x, uint32_t
 }
 
 int vt_float_file_write(struct vt_float_file *f, uint32_t x, uint32_t y, const float *texels,
-                        uint32_t count, struct vt_error *err)
+                        uint32_t count, struct vts_error *err)
 {
     const char *p = (const char *)texels;
     size_t left = (size_t)count * f->channels * sizeof(float);
@@ -58,7 +59,7 @@ int vt_float_file_write(struct vt_float_file *f, uint32_t x, uint32_t y, const f
         if (n < 0 && errno == EINTR)
             continue;
         if (n <= 0)
-            return vt_error_set(err, VT_ERR_IO, "cannot write a temporary pass image: %s",
+            return vt_error_set(err, VTS_ERR_IO, "cannot write a temporary pass image: %s",
                                 n < 0 ? strerror(errno) : "disk full");
         p += n;
         left -= (size_t)n;
@@ -68,7 +69,7 @@ int vt_float_file_write(struct vt_float_file *f, uint32_t x, uint32_t y, const f
 }
 
 static int float_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,
-                             struct vt_error *err)
+                             struct vts_error *err)
 {
     const struct vt_float_file *f = ctx;
     size_t row_bytes = (size_t)dst->width * f->channels * sizeof(float);
@@ -81,7 +82,7 @@ static int float_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image 
             if (n < 0 && errno == EINTR)
                 continue;
             if (n < 0)
-                return vt_error_set(err, VT_ERR_IO, "cannot read a temporary pass image: %s",
+                return vt_error_set(err, VTS_ERR_IO, "cannot read a temporary pass image: %s",
                                     strerror(errno));
             if (n == 0) { /* never written (cannot happen for a complete pass): zeros */
                 memset(p, 0, left);
@@ -103,7 +104,7 @@ static void float_close(void *ctx)
 static const struct vt_source_ops float_ops = {float_read_region, float_close};
 
 int vt_float_file_source(struct vt_float_file *f, uint32_t colour, bool has_alpha,
-                         struct vt_source *out, struct vt_error *err)
+                         struct vt_source *out, struct vts_error *err)
 {
     (void)err;
     memset(out, 0, sizeof *out);

@@ -4,6 +4,7 @@
 
 #include <stdlib.h>
 
+#include "vt_error.h"
 #include "vt_float_file.h"
 #include "vt_pyramid_pass.h"
 #include "vt_pyramid_read.h"
@@ -79,7 +80,7 @@ uint64_t vt_pyramid_tile_count(const struct vt_pyramid_options *o)
 }
 
 static int check_options(struct vt_source *const *sources, const struct vt_pyramid_options *o,
-                         struct vt_error *err)
+                         struct vts_error *err)
 {
     const struct vt_source_info *in = o->resume_input ? o->resume_input : &sources[0]->info;
     uint32_t full = vts_full_level_count(o->width, o->height, o->tile_content_px);
@@ -89,7 +90,7 @@ static int check_options(struct vt_source *const *sources, const struct vt_pyram
         vts_sample_bytes(o->out_sample) == 0 || in->channels < 1 || in->channels > 4 ||
         (o->part && o->resume_input) ||
         (o->part && o->level_count > vt_pyramid_pass_resolved_k(o) + 1 && !o->carry))
-        return vt_error_set(err, VT_ERR_ARG, "invalid pyramid options");
+        return vt_error_set(err, VTS_ERR_ARG, "invalid pyramid options");
     if (o->resume_input) {
         struct vt_pyramid_plan plan;
         vt_pyramid_plan(o, &plan);
@@ -97,29 +98,29 @@ static int check_options(struct vt_source *const *sources, const struct vt_pyram
         if (!plan.has_next || r->width != plan.carry_width || r->height != plan.carry_height ||
             r->channels != in->channels || r->sample != VTS_SAMPLE_F32)
             return vt_error_set(
-                err, VT_ERR_ARG,
+                err, VTS_ERR_ARG,
                 "'%s': %ux%u texels of %u channels, %s, cannot resume a %ux%u build of %u channels at level %u",
                 sources[0]->name, r->width, r->height, r->channels, vts_sample_name(r->sample),
                 o->width, o->height, in->channels, plan.levels_per_pass);
         for (unsigned i = 0; i < o->threads; i++)
             if (!sources[i])
-                return vt_error_set(err, VT_ERR_ARG, "resuming needs one source per worker");
+                return vt_error_set(err, VTS_ERR_ARG, "resuming needs one source per worker");
     }
     if (o->out_channels != in->channels && !(in->has_alpha && o->out_channels == in->channels - 1))
-        return vt_error_set(err, VT_ERR_ARG, "cannot make %u channels from %u", o->out_channels,
+        return vt_error_set(err, VTS_ERR_ARG, "cannot make %u channels from %u", o->out_channels,
                             in->channels);
     if (o->tile_content_px + 2ull * o->border_px > VTS_MAX_PAYLOAD_PX)
-        return vt_error_set(err, VT_ERR_LIMIT, "tile payload is larger than %u px",
+        return vt_error_set(err, VTS_ERR_LIMIT, "tile payload is larger than %u px",
                             VTS_MAX_PAYLOAD_PX);
     for (unsigned i = 0; !in->sequential && i < o->threads; i++)
         if (!sources[i])
-            return vt_error_set(err, VT_ERR_ARG,
+            return vt_error_set(err, VTS_ERR_ARG,
                                 "a random-access input needs one source per worker");
     return 0;
 }
 
 int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_options *o,
-                     struct vt_error *err)
+                     struct vts_error *err)
 {
     int rc = check_options(sources, o, err);
     if (rc)
@@ -165,7 +166,7 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
     if (!o->resume_input && !in->sequential && in->tile_w && in->tile_h && o->threads <= 256) {
         cache = vt_tile_cache_create(sources, o->threads, INPUT_CACHE_BYTES, cached, err);
         if (!cache)
-            return err ? err->status : VT_ERR_NOMEM;
+            return err ? err->status : VTS_ERR_NOMEM;
         for (unsigned i = 0; i < o->threads; i++)
             cached_ptrs[i] = &cached[i];
         p.sources = cached_ptrs;
@@ -180,7 +181,7 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
                 vt_float_file_create(o->temp_dir, vt_pyramid_pass_level_extent(p.w, p.depth),
                                      vt_pyramid_pass_level_extent(p.h, p.depth), p.channels, err);
             if (!p.next) {
-                rc = err ? err->status : VT_ERR_IO;
+                rc = err ? err->status : VTS_ERR_IO;
                 break;
             }
         }
@@ -196,7 +197,7 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
         free(temp_sources);
         temp_sources = calloc(o->threads, sizeof *temp_sources);
         if (!temp_sources) {
-            rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+            rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
             break;
         }
         vt_float_file_source(p.next, o->colour, in->has_alpha, &temp_source, err);

@@ -24,7 +24,7 @@
  * (worker = 0..threads-1) in no particular order; each tile exactly once. */
 typedef int (*vt_pyramid_emit_fn)(void *user, unsigned worker, uint32_t level, uint32_t tx,
                                   uint32_t ty, const struct vt_image *payload,
-                                  struct vt_error *err);
+                                  struct vts_error *err);
 
 /* Sharded builds (docs/sharding.md): receives the texels a first-pass block computed of the pass's
  * last level (relative level levels_per_pass): width x height texels of `channels` floats in the
@@ -32,7 +32,7 @@ typedef int (*vt_pyramid_emit_fn)(void *user, unsigned worker, uint32_t level, u
  * once per block. */
 typedef int (*vt_pyramid_carry_fn)(void *user, unsigned worker, uint32_t x, uint32_t y,
                                    uint32_t width, uint32_t height, uint32_t channels,
-                                   const float *texels, size_t stride, struct vt_error *err);
+                                   const float *texels, size_t stride, struct vts_error *err);
 
 /* Progress: tiles done of total; a non-zero return cancels. Called on the calling thread. */
 typedef int (*vt_pyramid_progress_fn)(void *user, uint64_t done, uint64_t total);
@@ -88,7 +88,7 @@ bool vt_pyramid_part(const struct vt_pyramid_plan *plan, uint32_t index, uint32_
  * workers can decode in parallel); a sequential source needs only sources[0] (others may be
  * NULL). Returns 0 or the first error (lowest block) with its message. */
 int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_options *o,
-                     struct vt_error *err);
+                     struct vts_error *err);
 
 /* Tiles per layer the build emits (for progress totals; a shard's or a resumed build's own). */
 uint64_t vt_pyramid_tile_count(const struct vt_pyramid_options *o);

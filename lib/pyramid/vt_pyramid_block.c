@@ -3,6 +3,7 @@
 
 #include <string.h>
 
+#include "vt_error.h"
 #include "vt_float_file.h"
 #include "vt_pyramid_read.h"
 
@@ -41,7 +42,7 @@ static void copy_channels(const struct vt_image *src, struct vt_image *dst)
 }
 
 static int emit_tile(struct vt_pyramid_pass *p, unsigned worker, struct vt_pyramid_pass_scratch *s,
-                     uint32_t level, uint32_t tx, uint32_t ty, struct vt_error *err)
+                     uint32_t level, uint32_t tx, uint32_t ty, struct vts_error *err)
 {
     const struct vt_pyramid_options *o = p->o;
     struct vt_image *t = o->out_channels == p->channels ? &s->tile_full : &s->tile;
@@ -54,7 +55,7 @@ static int emit_tile(struct vt_pyramid_pass *p, unsigned worker, struct vt_pyram
 /* Payload of tile (tx, ty) of the pass's base level, straight from the source texels. */
 static int emit_base_tile(struct vt_pyramid_pass *p, unsigned worker,
                           struct vt_pyramid_pass_scratch *s, int64_t rx0, int64_t ry0, uint32_t tx,
-                          uint32_t ty, struct vt_error *err)
+                          uint32_t ty, struct vts_error *err)
 {
     const struct vt_pyramid_options *o = p->o;
     uint32_t pp = o->tile_content_px + 2 * o->border_px;
@@ -81,7 +82,7 @@ static int emit_base_tile(struct vt_pyramid_pass *p, unsigned worker,
 /* Payload of tile (tx, ty) of a reduced level from its working region. */
 static int emit_working_tile(struct vt_pyramid_pass *p, unsigned worker,
                              struct vt_pyramid_pass_scratch *s, const struct vt_fregion *w,
-                             uint32_t level, uint32_t tx, uint32_t ty, struct vt_error *err)
+                             uint32_t level, uint32_t tx, uint32_t ty, struct vts_error *err)
 {
     const struct vt_pyramid_options *o = p->o;
     uint32_t pp = o->tile_content_px + 2 * o->border_px;
@@ -116,7 +117,7 @@ static struct span block_span(const struct vt_pyramid_pass *p, uint32_t b, uint3
 
 static int emit_level_tiles(struct vt_pyramid_pass *p, unsigned worker,
                             struct vt_pyramid_pass_scratch *s, uint32_t r, uint32_t bx, uint32_t by,
-                            int64_t rx0, int64_t ry0, struct vt_error *err)
+                            int64_t rx0, int64_t ry0, struct vts_error *err)
 {
     uint32_t c = p->o->tile_content_px, level = p->base + r;
     struct span sx = block_span(p, bx, r, p->w), sy = block_span(p, by, r, p->h);
@@ -130,7 +131,7 @@ static int emit_level_tiles(struct vt_pyramid_pass *p, unsigned worker,
 
 static int store_next_pass(struct vt_pyramid_pass *p, unsigned worker,
                            struct vt_pyramid_pass_scratch *s, uint32_t bx, uint32_t by,
-                           struct vt_error *err)
+                           struct vts_error *err)
 {
     const struct vt_fregion *w = &s->w[p->depth];
     struct span sx = block_span(p, bx, p->depth, p->w), sy = block_span(p, by, p->depth, p->h);
@@ -189,7 +190,7 @@ static int64_t clamp_to(int64_t v, int64_t size, bool wrap)
  * with a working buffer of a few rows instead of the whole block. */
 static int reduce_from_native(struct vt_pyramid_pass *p, struct vt_pyramid_pass_scratch *s,
                               const struct vt_image *in, const struct vt_fregion *r0,
-                              const struct vt_edges *edges, struct vt_error *err)
+                              const struct vt_edges *edges, struct vts_error *err)
 {
     const struct vt_kernel *k = &p->kernel;
     struct vt_fregion *dst = &s->w[1];
@@ -205,7 +206,7 @@ static int reduce_from_native(struct vt_pyramid_pass *p, struct vt_pyramid_pass_
                      edges->level_h, edges->wrap_y) +
             1;
         if (lo < r0->y0 || hi > r0->y0 + r0->height || hi - lo > (int64_t)s->band_rows)
-            return vt_error_set(err, VT_ERR_ARG, "band rows %lld..%lld outside the block",
+            return vt_error_set(err, VTS_ERR_ARG, "band rows %lld..%lld outside the block",
                                 (long long)lo, (long long)hi);
         struct vt_fregion band = {r0->x0,      lo,        r0->width, (uint32_t)(hi - lo),
                                   p->channels, s->w[0].px};
@@ -222,7 +223,7 @@ static int reduce_from_native(struct vt_pyramid_pass *p, struct vt_pyramid_pass_
 }
 
 int vt_pyramid_block_run(struct vt_pyramid_pass *p, unsigned worker, uint32_t bx, uint32_t by,
-                         struct vt_error *err)
+                         struct vts_error *err)
 {
     struct vt_pyramid_pass_scratch *s = &p->scratch[worker];
     struct vt_fregion r0;

@@ -15,6 +15,6 @@ void vt_pyramid_block_region(const struct vt_pyramid_pass *p, uint32_t bx, uint3
 /* Runs block (bx, by) of pass p on worker `worker` (its scratch p->scratch[worker]). 0 or the
  * status of a read, a reduction, the emit or the store. */
 int vt_pyramid_block_run(struct vt_pyramid_pass *p, unsigned worker, uint32_t bx, uint32_t by,
-                         struct vt_error *err);
+                         struct vts_error *err);
 
 #endif

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include "vt_checked.h"
+#include "vt_error.h"
 #include "vt_pool.h"
 #include "vt_pyramid_block.h"
 #include "vt_pyramid_read.h"
@@ -35,13 +36,13 @@ static void max_region(const struct vt_pyramid_pass *p, uint32_t r, struct vt_fr
     out->channels = p->channels;
 }
 
-static int scratch_alloc(struct vt_pyramid_pass *p, struct vt_error *err)
+static int scratch_alloc(struct vt_pyramid_pass *p, struct vts_error *err)
 {
     const struct vt_pyramid_options *o = p->o;
     uint32_t pp = o->tile_content_px + 2 * o->border_px;
     p->scratch = calloc(p->threads, sizeof *p->scratch);
     if (!p->scratch)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory for %u workers", p->threads);
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for %u workers", p->threads);
     struct vt_fregion big;
     max_region(p, 0, &big);
     for (unsigned i = 0; i < p->threads; i++) {
@@ -80,7 +81,7 @@ static int scratch_alloc(struct vt_pyramid_pass *p, struct vt_error *err)
         if (ok && floats)
             ok = (s->reduce_scratch = malloc(floats * sizeof(float))) != NULL;
         if (!ok)
-            return vt_error_set(err, VT_ERR_NOMEM,
+            return vt_error_set(err, VTS_ERR_NOMEM,
                                 "out of memory for the working blocks of %ux%u texels", big.width,
                                 big.height);
     }
@@ -96,7 +97,7 @@ static bool next_block(void *ctx, uint64_t *job)
     return true;
 }
 
-static int run_block(void *ctx, unsigned worker, uint64_t job, struct vt_error *err)
+static int run_block(void *ctx, unsigned worker, uint64_t job, struct vts_error *err)
 {
     struct vt_pyramid_pass *p = ctx;
     return vt_pyramid_block_run(p, worker, (uint32_t)job, p->row, err);
@@ -110,7 +111,7 @@ static int report_progress(void *ctx)
     return p->o->progress(p->o->user, __atomic_load_n(p->done, __ATOMIC_RELAXED), p->total);
 }
 
-int vt_pyramid_pass_run(struct vt_pyramid_pass *p, struct vt_error *err)
+int vt_pyramid_pass_run(struct vt_pyramid_pass *p, struct vts_error *err)
 {
     const struct vt_pyramid_options *o = p->o;
     uint32_t km = vt_kernel_margin(&p->kernel);

@@ -97,6 +97,6 @@ static inline struct vt_image vt_pyramid_pass_view(const struct vt_image *img, i
 /* Runs pass p (its base, depth, sources and next/carry set by the caller): computes margins and
  * the blocks to run, allocates per-worker scratch, runs every block row on the pool (moving the
  * band first for a sequential source) and frees the scratch. 0 or a negative status. */
-int vt_pyramid_pass_run(struct vt_pyramid_pass *p, struct vt_error *err);
+int vt_pyramid_pass_run(struct vt_pyramid_pass *p, struct vts_error *err);
 
 #endif

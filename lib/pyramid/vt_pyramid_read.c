@@ -1,5 +1,6 @@
 /* Region and band reads of the mip pyramid (see vt_pyramid_read.h). */
 #include "vt_pyramid_read.h"
+#include "vt_error.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -36,7 +37,7 @@ static size_t make_segments(int64_t a, int64_t b, uint32_t n, bool wrap,
  * wrapping positions outside the image. */
 int vt_pyramid_read_region(struct vt_pyramid_pass *p, struct vt_pyramid_pass_scratch *s,
                            struct vt_source *src, int64_t x0, int64_t y0, struct vt_image *dst,
-                           struct vt_error *err)
+                           struct vts_error *err)
 {
     bool wrap = p->o->wrap;
     size_t nx = make_segments(x0, x0 + dst->width, p->w, wrap, s->xs, s->seg_cap);
@@ -87,11 +88,11 @@ int vt_pyramid_read_region(struct vt_pyramid_pass *p, struct vt_pyramid_pass_scr
 /* ---- bands: full-width rows of a sequential source, moved down without re-reading ---- */
 
 static int band_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,
-                            struct vt_error *err)
+                            struct vts_error *err)
 {
     const struct vt_pyramid_pass_band *b = ctx;
     if ((int64_t)y < b->y0 || (int64_t)y + dst->height > b->y0 + b->img.height)
-        return vt_error_set(err, VT_ERR_ARG, "rows %u..%u are outside the band", y,
+        return vt_error_set(err, VTS_ERR_ARG, "rows %u..%u are outside the band", y,
                             y + dst->height);
     size_t row = vt_image_texel_bytes(dst) * dst->width;
     for (uint32_t r = 0; r < dst->height; r++)
@@ -109,7 +110,8 @@ static const struct vt_source_ops band_ops = {band_read_region, band_close};
 
 /* Makes the band hold source rows [a, b): keeps the rows it already has, reads the rest in one
  * top-down region read. */
-int vt_pyramid_read_band_move(struct vt_pyramid_pass *p, int64_t a, int64_t b, struct vt_error *err)
+int vt_pyramid_read_band_move(struct vt_pyramid_pass *p, int64_t a, int64_t b,
+                              struct vts_error *err)
 {
     struct vt_pyramid_pass_band *old = &p->band, nb = {.y0 = a, .valid = true};
     int rc = vt_image_alloc(&nb.img, p->w, (uint32_t)(b - a), p->channels, p->sample, err);

@@ -12,12 +12,12 @@
  * s->ys. 0 or the source's status. */
 int vt_pyramid_read_region(struct vt_pyramid_pass *p, struct vt_pyramid_pass_scratch *s,
                            struct vt_source *src, int64_t x0, int64_t y0, struct vt_image *dst,
-                           struct vt_error *err);
+                           struct vts_error *err);
 
 /* Makes p->band hold source rows [a, b) (bands only move down): keeps the rows it already has,
  * reads the rest from p->sources[0] in one region read. 0 or a negative status (band invalid). */
 int vt_pyramid_read_band_move(struct vt_pyramid_pass *p, int64_t a, int64_t b,
-                              struct vt_error *err);
+                              struct vts_error *err);
 
 /* Sets p->band_source up as a source reading p->band, with info *in and name. */
 void vt_pyramid_read_band_init(struct vt_pyramid_pass *p, const struct vt_source_info *in,

@@ -1,4 +1,5 @@
 #include "vt_tile_cache.h"
+#include "vt_error.h"
 
 #include <pthread.h>
 #include <stdbool.h>
@@ -34,7 +35,7 @@ struct vt_tile_cache {
 /* Returns a pinned entry holding tile (tx, ty), decoding it through the worker's own source when
  * absent, or NULL with *img set to the worker's spare buffer when no slot is free. */
 static int get_tile(struct worker *w, uint32_t tx, uint32_t ty, struct entry **out,
-                    struct vt_image **img, struct vt_error *err)
+                    struct vt_image **img, struct vts_error *err)
 {
     struct vt_tile_cache *c = w->cache;
     const struct vt_source_info *in = &c->sources[w->index]->info;
@@ -110,7 +111,7 @@ static void unpin(struct vt_tile_cache *c, struct entry *e)
 }
 
 static int cached_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,
-                              struct vt_error *err)
+                              struct vts_error *err)
 {
     struct worker *w = ctx;
     struct vt_tile_cache *c = w->cache;
@@ -144,12 +145,12 @@ static const struct vt_source_ops cached_ops = {cached_read_region, cached_close
 
 struct vt_tile_cache *vt_tile_cache_create(struct vt_source *const *sources, unsigned n,
                                            size_t budget_bytes, struct vt_source *out,
-                                           struct vt_error *err)
+                                           struct vts_error *err)
 {
     const struct vt_source_info *in = &sources[0]->info;
     struct vt_tile_cache *c = calloc(1, sizeof *c);
     if (!c) {
-        vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
         return NULL;
     }
     pthread_mutex_init(&c->lock, NULL);
@@ -178,7 +179,7 @@ struct vt_tile_cache *vt_tile_cache_create(struct vt_source *const *sources, uns
         out[i].ctx = &c->workers[i];
     }
     if (!ok) {
-        vt_error_set(err, VT_ERR_NOMEM, "out of memory for the input tile cache");
+        vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the input tile cache");
         vt_tile_cache_destroy(c);
         return NULL;
     }

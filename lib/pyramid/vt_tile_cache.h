@@ -17,7 +17,7 @@ struct vt_tile_cache;
  * the wrapped sources stay owned by the caller. Returns NULL and fills err on failure. */
 struct vt_tile_cache *vt_tile_cache_create(struct vt_source *const *sources, unsigned n,
                                            size_t budget_bytes, struct vt_source *out,
-                                           struct vt_error *err);
+                                           struct vts_error *err);
 
 /* Tiles decoded and tiles served from the cache so far (for reports and tests). */
 void vt_tile_cache_counts(struct vt_tile_cache *c, unsigned long long *decoded,

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "vt_checked.h"
+#include "vt_error.h"
 #include "vts.h"
 #include "vts_crc32c.h"
 #include "vts_format.h"
@@ -35,12 +36,12 @@ struct vts_store {
     const char **meta_values;
 };
 
-/* Reads exactly len bytes at off; a short read means the file ends early (VT_ERR_CORRUPT). */
+/* Reads exactly len bytes at off; a short read means the file ends early (VTS_ERR_CORRUPT). */
 static int read_at(const struct vts_store *s, void *buf, size_t len, uint64_t off, const char *what,
-                   struct vt_error *err)
+                   struct vts_error *err)
 {
     if (!vt_range_within(off, len, s->file_size))
-        return vt_error_set(err, VT_ERR_CORRUPT,
+        return vt_error_set(err, VTS_ERR_CORRUPT,
                             "'%s': %s is truncated (needs bytes %llu..%llu, file has %llu)",
                             s->name, what, (unsigned long long)off, (unsigned long long)(off + len),
                             (unsigned long long)s->file_size);
@@ -54,10 +55,10 @@ static int read_at(const struct vts_store *s, void *buf, size_t len, uint64_t of
         if (n < 0 && errno == EINTR)
             continue;
         if (n < 0)
-            return vt_error_set(err, VT_ERR_IO, "cannot read %s of '%s': %s", what, s->name,
+            return vt_error_set(err, VTS_ERR_IO, "cannot read %s of '%s': %s", what, s->name,
                                 strerror(errno));
         if (n == 0)
-            return vt_error_set(err, VT_ERR_CORRUPT, "'%s': %s is truncated at byte %llu", s->name,
+            return vt_error_set(err, VTS_ERR_CORRUPT, "'%s': %s is truncated at byte %llu", s->name,
                                 what, (unsigned long long)off);
         p += n;
         len -= (size_t)n;
@@ -87,43 +88,43 @@ struct region {
 };
 
 static int check_regions(const struct vts_store *s, struct region *r, int n, uint64_t header_size,
-                         struct vt_error *err)
+                         struct vts_error *err)
 {
     for (int i = 0; i < n; i++) {
         if (!vt_range_within(r[i].off, r[i].size, s->file_size))
             return vt_error_set(
-                err, VT_ERR_CORRUPT,
+                err, VTS_ERR_CORRUPT,
                 "'%s': %s (bytes %llu + %llu) lies past the end of the file (%llu bytes)", s->name,
                 r[i].what, (unsigned long long)r[i].off, (unsigned long long)r[i].size,
                 (unsigned long long)s->file_size);
         if (r[i].size > 0 && r[i].off < header_size)
-            return vt_error_set(err, VT_ERR_CORRUPT, "'%s': %s overlaps the header", s->name,
+            return vt_error_set(err, VTS_ERR_CORRUPT, "'%s': %s overlaps the header", s->name,
                                 r[i].what);
         for (int j = 0; j < i; j++)
             if (r[i].size > 0 && r[j].size > 0 && r[i].off < r[j].off + r[j].size &&
                 r[j].off < r[i].off + r[i].size)
-                return vt_error_set(err, VT_ERR_CORRUPT, "'%s': %s overlaps the %s", s->name,
+                return vt_error_set(err, VTS_ERR_CORRUPT, "'%s': %s overlaps the %s", s->name,
                                     r[i].what, r[j].what);
     }
     return 0;
 }
 
 static int parse_layers(struct vts_store *s, uint64_t off, uint32_t entry_size, uint32_t crc,
-                        struct vt_error *err)
+                        struct vts_error *err)
 {
     size_t bytes = (size_t)s->geo.layer_count * entry_size; /* <= 64 * 4096 */
     unsigned char *buf = malloc(bytes);
     s->layers = calloc(s->geo.layer_count, sizeof *s->layers);
     int rc = 0;
     if (!buf || !s->layers) {
-        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory reading '%s'", s->name);
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory reading '%s'", s->name);
         goto out;
     }
     rc = read_at(s, buf, bytes, off, "layer table", err);
     if (rc)
         goto out;
     if (vts_crc32c(0, buf, bytes) != crc) {
-        rc = vt_error_set(err, VT_ERR_CHECKSUM, "'%s': layer table checksum mismatch", s->name);
+        rc = vt_error_set(err, VTS_ERR_CHECKSUM, "'%s': layer table checksum mismatch", s->name);
         goto out;
     }
     for (uint32_t i = 0; i < s->geo.layer_count; i++) {
@@ -140,7 +141,7 @@ static int parse_layers(struct vts_store *s, uint64_t off, uint32_t entry_size, 
             L->colour < VTS_COLOUR_SRGB || L->colour > VTS_COLOUR_DATA ||
             memchr(L->name, '\0', VTS_LAYER_NAME_BYTES) == NULL) {
             rc = vt_error_set(
-                err, VT_ERR_CORRUPT,
+                err, VTS_ERR_CORRUPT,
                 "'%s': layer %u has an invalid description (%u channels, sample %u, colour %u)",
                 s->name, i, L->channels, L->sample, L->colour);
             goto out;
@@ -152,7 +153,7 @@ out:
 }
 
 static int check_entry(struct vts_store *s, uint64_t i, uint64_t data_off, uint64_t data_size,
-                       struct vt_error *err)
+                       struct vts_error *err)
 {
     const struct vts_tile_entry *e = &s->entries[i];
     const char *why = NULL;
@@ -166,13 +167,13 @@ static int check_entry(struct vts_store *s, uint64_t i, uint64_t data_off, uint6
     uint32_t layer, level, tx, ty;
     entry_position(s, i, &layer, &level, &tx, &ty);
     return vt_error_set(
-        err, VT_ERR_CORRUPT,
+        err, VTS_ERR_CORRUPT,
         "'%s': index entry of layer %u level %u tile %u,%u %s (offset %llu, length %u)", s->name,
         layer, level, tx, ty, why, (unsigned long long)e->offset, e->length);
 }
 
 static int parse_index(struct vts_store *s, uint64_t off, uint32_t entry_size, uint32_t crc,
-                       uint64_t data_off, uint64_t data_size, struct vt_error *err)
+                       uint64_t data_off, uint64_t data_size, struct vts_error *err)
 {
     /* tile_count * 16 <= 2^36 by the geometry check, and the region was checked to lie inside
      * the file, so these allocations are bounded by the file size (the chunk too: never more
@@ -183,7 +184,7 @@ static int parse_index(struct vts_store *s, uint64_t off, uint32_t entry_size, u
     unsigned char *chunk = malloc((size_t)chunk_entries * entry_size);
     int rc = 0;
     if (!s->entries || !chunk) {
-        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory for the index of '%s'", s->name);
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the index of '%s'", s->name);
         goto out;
     }
     uint32_t running = 0;
@@ -203,7 +204,7 @@ static int parse_index(struct vts_store *s, uint64_t off, uint32_t entry_size, u
         }
     }
     if (running != crc) {
-        rc = vt_error_set(err, VT_ERR_CHECKSUM, "'%s': tile index checksum mismatch", s->name);
+        rc = vt_error_set(err, VTS_ERR_CHECKSUM, "'%s': tile index checksum mismatch", s->name);
         goto out;
     }
     for (uint64_t i = 0; i < s->tile_count; i++) {
@@ -226,7 +227,7 @@ static int compare_by_offset(const void *a, const void *b)
 }
 
 /* Payloads may be shared (same offset, length and CRC) but never partly overlap. */
-static int check_overlaps(struct vts_store *s, struct vt_error *err)
+static int check_overlaps(struct vts_store *s, struct vts_error *err)
 {
     uint64_t n = 0;
     for (uint64_t i = 0; i < s->tile_count; i++)
@@ -235,7 +236,7 @@ static int check_overlaps(struct vts_store *s, struct vt_error *err)
         return 0;
     const struct vts_tile_entry **sorted = malloc((size_t)n * sizeof *sorted);
     if (!sorted)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory checking '%s'", s->name);
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory checking '%s'", s->name);
     n = 0;
     for (uint64_t i = 0; i < s->tile_count; i++)
         if (s->entries[i].length > 0)
@@ -249,7 +250,7 @@ static int check_overlaps(struct vts_store *s, struct vt_error *err)
             uint32_t layer, level, tx, ty;
             entry_position(s, (uint64_t)(b - s->entries), &layer, &level, &tx, &ty);
             rc = vt_error_set(
-                err, VT_ERR_CORRUPT,
+                err, VTS_ERR_CORRUPT,
                 "'%s': payload of layer %u level %u tile %u,%u overlaps another payload at offset %llu",
                 s->name, layer, level, tx, ty, (unsigned long long)a->offset);
         }
@@ -267,22 +268,22 @@ static bool key_is_valid(const unsigned char *k, uint32_t len)
 }
 
 static int parse_meta(struct vts_store *s, uint64_t off, uint32_t size, uint32_t crc,
-                      struct vt_error *err)
+                      struct vts_error *err)
 {
     unsigned char *raw = malloc(size ? size : 1);
     int rc = 0;
     if (!raw)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory for the metadata of '%s'", s->name);
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the metadata of '%s'", s->name);
     rc = read_at(s, raw, size, off, "metadata", err);
     if (rc)
         goto out;
     if (vts_crc32c(0, raw, size) != crc) {
-        rc = vt_error_set(err, VT_ERR_CHECKSUM, "'%s': metadata checksum mismatch", s->name);
+        rc = vt_error_set(err, VTS_ERR_CHECKSUM, "'%s': metadata checksum mismatch", s->name);
         goto out;
     }
     uint32_t count = vts_load_u32(raw);
     if (count > VTS_MAX_META_ENTRIES || count > (size - 4) / 8) {
-        rc = vt_error_set(err, VT_ERR_CORRUPT, "'%s': metadata claims %u entries in %u bytes",
+        rc = vt_error_set(err, VTS_ERR_CORRUPT, "'%s': metadata claims %u entries in %u bytes",
                           s->name, count, size);
         goto out;
     }
@@ -291,7 +292,7 @@ static int parse_meta(struct vts_store *s, uint64_t off, uint32_t size, uint32_t
     s->meta_keys = calloc(count ? count : 1, sizeof *s->meta_keys);
     s->meta_values = calloc(count ? count : 1, sizeof *s->meta_values);
     if (!s->meta_block || !s->meta_keys || !s->meta_values) {
-        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory for the metadata of '%s'", s->name);
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the metadata of '%s'", s->name);
         goto out;
     }
     uint64_t pos = 4, out_pos = 0;
@@ -319,25 +320,25 @@ static int parse_meta(struct vts_store *s, uint64_t off, uint32_t size, uint32_t
     s->meta_count = count;
     goto out;
 bad:
-    rc = vt_error_set(err, VT_ERR_CORRUPT, "'%s': malformed metadata block", s->name);
+    rc = vt_error_set(err, VTS_ERR_CORRUPT, "'%s': malformed metadata block", s->name);
 out:
     free(raw);
     return rc;
 }
 
-static int parse_header(struct vts_store *s, struct vt_error *err)
+static int parse_header(struct vts_store *s, struct vts_error *err)
 {
     unsigned char h[VTS_HEADER_SIZE];
     if (s->file_size < VTS_MAGIC_SIZE)
-        return vt_error_set(err, VT_ERR_NOT_VTS, "'%s' is not a vts store (%llu bytes)", s->name,
+        return vt_error_set(err, VTS_ERR_NOT_VTS, "'%s' is not a vts store (%llu bytes)", s->name,
                             (unsigned long long)s->file_size);
     int rc = read_at(s, h, VTS_MAGIC_SIZE, 0, "header", err);
     if (rc)
         return rc;
     if (memcmp(h, VTS_MAGIC, VTS_MAGIC_SIZE) != 0)
-        return vt_error_set(err, VT_ERR_NOT_VTS, "'%s' is not a vts store (bad magic)", s->name);
+        return vt_error_set(err, VTS_ERR_NOT_VTS, "'%s' is not a vts store (bad magic)", s->name);
     if (s->file_size < VTS_HEADER_SIZE)
-        return vt_error_set(err, VT_ERR_CORRUPT, "'%s': header is truncated (%llu of %u bytes)",
+        return vt_error_set(err, VTS_ERR_CORRUPT, "'%s': header is truncated (%llu of %u bytes)",
                             s->name, (unsigned long long)s->file_size, VTS_HEADER_SIZE);
     rc = read_at(s, h, VTS_HEADER_SIZE, 0, "header", err);
     if (rc)
@@ -345,11 +346,11 @@ static int parse_header(struct vts_store *s, struct vt_error *err)
     s->major = vts_load_u16(h + VTS_H_MAJOR);
     s->minor = vts_load_u16(h + VTS_H_MINOR);
     if (s->major != VTS_FORMAT_MAJOR)
-        return vt_error_set(err, VT_ERR_VERSION,
+        return vt_error_set(err, VTS_ERR_VERSION,
                             "'%s': format version %u.%u is not supported (this reader knows %u.x)",
                             s->name, s->major, s->minor, VTS_FORMAT_MAJOR);
     if (vts_crc32c(0, h, VTS_H_HEADER_CRC) != vts_load_u32(h + VTS_H_HEADER_CRC))
-        return vt_error_set(err, VT_ERR_CHECKSUM, "'%s': header checksum mismatch", s->name);
+        return vt_error_set(err, VTS_ERR_CHECKSUM, "'%s': header checksum mismatch", s->name);
 
     struct vts_geometry *g = &s->geo;
     g->width = vts_load_u32(h + VTS_H_WIDTH);
@@ -360,9 +361,9 @@ static int parse_header(struct vts_store *s, struct vt_error *err)
     g->level_count = vts_load_u32(h + VTS_H_LEVELS);
     g->layer_count = vts_load_u32(h + VTS_H_LAYERS);
     g->flags = vts_load_u32(h + VTS_H_FLAGS);
-    struct vt_error gerr;
+    struct vts_error gerr;
     if (vts_geometry_check(g, &gerr) != 0)
-        return vt_error_set(err, VT_ERR_CORRUPT, "'%s': invalid geometry: %s", s->name,
+        return vt_error_set(err, VTS_ERR_CORRUPT, "'%s': invalid geometry: %s", s->name,
                             gerr.message);
     for (uint32_t l = 0; l < g->level_count; l++)
         vts_geometry_level(g, l, &s->levels[l]);
@@ -378,16 +379,16 @@ static int parse_header(struct vts_store *s, struct vt_error *err)
         layer_entry > MAX_ENTRY_SIZE || index_entry < VTS_INDEX_ENTRY_SIZE ||
         index_entry > MAX_ENTRY_SIZE)
         return vt_error_set(
-            err, VT_ERR_CORRUPT,
+            err, VTS_ERR_CORRUPT,
             "'%s': invalid header (header %llu, layer entry %u, index entry %u bytes)", s->name,
             (unsigned long long)header_size, layer_entry, index_entry);
     if (index_count != s->tile_count)
-        return vt_error_set(err, VT_ERR_CORRUPT,
+        return vt_error_set(err, VTS_ERR_CORRUPT,
                             "'%s': index holds %llu entries, the geometry needs %llu", s->name,
                             (unsigned long long)index_count, (unsigned long long)s->tile_count);
     if (meta_size < 4 || meta_size > VTS_MAX_META_BYTES)
-        return vt_error_set(err, VT_ERR_CORRUPT, "'%s': metadata size %u is outside 4..%u", s->name,
-                            meta_size, VTS_MAX_META_BYTES);
+        return vt_error_set(err, VTS_ERR_CORRUPT, "'%s': metadata size %u is outside 4..%u",
+                            s->name, meta_size, VTS_MAX_META_BYTES);
     struct region r[4] = {
         {vts_load_u64(h + VTS_H_LAYER_OFFSET), (uint64_t)layer_entry * g->layer_count,
          "layer table"},
@@ -396,7 +397,7 @@ static int parse_header(struct vts_store *s, struct vt_error *err)
         {vts_load_u64(h + VTS_H_DATA_OFFSET), vts_load_u64(h + VTS_H_DATA_SIZE), "data region"},
     };
     if (header_size > s->file_size)
-        return vt_error_set(err, VT_ERR_CORRUPT,
+        return vt_error_set(err, VTS_ERR_CORRUPT,
                             "'%s': header size %llu is past the end of the file", s->name,
                             (unsigned long long)header_size);
     rc = check_regions(s, r, 4, header_size, err);
@@ -412,11 +413,11 @@ static int parse_header(struct vts_store *s, struct vt_error *err)
     return rc;
 }
 
-static struct vts_store *store_new(const char *name, struct vt_error *err)
+static struct vts_store *store_new(const char *name, struct vts_error *err)
 {
     struct vts_store *s = calloc(1, sizeof *s);
     if (!s) {
-        vt_error_set(err, VT_ERR_NOMEM, "out of memory opening '%s'", name);
+        vt_error_set(err, VTS_ERR_NOMEM, "out of memory opening '%s'", name);
         return NULL;
     }
     s->fd = -1;
@@ -424,7 +425,7 @@ static struct vts_store *store_new(const char *name, struct vt_error *err)
     return s;
 }
 
-static struct vts_store *store_finish_open(struct vts_store *s, struct vt_error *err)
+static struct vts_store *store_finish_open(struct vts_store *s, struct vts_error *err)
 {
     if (parse_header(s, err) != 0) {
         vts_close(s);
@@ -433,7 +434,7 @@ static struct vts_store *store_finish_open(struct vts_store *s, struct vt_error 
     return s;
 }
 
-struct vts_store *vts_open(const char *path, struct vt_error *err)
+struct vts_store *vts_open(const char *path, struct vts_error *err)
 {
     struct vts_store *s = store_new(path, err);
     if (!s)
@@ -442,12 +443,12 @@ struct vts_store *vts_open(const char *path, struct vt_error *err)
     s->fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
     struct stat st;
     if (s->fd < 0 || fstat(s->fd, &st) != 0) {
-        vt_error_set(err, VT_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
+        vt_error_set(err, VTS_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
         vts_close(s);
         return NULL;
     }
     if (!S_ISREG(st.st_mode)) {
-        vt_error_set(err, VT_ERR_IO, "cannot open '%s': not a regular file", path);
+        vt_error_set(err, VTS_ERR_IO, "cannot open '%s': not a regular file", path);
         vts_close(s);
         return NULL;
     }
@@ -456,7 +457,7 @@ struct vts_store *vts_open(const char *path, struct vt_error *err)
 }
 
 struct vts_store *vts_open_memory(const void *data, size_t size, const char *name,
-                                  struct vt_error *err)
+                                  struct vts_error *err)
 {
     struct vts_store *s = store_new(name ? name : "(memory)", err);
     if (!s)
@@ -491,9 +492,14 @@ const struct vts_layer *vts_store_layer(const struct vts_store *s, uint32_t laye
     return layer < s->geo.layer_count ? &s->layers[layer] : NULL;
 }
 
-void vts_store_level(const struct vts_store *s, uint32_t level, struct vts_level *out)
+int vts_store_level(const struct vts_store *s, uint32_t level, struct vts_level *out)
 {
-    *out = s->levels[level < s->geo.level_count ? level : s->geo.level_count - 1];
+    if (level >= s->geo.level_count) {
+        memset(out, 0, sizeof *out);
+        return VTS_ERR_RANGE;
+    }
+    *out = s->levels[level];
+    return 0;
 }
 
 uint64_t vts_store_file_size(const struct vts_store *s)
@@ -528,11 +534,11 @@ uint32_t vts_store_max_payload(const struct vts_store *s)
 }
 
 int vts_store_tile(const struct vts_store *s, uint32_t layer, uint32_t level, uint32_t tx,
-                   uint32_t ty, struct vts_tile_entry *out, struct vt_error *err)
+                   uint32_t ty, struct vts_tile_entry *out, struct vts_error *err)
 {
     if (layer >= s->geo.layer_count || level >= s->geo.level_count ||
         tx >= s->levels[level].tiles_x || ty >= s->levels[level].tiles_y)
-        return vt_error_set(err, VT_ERR_RANGE, "'%s' has no tile %u,%u at layer %u level %u",
+        return vt_error_set(err, VTS_ERR_RANGE, "'%s' has no tile %u,%u at layer %u level %u",
                             s->name, tx, ty, layer, level);
     const struct vts_level *L = &s->levels[level];
     *out = s->entries[layer * s->tiles_per_layer + L->first_tile + (uint64_t)ty * L->tiles_x + tx];
@@ -541,7 +547,7 @@ int vts_store_tile(const struct vts_store *s, uint32_t layer, uint32_t level, ui
 
 int vts_store_read(const struct vts_store *s, uint32_t layer, uint32_t level, uint32_t tx,
                    uint32_t ty, void *dst, size_t dst_capacity, size_t *out_len, unsigned flags,
-                   struct vt_error *err)
+                   struct vts_error *err)
 {
     struct vts_tile_entry e;
     *out_len = 0;
@@ -549,7 +555,7 @@ int vts_store_read(const struct vts_store *s, uint32_t layer, uint32_t level, ui
     if (rc)
         return rc;
     if (e.length > dst_capacity)
-        return vt_error_set(err, VT_ERR_LIMIT,
+        return vt_error_set(err, VTS_ERR_LIMIT,
                             "'%s': tile %u,%u of level %u is %u bytes, buffer holds %zu", s->name,
                             tx, ty, level, e.length, dst_capacity);
     if (e.length == 0) /* empty tile: nothing to read (dst may be NULL) */
@@ -560,7 +566,7 @@ int vts_store_read(const struct vts_store *s, uint32_t layer, uint32_t level, ui
     if (rc)
         return rc;
     if (!(flags & VTS_READ_NO_CRC) && vts_crc32c(0, dst, e.length) != e.crc32c)
-        return vt_error_set(err, VT_ERR_CHECKSUM, "'%s': %s of layer %u has a bad checksum",
+        return vt_error_set(err, VTS_ERR_CHECKSUM, "'%s': %s of layer %u has a bad checksum",
                             s->name, what, layer);
     *out_len = e.length;
     return 0;

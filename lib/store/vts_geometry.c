@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "vt_checked.h"
+#include "vt_error.h"
 #include "vts.h"
 
 /* Upper bound on index entries: keeps every product below 2^64 and the index within reason
@@ -25,8 +26,12 @@ uint32_t vts_full_level_count(uint32_t width, uint32_t height, uint32_t tile_con
     return levels;
 }
 
-void vts_geometry_level(const struct vts_geometry *g, uint32_t level, struct vts_level *out)
+int vts_geometry_level(const struct vts_geometry *g, uint32_t level, struct vts_level *out)
 {
+    if (level >= g->level_count) {
+        memset(out, 0, sizeof *out);
+        return VTS_ERR_RANGE;
+    }
     uint64_t first = 0;
     for (uint32_t l = 0; l <= level; l++) {
         out->width = level_extent(g->width, l);
@@ -36,6 +41,7 @@ void vts_geometry_level(const struct vts_geometry *g, uint32_t level, struct vts
         out->first_tile = first;
         first += (uint64_t)out->tiles_x * out->tiles_y;
     }
+    return 0;
 }
 
 uint64_t vts_geometry_tiles_per_layer(const struct vts_geometry *g)
@@ -45,34 +51,34 @@ uint64_t vts_geometry_tiles_per_layer(const struct vts_geometry *g)
     return last.first_tile + (uint64_t)last.tiles_x * last.tiles_y;
 }
 
-int vts_geometry_check(const struct vts_geometry *g, struct vt_error *err)
+int vts_geometry_check(const struct vts_geometry *g, struct vts_error *err)
 {
     if (g->width == 0 || g->height == 0 || g->width > VTS_MAX_DIMENSION ||
         g->height > VTS_MAX_DIMENSION)
-        return vt_error_set(err, VT_ERR_LIMIT, "size %ux%u is outside 1..%u", g->width, g->height,
+        return vt_error_set(err, VTS_ERR_LIMIT, "size %ux%u is outside 1..%u", g->width, g->height,
                             VTS_MAX_DIMENSION);
     if (g->tile_content_px == 0 || g->border_px > g->tile_content_px)
-        return vt_error_set(err, VT_ERR_ARG, "tile content %u px with border %u px is invalid",
+        return vt_error_set(err, VTS_ERR_ARG, "tile content %u px with border %u px is invalid",
                             g->tile_content_px, g->border_px);
     uint64_t payload = (uint64_t)g->tile_content_px + 2ull * g->border_px;
     if (payload != g->tile_payload_px)
-        return vt_error_set(err, VT_ERR_ARG, "tile payload %u px != content %u + 2 * border %u",
+        return vt_error_set(err, VTS_ERR_ARG, "tile payload %u px != content %u + 2 * border %u",
                             g->tile_payload_px, g->tile_content_px, g->border_px);
     if (payload > VTS_MAX_PAYLOAD_PX)
-        return vt_error_set(err, VT_ERR_LIMIT, "tile payload %u px is above the limit %u",
+        return vt_error_set(err, VTS_ERR_LIMIT, "tile payload %u px is above the limit %u",
                             g->tile_payload_px, VTS_MAX_PAYLOAD_PX);
     uint32_t full = vts_full_level_count(g->width, g->height, g->tile_content_px);
     if (g->level_count == 0 || g->level_count > full)
-        return vt_error_set(err, VT_ERR_ARG,
+        return vt_error_set(err, VTS_ERR_ARG,
                             "%u levels requested, %ux%u with %u px tiles has 1..%u", g->level_count,
                             g->width, g->height, g->tile_content_px, full);
     if (g->layer_count == 0 || g->layer_count > VTS_MAX_LAYERS)
-        return vt_error_set(err, VT_ERR_LIMIT, "%u layers is outside 1..%u", g->layer_count,
+        return vt_error_set(err, VTS_ERR_LIMIT, "%u layers is outside 1..%u", g->layer_count,
                             VTS_MAX_LAYERS);
     uint64_t tiles;
     if (!vt_u64_mul(vts_geometry_tiles_per_layer(g), g->layer_count, &tiles) ||
         tiles > VTS_MAX_TILES)
-        return vt_error_set(err, VT_ERR_LIMIT,
+        return vt_error_set(err, VTS_ERR_LIMIT,
                             "%ux%u with %u px tiles and %u layers has too many tiles (limit %llu)",
                             g->width, g->height, g->tile_content_px, g->layer_count,
                             (unsigned long long)VTS_MAX_TILES);

@@ -1,4 +1,5 @@
 #include "vts_order.h"
+#include "vt_error.h"
 
 #include <stdlib.h>
 
@@ -32,7 +33,7 @@ static int compare_keyed(const void *a, const void *b)
     return x->key < y->key ? -1 : x->key > y->key;
 }
 
-int vts_order_level(uint32_t tiles_x, uint32_t tiles_y, uint64_t *out, struct vt_error *err)
+int vts_order_level(uint32_t tiles_x, uint32_t tiles_y, uint64_t *out, struct vts_error *err)
 {
     uint64_t count = (uint64_t)tiles_x * tiles_y;
     uint32_t bits = 0;
@@ -40,7 +41,7 @@ int vts_order_level(uint32_t tiles_x, uint32_t tiles_y, uint64_t *out, struct vt
         bits++;
     struct keyed *k = malloc((size_t)count * sizeof *k);
     if (!k)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory ordering %llu tiles",
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory ordering %llu tiles",
                             (unsigned long long)count);
     for (uint32_t y = 0; y < tiles_y; y++)
         for (uint32_t x = 0; x < tiles_x; x++) {

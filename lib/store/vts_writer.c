@@ -15,6 +15,7 @@
 
 #include "vt_atomic_file.h"
 #include "vt_checked.h"
+#include "vt_error.h"
 #include "vts_crc32c.h"
 #include "vts_format.h"
 #include "vts_order.h"
@@ -55,7 +56,7 @@ struct vts_writer {
     struct vts_writer_stats stats;
     uint64_t max_payload_bytes; /* limit on unique payload bytes (vts_writer_set_max_bytes) */
     int failed;                 /* sticky status of a failed put */
-    char fail_message[VT_ERROR_MESSAGE_MAX]; /* its message, repeated by later puts */
+    char fail_message[VTS_ERROR_MESSAGE_MAX]; /* its message, repeated by later puts */
 
     struct meta_pair *meta;
     uint32_t meta_count;
@@ -64,9 +65,9 @@ struct vts_writer {
 };
 
 struct vts_writer *vts_writer_create(const char *path, const struct vts_geometry *g,
-                                     const struct vts_layer *layers, struct vt_error *err)
+                                     const struct vts_layer *layers, struct vts_error *err)
 {
-    struct vt_error gerr;
+    struct vts_error gerr;
     if (vts_geometry_check(g, &gerr) != 0) {
         vt_error_set(err, gerr.status, "cannot write '%s': %s", path, gerr.message);
         return NULL;
@@ -76,13 +77,13 @@ struct vts_writer *vts_writer_create(const char *path, const struct vts_geometry
         if (L->channels < 1 || L->channels > 4 || vts_sample_bytes(L->sample) == 0 ||
             L->colour < VTS_COLOUR_SRGB || L->colour > VTS_COLOUR_DATA ||
             memchr(L->name, '\0', VTS_LAYER_NAME_BYTES) == NULL) {
-            vt_error_set(err, VT_ERR_ARG, "cannot write '%s': layer %u is invalid", path, i);
+            vt_error_set(err, VTS_ERR_ARG, "cannot write '%s': layer %u is invalid", path, i);
             return NULL;
         }
     }
     struct vts_writer *w = calloc(1, sizeof *w);
     if (!w) {
-        vt_error_set(err, VT_ERR_NOMEM, "out of memory writing '%s'", path);
+        vt_error_set(err, VTS_ERR_NOMEM, "out of memory writing '%s'", path);
         return NULL;
     }
     w->spool.fd = w->out.fd = -1;
@@ -98,7 +99,7 @@ struct vts_writer *vts_writer_create(const char *path, const struct vts_geometry
     if (!vt_size_mul((size_t)w->tile_count, sizeof *w->slots, &slot_bytes) ||
         !(w->slots = calloc(1, slot_bytes)) ||
         !(w->buckets = calloc(w->bucket_mask + 1, sizeof *w->buckets))) {
-        vt_error_set(err, VT_ERR_NOMEM, "out of memory for the index of '%s' (%llu tiles)", path,
+        vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the index of '%s' (%llu tiles)", path,
                      (unsigned long long)w->tile_count);
         goto fail;
     }
@@ -120,7 +121,7 @@ static int grow_buckets(struct vts_writer *w)
     uint32_t mask = w->bucket_mask * 2 + 1;
     uint32_t *b = calloc((size_t)mask + 1, sizeof *b);
     if (!b)
-        return VT_ERR_NOMEM;
+        return VTS_ERR_NOMEM;
     free(w->buckets);
     w->buckets = b;
     w->bucket_mask = mask;
@@ -134,11 +135,11 @@ static int grow_buckets(struct vts_writer *w)
 
 /* Returns true when the spooled payload of rec equals payload (read back to compare bytes). */
 static int spooled_equals(struct vts_writer *w, const struct payload_rec *rec, const void *payload,
-                          bool *equal, struct vt_error *err)
+                          bool *equal, struct vts_error *err)
 {
     unsigned char *buf = malloc(rec->length);
     if (!buf)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory comparing tiles");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory comparing tiles");
     size_t done = 0;
     while (done < rec->length) {
         ssize_t n =
@@ -147,7 +148,7 @@ static int spooled_equals(struct vts_writer *w, const struct payload_rec *rec, c
             continue;
         if (n <= 0) {
             free(buf);
-            return vt_error_set(err, VT_ERR_IO, "cannot read back the spool of '%s': %s",
+            return vt_error_set(err, VTS_ERR_IO, "cannot read back the spool of '%s': %s",
                                 w->spool.final_path, n < 0 ? strerror(errno) : "short read");
         }
         done += (size_t)n;
@@ -159,7 +160,7 @@ static int spooled_equals(struct vts_writer *w, const struct payload_rec *rec, c
 
 /* Finds an identical spooled payload or appends this one. Called with the lock held. */
 static int store_payload(struct vts_writer *w, const void *payload, uint32_t length, uint32_t crc,
-                         uint32_t *rec_out, bool *shared, struct vt_error *err)
+                         uint32_t *rec_out, bool *shared, struct vts_error *err)
 {
     for (uint32_t r = w->buckets[bucket_of(w, crc, length)]; r; r = w->recs[r - 1].next) {
         const struct payload_rec *rec = &w->recs[r - 1];
@@ -178,16 +179,16 @@ static int store_payload(struct vts_writer *w, const void *payload, uint32_t len
     if (w->rec_count == w->rec_cap) {
         uint32_t cap = w->rec_cap ? w->rec_cap * 2 : 1024;
         if (cap > UINT32_MAX - SLOT_FIRST - 1)
-            return vt_error_set(err, VT_ERR_LIMIT, "too many distinct tiles for '%s'",
+            return vt_error_set(err, VTS_ERR_LIMIT, "too many distinct tiles for '%s'",
                                 w->spool.final_path);
         struct payload_rec *recs = realloc(w->recs, (size_t)cap * sizeof *recs);
         if (!recs)
-            return vt_error_set(err, VT_ERR_NOMEM, "out of memory for tile records");
+            return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for tile records");
         w->recs = recs;
         w->rec_cap = cap;
     }
     if (w->max_payload_bytes && w->stats.unique_bytes + length > w->max_payload_bytes)
-        return vt_error_set(err, VT_ERR_LIMIT,
+        return vt_error_set(err, VTS_ERR_LIMIT,
                             "'%s' would hold more than %llu bytes of tiles (the store size limit)",
                             w->spool.final_path, (unsigned long long)w->max_payload_bytes);
     int rc = vt_atomic_file_pwrite(&w->spool, payload, length, w->spool_end, err);
@@ -202,7 +203,7 @@ static int store_payload(struct vts_writer *w, const void *payload, uint32_t len
     *rec_out = w->rec_count - 1;
     *shared = false;
     if (w->rec_count > (w->bucket_mask + 1) / 4 * 3 && grow_buckets(w) != 0)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory for the tile hash table");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the tile hash table");
     return 0;
 }
 
@@ -214,14 +215,14 @@ void vts_writer_set_max_bytes(struct vts_writer *w, uint64_t max_bytes)
 }
 
 int vts_writer_put(struct vts_writer *w, uint32_t layer, uint32_t level, uint32_t tx, uint32_t ty,
-                   const void *payload, size_t payload_len, struct vt_error *err)
+                   const void *payload, size_t payload_len, struct vts_error *err)
 {
     if (layer >= w->geo.layer_count || level >= w->geo.level_count ||
         tx >= w->levels[level].tiles_x || ty >= w->levels[level].tiles_y)
-        return vt_error_set(err, VT_ERR_RANGE, "'%s' has no tile %u,%u at layer %u level %u",
+        return vt_error_set(err, VTS_ERR_RANGE, "'%s' has no tile %u,%u at layer %u level %u",
                             w->spool.final_path, tx, ty, layer, level);
     if (payload_len > UINT32_MAX)
-        return vt_error_set(err, VT_ERR_LIMIT, "tile %u,%u of level %u is %zu bytes (limit 4 GiB)",
+        return vt_error_set(err, VTS_ERR_LIMIT, "tile %u,%u of level %u is %zu bytes (limit 4 GiB)",
                             tx, ty, level, payload_len);
     const struct vts_level *L = &w->levels[level];
     uint64_t idx = layer * w->tiles_per_layer + L->first_tile + (uint64_t)ty * L->tiles_x + tx;
@@ -232,7 +233,7 @@ int vts_writer_put(struct vts_writer *w, uint32_t layer, uint32_t level, uint32_
     if (rc) {
         vt_error_set(err, rc, "%s", w->fail_message);
     } else if (w->slots[idx] != SLOT_UNSET) {
-        rc = vt_error_set(err, VT_ERR_ARG, "tile %u,%u of layer %u level %u was put twice", tx, ty,
+        rc = vt_error_set(err, VTS_ERR_ARG, "tile %u,%u of layer %u level %u was put twice", tx, ty,
                           layer, level);
     } else if (payload_len == 0) {
         w->slots[idx] = SLOT_EMPTY;
@@ -245,7 +246,7 @@ int vts_writer_put(struct vts_writer *w, uint32_t layer, uint32_t level, uint32_
             w->slots[idx] = SLOT_FIRST + rec;
             w->stats.tiles_stored++;
             w->stats.tiles_shared += shared;
-        } else if (rc == VT_ERR_IO || rc == VT_ERR_NOMEM || rc == VT_ERR_LIMIT) {
+        } else if (rc == VTS_ERR_IO || rc == VTS_ERR_NOMEM || rc == VTS_ERR_LIMIT) {
             w->failed = rc;
             snprintf(w->fail_message, sizeof w->fail_message, "%s",
                      err ? err->message : "a tile failed to write");
@@ -256,37 +257,37 @@ int vts_writer_put(struct vts_writer *w, uint32_t layer, uint32_t level, uint32_
 }
 
 int vts_writer_set_meta(struct vts_writer *w, const char *key, const char *value,
-                        struct vt_error *err)
+                        struct vts_error *err)
 {
     size_t klen = strlen(key);
     bool ok = klen > 0 && klen <= VTS_MAX_KEY_BYTES;
     for (size_t i = 0; ok && i < klen; i++)
         ok = key[i] > ' ' && key[i] < 0x7f && key[i] != '=';
     if (!ok)
-        return vt_error_set(err, VT_ERR_ARG, "invalid metadata key '%s'", key);
+        return vt_error_set(err, VTS_ERR_ARG, "invalid metadata key '%s'", key);
     for (uint32_t i = 0; i < w->meta_count; i++) {
         if (strcmp(w->meta[i].key, key) == 0) {
             char *v = strdup(value);
             if (!v)
-                return vt_error_set(err, VT_ERR_NOMEM, "out of memory for metadata");
+                return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for metadata");
             free(w->meta[i].value);
             w->meta[i].value = v;
             return 0;
         }
     }
     if (w->meta_count >= VTS_MAX_META_ENTRIES)
-        return vt_error_set(err, VT_ERR_LIMIT, "more than %u metadata entries",
+        return vt_error_set(err, VTS_ERR_LIMIT, "more than %u metadata entries",
                             VTS_MAX_META_ENTRIES);
     struct meta_pair *m = realloc(w->meta, (w->meta_count + 1) * sizeof *m);
     if (!m)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory for metadata");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for metadata");
     w->meta = m;
     m[w->meta_count].key = strdup(key);
     m[w->meta_count].value = strdup(value);
     if (!m[w->meta_count].key || !m[w->meta_count].value) {
         free(m[w->meta_count].key);
         free(m[w->meta_count].value);
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory for metadata");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for metadata");
     }
     w->meta_count++;
     return 0;
@@ -341,7 +342,7 @@ static int add_copy(struct layout *lay, uint64_t src, uint64_t dst, uint64_t len
         uint64_t cap = lay->run_cap ? lay->run_cap * 2 : 256;
         struct copy_run *r = realloc(lay->runs, (size_t)cap * sizeof *r);
         if (!r)
-            return VT_ERR_NOMEM;
+            return VTS_ERR_NOMEM;
         lay->runs = r;
         lay->run_cap = cap;
     }
@@ -351,12 +352,12 @@ static int add_copy(struct layout *lay, uint64_t src, uint64_t dst, uint64_t len
 
 /* Assigns final offsets in data order: coarse levels first, Hilbert order within a level, the
  * layers of one tile next to each other; a shared payload sits where it is first needed. */
-static int place_payloads(struct vts_writer *w, struct layout *lay, struct vt_error *err)
+static int place_payloads(struct vts_writer *w, struct layout *lay, struct vts_error *err)
 {
     const struct vts_level *L0 = &w->levels[0];
     uint64_t *order = malloc((size_t)L0->tiles_x * L0->tiles_y * sizeof *order);
     if (!order)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory ordering tiles");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory ordering tiles");
     uint64_t cursor = lay->data_off;
     int rc = 0;
     for (uint32_t level = w->geo.level_count; level-- > 0 && rc == 0;) {
@@ -370,7 +371,7 @@ static int place_payloads(struct vts_writer *w, struct layout *lay, struct vt_er
                 struct payload_rec *rec = &w->recs[slot - SLOT_FIRST];
                 rec->final_off = cursor;
                 if (add_copy(lay, rec->spool_off, cursor, rec->length) != 0)
-                    rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory laying out tiles");
+                    rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory laying out tiles");
                 cursor += rec->length;
             }
         }
@@ -380,7 +381,7 @@ static int place_payloads(struct vts_writer *w, struct layout *lay, struct vt_er
     return rc;
 }
 
-static int copy_payloads(struct vts_writer *w, const struct layout *lay, struct vt_error *err)
+static int copy_payloads(struct vts_writer *w, const struct layout *lay, struct vts_error *err)
 {
     unsigned char *buf = NULL;
     for (uint64_t i = 0; i < lay->run_count; i++) {
@@ -395,17 +396,17 @@ static int copy_payloads(struct vts_writer *w, const struct layout *lay, struct 
                 continue;
             }
             if (n == 0 || errno == ENOSPC || errno == EIO || errno == EFBIG)
-                return vt_error_set(err, VT_ERR_IO, "cannot write '%s': %s", w->out.final_path,
+                return vt_error_set(err, VTS_ERR_IO, "cannot write '%s': %s", w->out.final_path,
                                     n == 0 ? "short copy" : strerror(errno));
             if (!(buf = malloc(COPY_BUFFER))) /* not supported here: copy through memory */
-                return vt_error_set(err, VT_ERR_NOMEM, "out of memory copying tiles");
+                return vt_error_set(err, VTS_ERR_NOMEM, "out of memory copying tiles");
         }
         while (left > 0) {
             size_t chunk = left < COPY_BUFFER ? (size_t)left : COPY_BUFFER;
             ssize_t n = pread(w->spool.fd, buf, chunk, src);
             if (n < 0 && errno == EINTR)
                 continue;
-            int rc = n <= 0 ? vt_error_set(err, VT_ERR_IO, "cannot read back the spool of '%s'",
+            int rc = n <= 0 ? vt_error_set(err, VTS_ERR_IO, "cannot read back the spool of '%s'",
                                            w->out.final_path)
                             : vt_atomic_file_pwrite(&w->out, buf, (size_t)n,
                                                     (unsigned long long)dst, err);
@@ -431,7 +432,7 @@ static uint32_t meta_bytes(const struct vts_writer *w)
 }
 
 static int write_layers_and_meta(struct vts_writer *w, const struct layout *lay,
-                                 uint32_t *layers_crc, uint32_t *meta_crc, struct vt_error *err)
+                                 uint32_t *layers_crc, uint32_t *meta_crc, struct vts_error *err)
 {
     unsigned char lt[VTS_MAX_LAYERS * VTS_LAYER_ENTRY_SIZE];
     memset(lt, 0, sizeof lt);
@@ -453,7 +454,7 @@ static int write_layers_and_meta(struct vts_writer *w, const struct layout *lay,
         return rc;
     unsigned char *m = malloc(lay->meta_size);
     if (!m)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory for metadata");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for metadata");
     vts_store_u32(m, w->meta_count);
     size_t pos = 4;
     for (uint32_t i = 0; i < w->meta_count; i++) {
@@ -471,12 +472,12 @@ static int write_layers_and_meta(struct vts_writer *w, const struct layout *lay,
 }
 
 static int write_index(struct vts_writer *w, const struct layout *lay, uint32_t *crc,
-                       struct vt_error *err)
+                       struct vts_error *err)
 {
     enum { CHUNK = 65536 };
     unsigned char *buf = malloc((size_t)CHUNK * VTS_INDEX_ENTRY_SIZE);
     if (!buf)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory writing the index");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory writing the index");
     *crc = 0;
     int rc = 0;
     for (uint64_t first = 0; first < w->tile_count && rc == 0; first += CHUNK) {
@@ -501,7 +502,7 @@ static int write_index(struct vts_writer *w, const struct layout *lay, uint32_t 
 }
 
 static int write_header(struct vts_writer *w, const struct layout *lay, uint32_t layers_crc,
-                        uint32_t index_crc, uint32_t meta_crc, struct vt_error *err)
+                        uint32_t index_crc, uint32_t meta_crc, struct vts_error *err)
 {
     unsigned char h[VTS_HEADER_SIZE];
     memset(h, 0, sizeof h);
@@ -533,17 +534,17 @@ static int write_header(struct vts_writer *w, const struct layout *lay, uint32_t
     return vt_atomic_file_pwrite(&w->out, h, sizeof h, 0, err);
 }
 
-int vts_writer_finish(struct vts_writer *w, struct vt_error *err)
+int vts_writer_finish(struct vts_writer *w, struct vts_error *err)
 {
     if (w->finished)
-        return vt_error_set(err, VT_ERR_ARG, "'%s' is already finished", w->spool.final_path);
+        return vt_error_set(err, VTS_ERR_ARG, "'%s' is already finished", w->spool.final_path);
     w->finished = 1;
     if (w->failed)
         return vt_error_set(err, w->failed, "%s", w->fail_message);
     struct layout lay = {0};
     lay.meta_size = meta_bytes(w);
     if (lay.meta_size == 0)
-        return vt_error_set(err, VT_ERR_LIMIT, "metadata of '%s' exceeds %u bytes",
+        return vt_error_set(err, VTS_ERR_LIMIT, "metadata of '%s' exceeds %u bytes",
                             w->spool.final_path, VTS_MAX_META_BYTES);
     lay.layer_off = VTS_HEADER_SIZE;
     lay.index_off = lay.layer_off + (uint64_t)w->geo.layer_count * VTS_LAYER_ENTRY_SIZE;

@@ -40,7 +40,7 @@ static double now_s(void)
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
 }
 
-static void die(const char *what, const struct vt_error *err)
+static void die(const char *what, const struct vts_error *err)
 {
     fprintf(stderr, "vt-bench-accuracy: %s: %s\n", what, err ? err->message : "failed");
     exit(1);
@@ -66,7 +66,7 @@ struct rgb {
 static struct rgb load_rgb(const char *path)
 {
     struct vt_image img;
-    struct vt_error err;
+    struct vts_error err;
     if (vt_png_file_read(path, &img, &err) != 0)
         die(path, &err);
     struct rgb out = {img.width, img.height, xmalloc((size_t)img.width * img.height * 3)};
@@ -284,7 +284,7 @@ static void bench_codecs(const char *name, const struct rgb *src, int runs)
             fprintf(stderr, "vt-bench-accuracy: codec %s not in this build\n", st->codec);
             exit(1);
         }
-        struct vt_error err;
+        struct vts_error err;
         struct vt_image *tiles = xmalloc(ntiles * sizeof *tiles);
         struct vt_image *dec = xmalloc(ntiles * sizeof *dec);
         size_t bound = codec->encoded_bound(TILE, TILE, st->channels, VTS_SAMPLE_U8);
@@ -460,7 +460,7 @@ static void bench_filters(const char *name, const struct rgb *full, int runs)
             struct vt_fregion dst = {0, 0, ow, oh, 3, dwork};
             size_t scratch_n = vt_filter_reduce_scratch(&kern, &src, &dst);
             float *scratch = xmalloc(scratch_n * sizeof *scratch);
-            struct vt_error err;
+            struct vts_error err;
             double best = INFINITY;
             for (int r = 0; r < runs; r++) {
                 double t0 = now_s();

@@ -79,7 +79,7 @@ int main(int argc, char **argv)
     }
     struct vt_atlas_pack_options o = {.tile_content = tile, .max_edge = 1u << 24, .gutter = gutter};
     struct vt_atlas_pack_stats s;
-    struct vt_error err;
+    struct vts_error err;
     double best = 1e30;
     for (uint32_t k = 0; k < rounds; k++) {
         memcpy(r, in, count * sizeof *r);

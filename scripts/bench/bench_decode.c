@@ -27,7 +27,7 @@ static double now_s(void)
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
 }
 
-static void die(const char *what, const struct vt_error *err)
+static void die(const char *what, const struct vts_error *err)
 {
     fprintf(stderr, "vt-bench-decode: %s: %s\n", what, err ? err->message : "failed");
     exit(1);
@@ -60,7 +60,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "usage: vt-bench-decode [--rounds N] STORE.vts\n");
         return 2;
     }
-    struct vt_error err;
+    struct vts_error err;
     struct vts_store *store = vts_open(argv[i], &err);
     if (!store)
         die(argv[i], &err);

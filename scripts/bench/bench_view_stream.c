@@ -38,7 +38,7 @@ int main(int argc, char **argv)
         else
             path = argv[i];
     }
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vts_store *s = path ? vts_open(path, &err) : NULL;
     if (!s) {
         fprintf(stderr, "vtv_bench_stream: %s\n", path ? err.message : "usage: STORE.vts ...");

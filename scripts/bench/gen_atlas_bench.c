@@ -26,7 +26,7 @@ static char *xstrdup(const char *s)
 
 static int write_png(const char *path, uint32_t w, uint32_t h, uint32_t ch, uint32_t seed)
 {
-    struct vt_error err;
+    struct vts_error err;
     struct vt_png_file_writer *pw = vt_png_file_writer_create(path, w, h, ch, 8, &err);
     if (!pw) {
         fprintf(stderr, "%s\n", err.message);
@@ -72,7 +72,7 @@ int main(int argc, char **argv)
     uint32_t n = (uint32_t)atoi(argv[2]), seed = argc > 3 ? (uint32_t)atoi(argv[3]) : 1;
     mkdir(dir, 0777);
     struct vt_layout l;
-    struct vt_error err;
+    struct vts_error err;
     if (vt_layout_alloc(&l, 1, n, &err))
         return 1;
     l.tile_content = 256, l.border = 4;

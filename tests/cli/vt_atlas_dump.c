@@ -12,7 +12,7 @@ int main(int argc, char **argv)
         return 2;
     }
     struct vt_layout l;
-    struct vt_error err;
+    struct vts_error err;
     if (vt_layout_read(argv[1], NULL, &l, &err)) {
         fprintf(stderr, "vt-atlas-dump: %s\n", err.message);
         vt_layout_release(&l);

@@ -104,7 +104,7 @@ static int check_png(const char *path, const struct png_check *c)
     uint32_t lh = (uint32_t)(((uint64_t)o->height + (1ull << c->level) - 1) >> c->level);
     uint32_t w = c->one_tile ? payload : lw, h = c->one_tile ? payload : lh;
     uint32_t sample = o->sample == VTS_SAMPLE_U8 ? VTS_SAMPLE_U8 : VTS_SAMPLE_U16;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vt_image img;
     if (vt_png_file_read(path, &img, &err) != 0) {
         fprintf(stderr, "vt-cli-check: %s\n", err.message);
@@ -152,7 +152,7 @@ static int check_png(const char *path, const struct png_check *c)
 
 static int tile_offset(char **argv)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vts_tile_entry e;
     uint32_t v[4];
     for (int i = 0; i < 4; i++)
@@ -171,7 +171,7 @@ static int tile_offset(char **argv)
 static int junk_tile(char **argv)
 {
     static const char junk[] = "not a tile payload";
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vts_layer layers[VTS_MAX_LAYERS];
     struct vts_writer *w = NULL;
     unsigned char *buf = NULL;
@@ -220,7 +220,7 @@ static int junk_tile(char **argv)
 
 static int empty_store(char **argv)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vts_geometry g = {0};
     g.width = (uint32_t)strtoul(argv[1], NULL, 10);
     g.height = (uint32_t)strtoul(argv[2], NULL, 10);

@@ -30,7 +30,7 @@
 
 static struct vts_store *open_store(const char *path)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vts_store *s = vts_open(path, &err);
     if (!s)
         fprintf(stderr, "vt-store-check: %s\n", err.message);
@@ -138,7 +138,7 @@ static int compare_tile(void *ctx, uint64_t index, uint32_t layer, uint32_t leve
                         uint32_t ty)
 {
     struct compare *c = ctx;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     bool sa, sb;
     (void)index;
     if (layer != c->la)
@@ -181,7 +181,7 @@ static int check_tiles(const char *pa, uint32_t la, const char *pb, uint32_t lb,
                        double min_psnr)
 {
     struct compare c = {.la = la, .lb = lb, .bytes_only = bytes_only};
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = 1;
     c.a = open_store(pa);
     c.b = open_store(pb);
@@ -232,7 +232,7 @@ static int copy_tile(void *ctx, uint64_t index, uint32_t layer, uint32_t level, 
                      uint32_t ty)
 {
     struct copy *c = ctx;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vts_level L;
     size_t len = 0;
     (void)index;
@@ -252,7 +252,7 @@ static int copy_store(const char *in, const char *out_a, const char *out_b, bool
 {
     struct copy c = {0};
     struct vts_layer layers[VTS_MAX_LAYERS];
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = 1;
     if (!(c.in = open_store(in)))
         return 1;
@@ -292,7 +292,7 @@ out:
 
 static int smooth_png(const char *path, uint32_t width, uint32_t height)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     unsigned char *row = malloc((size_t)width * 3);
     struct vt_png_file_writer *w = vt_png_file_writer_create(path, width, height, 3, 8, &err);
     int rc = !row || !w;

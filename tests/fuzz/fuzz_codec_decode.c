@@ -23,7 +23,7 @@
 int fuzz_codec_shape(uint8_t selector, const struct vt_codec **codec, uint32_t *edge,
                      uint32_t *channels, uint32_t *sample);
 /* Runs one input; returns the decode status (0 or negative, err filled). Aborts on a defect. */
-int fuzz_codec_decode_one(const uint8_t *data, size_t size, struct vt_error *err);
+int fuzz_codec_decode_one(const uint8_t *data, size_t size, struct vts_error *err);
 
 static const char *const codec_names[FUZZ_CODEC_COUNT] = {"raw", "png", "jpeg", "bc1", "bc3"};
 static const uint32_t edges[6] = {1, 4, 8, 16, 64, 260};
@@ -47,7 +47,7 @@ int fuzz_codec_shape(uint8_t selector, const struct vt_codec **codec, uint32_t *
     for (unsigned i = 0; i < 96; i++) {
         uint32_t e, ch, s;
         shape_of(i, &e, &ch, &s);
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         if (c->check(e, ch, s, &err) == 0)
             accepted[n++] = i;
     }
@@ -58,7 +58,7 @@ int fuzz_codec_shape(uint8_t selector, const struct vt_codec **codec, uint32_t *
     return 0;
 }
 
-static void check_failure(int rc, const struct vt_error *err)
+static void check_failure(int rc, const struct vts_error *err)
 {
     if (rc >= 0 || err->message[0] == '\0' || strchr(err->message, '\n'))
         abort();
@@ -76,7 +76,7 @@ static int same_texels(const struct vt_image *a, const struct vt_image *b)
 /* Encodes the decoded tile again and decodes that; any failure is a defect (abort). */
 static void round_trip(const struct vt_codec *c, const struct vt_image *img)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     size_t bound = c->encoded_bound(img->width, img->height, img->channels, img->sample), len = 0;
     unsigned char *buf = malloc(bound ? bound : 1);
     struct vt_image again = {0};
@@ -89,7 +89,7 @@ static void round_trip(const struct vt_codec *c, const struct vt_image *img)
     free(buf);
 }
 
-int fuzz_codec_decode_one(const uint8_t *data, size_t size, struct vt_error *err)
+int fuzz_codec_decode_one(const uint8_t *data, size_t size, struct vts_error *err)
 {
     const struct vt_codec *c;
     uint32_t edge, channels, sample;
@@ -118,7 +118,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     fuzz_codec_decode_one(data, size, &err);
     return 0;
 }

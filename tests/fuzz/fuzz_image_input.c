@@ -25,11 +25,11 @@
 #define BAND_MAX_WIDTH 2048u
 
 /* Runs one input written at path (the caller writes it); returns the first failing status or 0. */
-int fuzz_image_input_file(const char *path, struct vt_error *err);
+int fuzz_image_input_file(const char *path, struct vts_error *err);
 /* Writes data to a per-process temporary file and runs it; 0 for a skipped (non-native) input. */
-int fuzz_image_input_one(const uint8_t *data, size_t size, struct vt_error *err);
+int fuzz_image_input_one(const uint8_t *data, size_t size, struct vts_error *err);
 
-static void check_failure(int rc, const struct vt_error *err, const char *path)
+static void check_failure(int rc, const struct vts_error *err, const char *path)
 {
     if (rc >= 0 || err->message[0] == '\0' || strchr(err->message, '\n') ||
         !strstr(err->message, path))
@@ -48,7 +48,7 @@ static int native_magic(const uint8_t *m, size_t n)
 }
 
 static int read_region(struct vt_source *src, uint32_t x, uint32_t y, uint32_t w, uint32_t h,
-                       struct vt_error *err)
+                       struct vts_error *err)
 {
     struct vt_image img = {0};
     if (vt_image_alloc(&img, w, h, src->info.channels, src->info.sample, err) != 0)
@@ -65,7 +65,7 @@ static uint32_t min_u32(uint32_t a, uint32_t b)
     return a < b ? a : b;
 }
 
-int fuzz_image_input_file(const char *path, struct vt_error *err)
+int fuzz_image_input_file(const char *path, struct vts_error *err)
 {
     struct vt_source src = {0};
     int rc =
@@ -102,7 +102,7 @@ static void remove_tmp(void)
         unlink(tmp_path);
 }
 
-int fuzz_image_input_one(const uint8_t *data, size_t size, struct vt_error *err)
+int fuzz_image_input_one(const uint8_t *data, size_t size, struct vts_error *err)
 {
     if (!native_magic(data, size))
         return 0;
@@ -123,7 +123,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     fuzz_image_input_one(data, size, &err);
     return 0;
 }

@@ -15,7 +15,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     struct vt_layout l;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = vt_layout_parse_memory(data, size, NAME, NULL, &l, &err);
     if (rc < 0) {
         if (err.status != rc || !strstr(err.message, NAME) || strchr(err.message, '\n'))

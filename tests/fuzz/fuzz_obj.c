@@ -13,7 +13,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 #define NAME "dir/fuzz.obj"
 
 static int check_face(void *user, const struct vt_obj *obj, const struct vt_obj_face *f,
-                      struct vt_error *err)
+                      struct vts_error *err)
 {
     (void)user, (void)err;
     if (f->corner_count < 3 || !f->material || !f->group || !f->object)
@@ -34,7 +34,7 @@ static int check_face(void *user, const struct vt_obj *obj, const struct vt_obj_
 }
 
 static int check_mtllib(void *user, const struct vt_obj *obj, const char *path, uint64_t line,
-                        struct vt_error *err)
+                        struct vts_error *err)
 {
     (void)user, (void)obj, (void)err;
     if (!path[0] || strchr(path, '\\') || line == 0)
@@ -42,9 +42,9 @@ static int check_mtllib(void *user, const struct vt_obj *obj, const char *path, 
     return 0;
 }
 
-static void check_failure(int rc, const struct vt_error *err)
+static void check_failure(int rc, const struct vts_error *err)
 {
-    if (rc != VT_ERR_BAD_INPUT && rc != VT_ERR_LIMIT && rc != VT_ERR_NOMEM)
+    if (rc != VTS_ERR_BAD_INPUT && rc != VTS_ERR_LIMIT && rc != VTS_ERR_NOMEM)
         abort();
     if (err->status != rc || !strstr(err->message, "fuzz.obj"))
         abort();
@@ -58,7 +58,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     limits.max_vertices = 1 << 12;
     limits.max_materials = 64;
 
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vt_obj *obj = vt_obj_create(&limits, &err);
     if (!obj)
         abort();

@@ -31,7 +31,7 @@ static void walk(const struct vts_store *s)
     if (major != VTS_FORMAT_MAJOR || strcmp(vts_store_name(s), NAME) != 0 ||
         vts_store_layer(s, g->layer_count) != NULL || vts_store_entry(s, vts_store_tile_count(s)))
         abort();
-    struct vt_error err;
+    struct vts_error err;
     size_t len;
     for (uint32_t layer = 0; layer < g->layer_count; layer++) {
         const struct vts_layer *L = vts_store_layer(s, layer);
@@ -59,14 +59,14 @@ static void walk(const struct vts_store *s)
                         abort();
                     int rc = vts_store_read(s, layer, level, tx, ty, buf, max, &len,
                                             (tx ^ ty) & 1 ? VTS_READ_NO_CRC : 0, &err);
-                    if ((rc != 0 && rc != VT_ERR_CHECKSUM) || (rc == 0 && len != e.length))
+                    if ((rc != 0 && rc != VTS_ERR_CHECKSUM) || (rc == 0 && len != e.length))
                         abort();
                     if (e.length > 0 && vts_store_read(s, layer, level, tx, ty, buf, e.length - 1,
-                                                       &len, 0, &err) != VT_ERR_LIMIT)
+                                                       &len, 0, &err) != VTS_ERR_LIMIT)
                         abort();
                 }
             if (vts_store_read(s, layer, level, lv.tiles_x, 0, buf, max, &len, 0, &err) !=
-                VT_ERR_RANGE)
+                VTS_ERR_RANGE)
                 abort();
         }
     }
@@ -80,11 +80,11 @@ static void walk(const struct vts_store *s)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vts_store *s = vts_open_memory(data, size, NAME, &err);
     if (!s) {
-        if ((err.status != VT_ERR_NOT_VTS && err.status != VT_ERR_VERSION &&
-             err.status != VT_ERR_CORRUPT && err.status != VT_ERR_CHECKSUM) ||
+        if ((err.status != VTS_ERR_NOT_VTS && err.status != VTS_ERR_VERSION &&
+             err.status != VTS_ERR_CORRUPT && err.status != VTS_ERR_CHECKSUM) ||
             !strstr(err.message, NAME) || strchr(err.message, '\n'))
             abort();
         return 0;

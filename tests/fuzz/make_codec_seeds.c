@@ -65,7 +65,7 @@ int main(int argc, char **argv)
             continue;
         seen_codec[seen] = c;
         seen_shape[seen++] = shape;
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         struct vt_image img = {0};
         size_t bound = c->encoded_bound(edge, edge, channels, sample), len = 0;
         unsigned char *buf = malloc(bound + 1);

@@ -115,7 +115,7 @@ int main(int argc, char **argv)
         o.progressive = s->progressive;
         char path[4096];
         snprintf(path, sizeof path, "%s/%s", argv[1], seeds[i].name);
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         if (vt_synth_image_write(path, &o, &err) != 0) {
             fprintf(stderr, "make_image_seeds: %s: %s\n", seeds[i].name, err.message);
             return 1;

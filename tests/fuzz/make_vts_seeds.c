@@ -20,7 +20,7 @@ int main(int argc, char **argv)
     for (int i = 0; i < VTS_FIXTURE_COUNT; i++) {
         char path[4096];
         snprintf(path, sizeof path, "%s/%s", argv[1], names[i]);
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         if (vts_fixture_write(path, (enum vts_fixture)i, &err) != 0) {
             fprintf(stderr, "make_vts_seeds: %s\n", err.message);
             return 1;

@@ -16,8 +16,8 @@
 #define VT_FUZZ_DATA_DIR "tests/data/fuzz"
 #endif
 
-int fuzz_codec_decode_one(const uint8_t *data, size_t size, struct vt_error *err);
-int fuzz_image_input_file(const char *path, struct vt_error *err);
+int fuzz_codec_decode_one(const uint8_t *data, size_t size, struct vts_error *err);
+int fuzz_image_input_file(const char *path, struct vts_error *err);
 
 static const char *root = VT_FUZZ_DATA_DIR;
 
@@ -80,7 +80,7 @@ static void run_codec(const char *path, const char *name)
     VT_CHECK(data != NULL);
     if (!data)
         return;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = fuzz_codec_decode_one(data, size, &err);
     free(data);
     if (rc == 0 || err.message[0] == '\0' || strchr(err.message, '\n'))
@@ -91,7 +91,7 @@ static void run_codec(const char *path, const char *name)
 
 static void run_image(const char *path, const char *name)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = fuzz_image_input_file(path, &err);
     if (rc == 0 || !strstr(err.message, path) || strchr(err.message, '\n'))
         fprintf(stderr, "fuzz_image_input/%s: status %d '%s'\n", name, rc, err.message);

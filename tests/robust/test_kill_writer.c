@@ -8,7 +8,7 @@
  * and the directory may hold nothing else but hidden temporaries (.store.vts.spool-*,
  * .store.vts.tmp-*). A run that is not killed must replace the old store by a rename (a reader that
  * holds the old store keeps reading it) and leave no temporaries, and runs whose file-size limit
- * (RLIMIT_FSIZE, a full disk as the writer sees it) is hit must fail with VT_ERR_IO, keep the old
+ * (RLIMIT_FSIZE, a full disk as the writer sees it) is hit must fail with VTS_ERR_IO, keep the old
  * store and remove their temporaries. */
 #include <dirent.h>
 #include <errno.h>
@@ -87,10 +87,10 @@ static void child(const char *path, int report_fd, int wait_fd, enum child_mode 
         if (setrlimit(RLIMIT_FSIZE, &rl) != 0)
             _exit(99);
     }
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vts_writer *w = vts_writer_create(path, &big_geo, &big_layer, &err);
     if (!w)
-        _exit(10 - VT_ERR_IO);
+        _exit(10 - VTS_ERR_IO);
     if (write(report_fd, (char[]){CREATED}, 1) != 1)
         _exit(98);
     unsigned char *buf = malloc(TILE_BYTES);
@@ -236,7 +236,7 @@ static bool final_is_old(void)
 /* The complete new store: opens, has every tile, and every tile reads back exactly. */
 static bool final_is_new(const char *path)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vts_store *s = vts_open(path, &err);
     if (!s)
         return false;
@@ -439,7 +439,7 @@ static void full_disk_fails_cleanly_and_removes_temporaries(void)
         struct run r;
         start(&r, final_path, RUN_THROUGH, limits[i]);
         finish_run(&r, false);
-        VT_CHECK(WIFEXITED(r.wait_status) && WEXITSTATUS(r.wait_status) == 10 - VT_ERR_IO);
+        VT_CHECK(WIFEXITED(r.wait_status) && WEXITSTATUS(r.wait_status) == 10 - VTS_ERR_IO);
         VT_CHECK(strchr(r.phases, phases[i]) != NULL);
         VT_CHECK((i == 0) == (strchr(r.phases, FINISH) == NULL));
         VT_CHECK_STR_CONTAINS(r.phases, "File too large");
@@ -457,7 +457,7 @@ int main(void)
     if (!vts_fixture_mkdtemp(tmpdir, sizeof tmpdir, "test_kill_writer"))
         return 1;
     snprintf(final_path, sizeof final_path, "%s/store.vts", tmpdir);
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     if (vts_fixture_write(final_path, VTS_FIXTURE_MEDIUM, &err) != 0 ||
         !(old_bytes = vts_fixture_read_file(final_path, &old_size))) {
         fprintf(stderr, "cannot write the old store: %s\n", err.message);

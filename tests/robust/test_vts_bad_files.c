@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "robust/vts_fixture.h"
+#include "vt_error.h"
 #include "vt_test.h"
 #include "vts.h"
 
@@ -53,19 +54,19 @@ static int read_manifest(void)
     return 0;
 }
 
-static bool check_one(const struct listed *l, struct vts_store *s, const struct vt_error *err,
+static bool check_one(const struct listed *l, struct vts_store *s, const struct vts_error *err,
                       const char *name, const char *how)
 {
     bool ok;
     if (strcmp(l->status, "ok") == 0)
         ok = s != NULL;
     else
-        ok = s == NULL && strcmp(vt_status_name(err->status), l->status) == 0 &&
+        ok = s == NULL && strcmp(vts_status_name(err->status), l->status) == 0 &&
              strstr(err->message, l->message) && strstr(err->message, name) &&
              !strchr(err->message, '\n');
     if (!ok)
         fprintf(stderr, "  %s (%s): %s, %s '%s'; expected %s '%s'\n", l->file, how,
-                s ? "opened" : "failed", vt_status_name(err->status), err->message, l->status,
+                s ? "opened" : "failed", vts_status_name(err->status), err->message, l->status,
                 l->message);
     vts_close(s);
     return ok;
@@ -83,7 +84,7 @@ static void every_listed_file_gives_its_status(void)
             VT_CHECK(!"path too long");
             continue;
         }
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         bool ok = check_one(l, vts_open(path, &err), &err, path, "file");
         size_t size = 0;
         unsigned char *data = vts_fixture_read_file(path, &size);

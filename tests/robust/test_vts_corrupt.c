@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "robust/vts_fixture.h"
+#include "vt_error.h"
 #include "vt_test.h"
 #include "vts.h"
 #include "vts_format.h"
@@ -504,100 +505,100 @@ struct corrupt_case {
     }
 
 static const struct corrupt_case cases[] = {
-    C(empty_file, K_ALL, VT_ERR_NOT_VTS, "is not a vts store (0 bytes)"),
-    C(seven_bytes, K_ALL, VT_ERR_NOT_VTS, "is not a vts store (7 bytes)"),
-    C(bad_magic, K_ALL, VT_ERR_NOT_VTS, "is not a vts store (bad magic)"),
-    C(magic_crlf_translated, K_ALL, VT_ERR_NOT_VTS, "(bad magic)"),
-    C(major_version_2, 0, VT_ERR_VERSION, "format version 2.0 is not supported"),
-    C(major_version_0, 0, VT_ERR_VERSION, "format version 0.0 is not supported"),
-    C(header_crc_mismatch, K_HEADER, VT_ERR_CHECKSUM, "header checksum mismatch"),
-    C(header_truncated_at_100, K_ALL, VT_ERR_CORRUPT, "header is truncated (100 of 128 bytes)"),
-    C(header_only, K_ALL, VT_ERR_CORRUPT, "layer table (bytes 128 + 96) lies past the end"),
-    C(width_zero, 0, VT_ERR_CORRUPT, "invalid geometry: size 0x24 is outside"),
-    C(height_over_limit, 0, VT_ERR_CORRUPT, "invalid geometry: size 40x1073741825 is outside"),
-    C(border_wider_than_content, 0, VT_ERR_CORRUPT, "tile content 16 px with border 17 px"),
-    C(payload_not_content_plus_borders, 0, VT_ERR_CORRUPT,
+    C(empty_file, K_ALL, VTS_ERR_NOT_VTS, "is not a vts store (0 bytes)"),
+    C(seven_bytes, K_ALL, VTS_ERR_NOT_VTS, "is not a vts store (7 bytes)"),
+    C(bad_magic, K_ALL, VTS_ERR_NOT_VTS, "is not a vts store (bad magic)"),
+    C(magic_crlf_translated, K_ALL, VTS_ERR_NOT_VTS, "(bad magic)"),
+    C(major_version_2, 0, VTS_ERR_VERSION, "format version 2.0 is not supported"),
+    C(major_version_0, 0, VTS_ERR_VERSION, "format version 0.0 is not supported"),
+    C(header_crc_mismatch, K_HEADER, VTS_ERR_CHECKSUM, "header checksum mismatch"),
+    C(header_truncated_at_100, K_ALL, VTS_ERR_CORRUPT, "header is truncated (100 of 128 bytes)"),
+    C(header_only, K_ALL, VTS_ERR_CORRUPT, "layer table (bytes 128 + 96) lies past the end"),
+    C(width_zero, 0, VTS_ERR_CORRUPT, "invalid geometry: size 0x24 is outside"),
+    C(height_over_limit, 0, VTS_ERR_CORRUPT, "invalid geometry: size 40x1073741825 is outside"),
+    C(border_wider_than_content, 0, VTS_ERR_CORRUPT, "tile content 16 px with border 17 px"),
+    C(payload_not_content_plus_borders, 0, VTS_ERR_CORRUPT,
       "tile payload 21 px != content 16 + 2 * border 2"),
-    C(content_zero, 0, VT_ERR_CORRUPT, "tile content 0 px with border 0 px is invalid"),
-    C(payload_over_limit, 0, VT_ERR_CORRUPT, "tile payload 16386 px is above the limit"),
-    C(level_count_too_large, 0, VT_ERR_CORRUPT, "4 levels requested, 40x24 with 16 px tiles"),
-    C(level_count_huge, 0, VT_ERR_CORRUPT, "4294967295 levels requested"),
-    C(level_count_zero, 0, VT_ERR_CORRUPT, "0 levels requested"),
-    C(level_count_changed_index_not, 0, VT_ERR_CORRUPT,
+    C(content_zero, 0, VTS_ERR_CORRUPT, "tile content 0 px with border 0 px is invalid"),
+    C(payload_over_limit, 0, VTS_ERR_CORRUPT, "tile payload 16386 px is above the limit"),
+    C(level_count_too_large, 0, VTS_ERR_CORRUPT, "4 levels requested, 40x24 with 16 px tiles"),
+    C(level_count_huge, 0, VTS_ERR_CORRUPT, "4294967295 levels requested"),
+    C(level_count_zero, 0, VTS_ERR_CORRUPT, "0 levels requested"),
+    C(level_count_changed_index_not, 0, VTS_ERR_CORRUPT,
       "index holds 16 entries, the geometry needs 18"),
-    C(layer_count_zero, 0, VT_ERR_CORRUPT, "0 layers is outside 1..64"),
-    C(layer_count_65, 0, VT_ERR_CORRUPT, "65 layers is outside 1..64"),
-    C(layer_count_changed_index_not, 0, VT_ERR_CORRUPT,
+    C(layer_count_zero, 0, VTS_ERR_CORRUPT, "0 layers is outside 1..64"),
+    C(layer_count_65, 0, VTS_ERR_CORRUPT, "65 layers is outside 1..64"),
+    C(layer_count_changed_index_not, 0, VTS_ERR_CORRUPT,
       "index holds 16 entries, the geometry needs 24"),
-    C(tile_count_overflow_1px_tiles, 0, VT_ERR_CORRUPT, "has too many tiles"),
-    C(tiles_times_layers_over_limit, 0, VT_ERR_CORRUPT,
+    C(tile_count_overflow_1px_tiles, 0, VTS_ERR_CORRUPT, "has too many tiles"),
+    C(tiles_times_layers_over_limit, 0, VTS_ERR_CORRUPT,
       "65536x65536 with 1 px tiles and 2 layers has too many tiles"),
-    C(index_of_4g_tiles_past_eof, 0, VT_ERR_CORRUPT,
+    C(index_of_4g_tiles_past_eof, 0, VTS_ERR_CORRUPT,
       "tile index (bytes 224 + 68719476736) lies past"),
-    C(index_count_mismatch, 0, VT_ERR_CORRUPT, "index holds 17 entries, the geometry needs 16"),
-    C(index_count_huge, 0, VT_ERR_CORRUPT, "index holds 18446744073709551615 entries"),
-    C(header_size_too_small, 0, VT_ERR_CORRUPT, "invalid header (header 64,"),
-    C(header_size_past_eof, 0, VT_ERR_CORRUPT, "header size 4294967295 is past the end"),
-    C(header_size_covers_layer_table, 0, VT_ERR_CORRUPT, "layer table overlaps the header"),
-    C(layer_entry_size_too_small, 0, VT_ERR_CORRUPT, "layer entry 47, index entry 16 bytes"),
-    C(layer_entry_size_huge, 0, VT_ERR_CORRUPT, "layer entry 2147483648, index entry"),
-    C(index_entry_size_too_small, 0, VT_ERR_CORRUPT, "index entry 8 bytes"),
-    C(index_entry_size_over_4096, 0, VT_ERR_CORRUPT, "index entry 4097 bytes"),
-    C(index_entry_stride_4096_past_eof, 0, VT_ERR_CORRUPT,
+    C(index_count_mismatch, 0, VTS_ERR_CORRUPT, "index holds 17 entries, the geometry needs 16"),
+    C(index_count_huge, 0, VTS_ERR_CORRUPT, "index holds 18446744073709551615 entries"),
+    C(header_size_too_small, 0, VTS_ERR_CORRUPT, "invalid header (header 64,"),
+    C(header_size_past_eof, 0, VTS_ERR_CORRUPT, "header size 4294967295 is past the end"),
+    C(header_size_covers_layer_table, 0, VTS_ERR_CORRUPT, "layer table overlaps the header"),
+    C(layer_entry_size_too_small, 0, VTS_ERR_CORRUPT, "layer entry 47, index entry 16 bytes"),
+    C(layer_entry_size_huge, 0, VTS_ERR_CORRUPT, "layer entry 2147483648, index entry"),
+    C(index_entry_size_too_small, 0, VTS_ERR_CORRUPT, "index entry 8 bytes"),
+    C(index_entry_size_over_4096, 0, VTS_ERR_CORRUPT, "index entry 4097 bytes"),
+    C(index_entry_stride_4096_past_eof, 0, VTS_ERR_CORRUPT,
       "tile index (bytes 224 + 65536) lies past"),
-    C(layer_table_offset_past_eof, 0, VT_ERR_CORRUPT, "layer table (bytes"),
-    C(layer_table_offset_wraps_u64, 0, VT_ERR_CORRUPT,
+    C(layer_table_offset_past_eof, 0, VTS_ERR_CORRUPT, "layer table (bytes"),
+    C(layer_table_offset_wraps_u64, 0, VTS_ERR_CORRUPT,
       "layer table (bytes 18446744073709551605 + 96) lies past the end"),
-    C(index_offset_past_eof, 0, VT_ERR_CORRUPT, "tile index (bytes"),
-    C(index_offset_wraps_u64, 0, VT_ERR_CORRUPT, "tile index (bytes 18446744073709551600 + 256)"),
-    C(index_overlapping_header, 0, VT_ERR_CORRUPT, "tile index overlaps the header"),
-    C(index_overlapping_layer_table, 0, VT_ERR_CORRUPT, "tile index overlaps the layer table"),
-    C(meta_size_over_limit, 0, VT_ERR_CORRUPT, "metadata size 16777217 is outside 4..16777216"),
-    C(meta_size_below_4, 0, VT_ERR_CORRUPT, "metadata size 3 is outside"),
-    C(meta_offset_past_eof, 0, VT_ERR_CORRUPT, "metadata (bytes"),
-    C(meta_overlapping_index, 0, VT_ERR_CORRUPT, "metadata overlaps the tile index"),
-    C(data_overlapping_index, 0, VT_ERR_CORRUPT, "data region overlaps the tile index"),
-    C(data_overlapping_metadata, 0, VT_ERR_CORRUPT, "data region overlaps the metadata"),
-    C(data_size_one_past_eof, 0, VT_ERR_CORRUPT, "data region (bytes"),
-    C(data_offset_wraps_u64, 0, VT_ERR_CORRUPT, "data region (bytes 18446744073709551615 +"),
-    C(data_region_shrunk_below_payloads, 0, VT_ERR_CORRUPT, "points outside the data region"),
-    C(entry_offset_past_eof, 0, VT_ERR_CORRUPT,
+    C(index_offset_past_eof, 0, VTS_ERR_CORRUPT, "tile index (bytes"),
+    C(index_offset_wraps_u64, 0, VTS_ERR_CORRUPT, "tile index (bytes 18446744073709551600 + 256)"),
+    C(index_overlapping_header, 0, VTS_ERR_CORRUPT, "tile index overlaps the header"),
+    C(index_overlapping_layer_table, 0, VTS_ERR_CORRUPT, "tile index overlaps the layer table"),
+    C(meta_size_over_limit, 0, VTS_ERR_CORRUPT, "metadata size 16777217 is outside 4..16777216"),
+    C(meta_size_below_4, 0, VTS_ERR_CORRUPT, "metadata size 3 is outside"),
+    C(meta_offset_past_eof, 0, VTS_ERR_CORRUPT, "metadata (bytes"),
+    C(meta_overlapping_index, 0, VTS_ERR_CORRUPT, "metadata overlaps the tile index"),
+    C(data_overlapping_index, 0, VTS_ERR_CORRUPT, "data region overlaps the tile index"),
+    C(data_overlapping_metadata, 0, VTS_ERR_CORRUPT, "data region overlaps the metadata"),
+    C(data_size_one_past_eof, 0, VTS_ERR_CORRUPT, "data region (bytes"),
+    C(data_offset_wraps_u64, 0, VTS_ERR_CORRUPT, "data region (bytes 18446744073709551615 +"),
+    C(data_region_shrunk_below_payloads, 0, VTS_ERR_CORRUPT, "points outside the data region"),
+    C(entry_offset_past_eof, 0, VTS_ERR_CORRUPT,
       "index entry of layer 0 level 0 tile 0,0 points outside the data region"),
-    C(entry_length_huge, 0, VT_ERR_CORRUPT, "points outside the data region (offset"),
-    C(entry_offset_plus_length_wraps_u64, 0, VT_ERR_CORRUPT,
+    C(entry_length_huge, 0, VTS_ERR_CORRUPT, "points outside the data region (offset"),
+    C(entry_offset_plus_length_wraps_u64, 0, VTS_ERR_CORRUPT,
       "points outside the data region (offset 18446744073709551611, length 16)"),
-    C(entry_offset_inside_index, 0, VT_ERR_CORRUPT, "points outside the data region"),
-    C(entry_one_byte_past_data_region, 0, VT_ERR_CORRUPT, "points outside the data region"),
-    C(empty_entry_with_offset, 0, VT_ERR_CORRUPT,
+    C(entry_offset_inside_index, 0, VTS_ERR_CORRUPT, "points outside the data region"),
+    C(entry_one_byte_past_data_region, 0, VTS_ERR_CORRUPT, "points outside the data region"),
+    C(empty_entry_with_offset, 0, VTS_ERR_CORRUPT,
       "index entry of layer 0 level 0 tile 2,1 is empty but has an offset or checksum"),
-    C(empty_entry_with_crc, 0, VT_ERR_CORRUPT, "is empty but has an offset or checksum (offset 0"),
-    C(entries_partially_overlap, 0, VT_ERR_CORRUPT, "overlaps another payload at offset"),
-    C(entries_same_offset_different_length, 0, VT_ERR_CORRUPT, "overlaps another payload"),
-    C(entries_same_payload_different_crc, 0, VT_ERR_CORRUPT, "overlaps another payload"),
-    C(layer_zero_channels, 0, VT_ERR_CORRUPT, "layer 1 has an invalid description (0 channels"),
-    C(layer_five_channels, 0, VT_ERR_CORRUPT, "layer 1 has an invalid description (5 channels"),
-    C(layer_unknown_sample, 0, VT_ERR_CORRUPT, "(3 channels, sample 5, colour 3)"),
-    C(layer_sample_zero, 0, VT_ERR_CORRUPT,
+    C(empty_entry_with_crc, 0, VTS_ERR_CORRUPT, "is empty but has an offset or checksum (offset 0"),
+    C(entries_partially_overlap, 0, VTS_ERR_CORRUPT, "overlaps another payload at offset"),
+    C(entries_same_offset_different_length, 0, VTS_ERR_CORRUPT, "overlaps another payload"),
+    C(entries_same_payload_different_crc, 0, VTS_ERR_CORRUPT, "overlaps another payload"),
+    C(layer_zero_channels, 0, VTS_ERR_CORRUPT, "layer 1 has an invalid description (0 channels"),
+    C(layer_five_channels, 0, VTS_ERR_CORRUPT, "layer 1 has an invalid description (5 channels"),
+    C(layer_unknown_sample, 0, VTS_ERR_CORRUPT, "(3 channels, sample 5, colour 3)"),
+    C(layer_sample_zero, 0, VTS_ERR_CORRUPT,
       "layer 0 has an invalid description (4 channels, sample 0"),
-    C(layer_unknown_colour, 0, VT_ERR_CORRUPT, "(3 channels, sample 2, colour 5)"),
-    C(layer_colour_zero, 0, VT_ERR_CORRUPT, "(4 channels, sample 1, colour 0)"),
-    C(layer_name_unterminated, 0, VT_ERR_CORRUPT, "layer 0 has an invalid description"),
-    C(layer_table_crc_mismatch, K_LAYERS, VT_ERR_CHECKSUM, "layer table checksum mismatch"),
-    C(index_crc_mismatch, K_INDEX, VT_ERR_CHECKSUM, "tile index checksum mismatch"),
-    C(meta_crc_mismatch, K_META, VT_ERR_CHECKSUM, "metadata checksum mismatch"),
-    C(meta_count_huge, 0, VT_ERR_CORRUPT, "metadata claims 4294967295 entries in 82 bytes"),
-    C(meta_count_over_limit, 0, VT_ERR_CORRUPT, "metadata claims 4097 entries"),
-    C(meta_count_one_too_many, 0, VT_ERR_CORRUPT, "malformed metadata block"),
-    C(meta_trailing_entry_bytes, 0, VT_ERR_CORRUPT, "malformed metadata block"),
-    C(meta_trailing_padding_byte, 0, VT_ERR_CORRUPT, "malformed metadata block"),
-    C(meta_key_with_equals, 0, VT_ERR_CORRUPT, "malformed metadata block"),
-    C(meta_key_with_space, 0, VT_ERR_CORRUPT, "malformed metadata block"),
-    C(meta_key_with_del, 0, VT_ERR_CORRUPT, "malformed metadata block"),
-    C(meta_key_empty, 0, VT_ERR_CORRUPT, "malformed metadata block"),
-    C(meta_key_length_over_255, 0, VT_ERR_CORRUPT, "malformed metadata block"),
-    C(meta_value_with_nul, 0, VT_ERR_CORRUPT, "malformed metadata block"),
-    C(meta_value_length_huge, 0, VT_ERR_CORRUPT, "malformed metadata block"),
-    C(meta_value_length_past_block, 0, VT_ERR_CORRUPT, "malformed metadata block"),
+    C(layer_unknown_colour, 0, VTS_ERR_CORRUPT, "(3 channels, sample 2, colour 5)"),
+    C(layer_colour_zero, 0, VTS_ERR_CORRUPT, "(4 channels, sample 1, colour 0)"),
+    C(layer_name_unterminated, 0, VTS_ERR_CORRUPT, "layer 0 has an invalid description"),
+    C(layer_table_crc_mismatch, K_LAYERS, VTS_ERR_CHECKSUM, "layer table checksum mismatch"),
+    C(index_crc_mismatch, K_INDEX, VTS_ERR_CHECKSUM, "tile index checksum mismatch"),
+    C(meta_crc_mismatch, K_META, VTS_ERR_CHECKSUM, "metadata checksum mismatch"),
+    C(meta_count_huge, 0, VTS_ERR_CORRUPT, "metadata claims 4294967295 entries in 82 bytes"),
+    C(meta_count_over_limit, 0, VTS_ERR_CORRUPT, "metadata claims 4097 entries"),
+    C(meta_count_one_too_many, 0, VTS_ERR_CORRUPT, "malformed metadata block"),
+    C(meta_trailing_entry_bytes, 0, VTS_ERR_CORRUPT, "malformed metadata block"),
+    C(meta_trailing_padding_byte, 0, VTS_ERR_CORRUPT, "malformed metadata block"),
+    C(meta_key_with_equals, 0, VTS_ERR_CORRUPT, "malformed metadata block"),
+    C(meta_key_with_space, 0, VTS_ERR_CORRUPT, "malformed metadata block"),
+    C(meta_key_with_del, 0, VTS_ERR_CORRUPT, "malformed metadata block"),
+    C(meta_key_empty, 0, VTS_ERR_CORRUPT, "malformed metadata block"),
+    C(meta_key_length_over_255, 0, VTS_ERR_CORRUPT, "malformed metadata block"),
+    C(meta_value_with_nul, 0, VTS_ERR_CORRUPT, "malformed metadata block"),
+    C(meta_value_length_huge, 0, VTS_ERR_CORRUPT, "malformed metadata block"),
+    C(meta_value_length_past_block, 0, VTS_ERR_CORRUPT, "malformed metadata block"),
 };
 
 #define CASE_COUNT (sizeof cases / sizeof cases[0])
@@ -622,7 +623,7 @@ static struct image make_case(const struct corrupt_case *c)
 static int case_failures;
 
 static void expect(const struct corrupt_case *c, const char *how, struct vts_store *s,
-                   const struct vt_error *err, const char *name)
+                   const struct vts_error *err, const char *name)
 {
     bool ok = s == NULL && err->status == c->status && strstr(err->message, c->message) &&
               strstr(err->message, name) && strchr(err->message, '\n') == NULL;
@@ -630,8 +631,8 @@ static void expect(const struct corrupt_case *c, const char *how, struct vts_sto
     if (!ok) {
         case_failures++;
         fprintf(stderr, "  case %s (%s): %s, status %s, message '%s'; expected %s '%s'\n", c->name,
-                how, s ? "opened" : "failed", vt_status_name(err->status), err->message,
-                vt_status_name(c->status), c->message);
+                how, s ? "opened" : "failed", vts_status_name(err->status), err->message,
+                vts_status_name(c->status), c->message);
     }
     vts_close(s);
 }
@@ -646,7 +647,7 @@ static void each_corruption_gives_its_status_and_message(void)
         /* memory: an allocation of exactly the file's size */
         unsigned char *exact = malloc(im.size ? im.size : 1);
         memcpy(exact, im.data, im.size);
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         struct vts_store *s = vts_open_memory(exact, im.size, name, &err);
         expect(c, "memory", s, &err, name);
         free(exact);
@@ -681,7 +682,7 @@ static void fixture_has_padding_empty_and_shared_tiles(void)
     }
     VT_CHECK(empty >= 2);
     VT_CHECK(shared >= 2);
-    struct vt_error err;
+    struct vts_error err;
     unsigned failures = 99;
     VT_CHECK_INT_EQ(vts_fixture_exercise(fixture, fixture_size, "fixture", &err, &failures), 0);
     VT_CHECK_INT_EQ(failures, 0);
@@ -690,7 +691,7 @@ static void fixture_has_padding_empty_and_shared_tiles(void)
 /* Opens an image that should be valid; returns the store or NULL (reported). */
 static struct vts_store *open_valid(struct image *im, const char *name)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vts_store *s = vts_open_memory(im->data, im->size, name, &err);
     VT_CHECK(s != NULL);
     if (!s)
@@ -734,7 +735,7 @@ static void wider_index_entries_are_read_by_stride(void)
         set64(&im, VTS_H_INDEX_OFFSET, fixture_size);
         set32(&im, VTS_H_INDEX_ENTRY, stride);
         vts_reseal_all(im.data, im.size);
-        struct vt_error err;
+        struct vts_error err;
         unsigned failures = 99;
         VT_CHECK_INT_EQ(vts_fixture_exercise(im.data, im.size, "stride", &err, &failures), 0);
         VT_CHECK_INT_EQ(failures, 0);
@@ -779,9 +780,9 @@ static void payload_crc_mismatch_is_reported_by_read(void)
         VT_CHECK_INT_EQ(i, 0);
         unsigned char buf[VTS_FIXTURE_MAX_PAYLOAD], want[VTS_FIXTURE_MAX_PAYLOAD];
         size_t len = 99, want_len = vts_fixture_payload(VTS_FIXTURE_SMALL, 0, 0, 0, 0, want);
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         VT_CHECK_INT_EQ(vts_store_read(s, 0, 0, 0, 0, buf, sizeof buf, &len, 0, &err),
-                        VT_ERR_CHECKSUM);
+                        VTS_ERR_CHECKSUM);
         VT_CHECK_STR_CONTAINS(
             err.message,
             "'bad/payload_crc_mismatch.vts': tile 0,0 of level 0 of layer 0 has a bad checksum");
@@ -803,7 +804,7 @@ static void file_truncated_after_open_fails_reads_cleanly(void)
     char path[600];
     snprintf(path, sizeof path, "%s/shrinks.vts", tmpdir);
     VT_CHECK_INT_EQ(vts_fixture_write_file(path, fixture, fixture_size), 0);
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vts_store *s = vts_open(path, &err);
     VT_CHECK(s != NULL);
     if (!s)
@@ -812,7 +813,7 @@ static void file_truncated_after_open_fails_reads_cleanly(void)
     VT_CHECK_INT_EQ(truncate(path, (off_t)hdr64(&im, VTS_H_DATA_OFFSET)), 0);
     unsigned char buf[VTS_FIXTURE_MAX_PAYLOAD];
     size_t len = 99;
-    VT_CHECK_INT_EQ(vts_store_read(s, 0, 0, 0, 0, buf, sizeof buf, &len, 0, &err), VT_ERR_CORRUPT);
+    VT_CHECK_INT_EQ(vts_store_read(s, 0, 0, 0, 0, buf, sizeof buf, &len, 0, &err), VTS_ERR_CORRUPT);
     VT_CHECK_STR_CONTAINS(err.message, "tile 0,0 of level 0 is truncated at byte");
     VT_CHECK_STR_CONTAINS(err.message, path);
     VT_CHECK_INT_EQ(len, 0);
@@ -841,11 +842,11 @@ static void not_a_regular_file_is_an_io_error(void)
     signal(SIGALRM, on_alarm);
     alarm(20); /* opening a FIFO for reading must not wait for a writer */
     for (int i = 0; i < 4; i++) {
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         struct vts_store *s = vts_open(paths[i], &err);
         VT_CHECK(s == NULL);
         vts_close(s);
-        VT_CHECK_INT_EQ(err.status, VT_ERR_IO);
+        VT_CHECK_INT_EQ(err.status, VTS_ERR_IO);
         VT_CHECK_STR_CONTAINS(err.message, messages[i]);
         VT_CHECK_STR_CONTAINS(err.message, paths[i]);
     }
@@ -864,7 +865,7 @@ static void empty_tiles_read_into_no_buffer(void)
         char path[600];
         snprintf(path, sizeof path, "%s/empty-tile.vts", tmpdir);
         VT_CHECK_INT_EQ(vts_fixture_write_file(path, fixture, fixture_size), 0);
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         struct vts_store *s =
             which ? vts_open(path, &err) : vts_open_memory(fixture, fixture_size, "m", &err);
         VT_CHECK(s != NULL);
@@ -873,7 +874,7 @@ static void empty_tiles_read_into_no_buffer(void)
         size_t len = 99;
         VT_CHECK_INT_EQ(vts_store_read(s, 0, 0, 2, 1, NULL, 0, &len, 0, &err), 0);
         VT_CHECK_INT_EQ(len, 0);
-        VT_CHECK_INT_EQ(vts_store_read(s, 0, 0, 0, 0, NULL, 0, &len, 0, &err), VT_ERR_LIMIT);
+        VT_CHECK_INT_EQ(vts_store_read(s, 0, 0, 0, 0, NULL, 0, &len, 0, &err), VTS_ERR_LIMIT);
         vts_close(s);
         unlink(path);
     }
@@ -881,10 +882,10 @@ static void empty_tiles_read_into_no_buffer(void)
 
 static void null_memory_is_an_empty_file(void)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vts_store *s = vts_open_memory(NULL, 100, "nothing", &err);
     VT_CHECK(s == NULL);
-    VT_CHECK_INT_EQ(err.status, VT_ERR_NOT_VTS);
+    VT_CHECK_INT_EQ(err.status, VTS_ERR_NOT_VTS);
     VT_CHECK_STR_CONTAINS(err.message, "'nothing' is not a vts store (0 bytes)");
 }
 
@@ -902,7 +903,7 @@ static int write_bad_files(const char *dir)
         snprintf(path, sizeof path, "%s/%s.vts", dir, cases[i].name);
         if (vts_fixture_write_file(path, im.data, im.size) != 0)
             return 1;
-        fprintf(m, "%s.vts %s %s\n", cases[i].name, vt_status_name(cases[i].status),
+        fprintf(m, "%s.vts %s %s\n", cases[i].name, vts_status_name(cases[i].status),
                 cases[i].message);
         free(im.data);
     }

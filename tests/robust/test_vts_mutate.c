@@ -269,7 +269,7 @@ static void mutants_never_crash_and_fail_with_a_reader_status(void)
         free(d);
         char name[64];
         snprintf(name, sizeof name, "mutant-%lu.vts", it);
-        struct vt_error err;
+        struct vts_error err;
         unsigned read_failures = 0;
         int rc = vts_fixture_exercise(exact, size, name, &err, &read_failures);
         free(exact);
@@ -278,30 +278,30 @@ static void mutants_never_crash_and_fail_with_a_reader_status(void)
             opened[sealed]++;
             ok = read_failures == 0;
         } else {
-            ok = (rc == VT_ERR_NOT_VTS || rc == VT_ERR_VERSION || rc == VT_ERR_CORRUPT ||
-                  rc == VT_ERR_CHECKSUM) &&
+            ok = (rc == VTS_ERR_NOT_VTS || rc == VTS_ERR_VERSION || rc == VTS_ERR_CORRUPT ||
+                  rc == VTS_ERR_CHECKSUM) &&
                  strstr(err.message, name) != NULL && strchr(err.message, '\n') == NULL;
             by_status[sealed][-rc & 15]++;
         }
         if (!ok && bad++ < 20)
-            fprintf(stderr, "  mutant %lu: status %s, %u bad reads, '%s'\n", it, vt_status_name(rc),
-                    read_failures, rc ? err.message : "");
+            fprintf(stderr, "  mutant %lu: status %s, %u bad reads, '%s'\n", it,
+                    vts_status_name(rc), read_failures, rc ? err.message : "");
     }
     VT_CHECK_INT_EQ(bad, 0);
     for (int sealed = 0; sealed < 2; sealed++)
         fprintf(stderr,
                 "     %s: opened %lu, not-vts %lu, version %lu, corrupt %lu, checksum %lu\n",
                 sealed ? "re-sealed" : "unsealed ", opened[sealed],
-                by_status[sealed][-VT_ERR_NOT_VTS], by_status[sealed][-VT_ERR_VERSION],
-                by_status[sealed][-VT_ERR_CORRUPT], by_status[sealed][-VT_ERR_CHECKSUM]);
+                by_status[sealed][-VTS_ERR_NOT_VTS], by_status[sealed][-VTS_ERR_VERSION],
+                by_status[sealed][-VTS_ERR_CORRUPT], by_status[sealed][-VTS_ERR_CHECKSUM]);
     /* The mutations must reach every kind of outcome, or the test exercises too little: re-sealed
      * mutants mostly fail structural checks, unsealed ones mostly checksums, some open. */
     if (iterations >= 20000) {
         unsigned long per_half = iterations / 2;
-        VT_CHECK(by_status[1][-VT_ERR_CORRUPT] > per_half / 4);
-        VT_CHECK(by_status[0][-VT_ERR_CHECKSUM] > per_half / 4);
-        VT_CHECK(by_status[1][-VT_ERR_VERSION] > 0);
-        VT_CHECK(by_status[1][-VT_ERR_NOT_VTS] > 0);
+        VT_CHECK(by_status[1][-VTS_ERR_CORRUPT] > per_half / 4);
+        VT_CHECK(by_status[0][-VTS_ERR_CHECKSUM] > per_half / 4);
+        VT_CHECK(by_status[1][-VTS_ERR_VERSION] > 0);
+        VT_CHECK(by_status[1][-VTS_ERR_NOT_VTS] > 0);
         VT_CHECK(opened[0] + opened[1] > iterations / 100);
     }
     for (int i = 0; i < VTS_FIXTURE_COUNT; i++)

@@ -53,7 +53,7 @@ static char tmpdir[256];
 /* Opens an image from memory; returns the largest allocation made by the open. */
 static size_t largest_while_opening(const unsigned char *data, size_t size, int *status)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     largest = 0;
     struct vts_store *s = vts_open_memory(data, size, "alloc", &err);
     size_t seen = largest;

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "robust/vts_fixture.h"
+#include "vt_error.h"
 #include "vt_test.h"
 #include "vts.h"
 #include "vts_format.h"
@@ -19,17 +20,17 @@ static int expected_status(size_t len, const char **message)
 {
     if (len < VTS_MAGIC_SIZE) {
         *message = "is not a vts store";
-        return VT_ERR_NOT_VTS;
+        return VTS_ERR_NOT_VTS;
     }
     if (len < VTS_HEADER_SIZE) {
         *message = "header is truncated";
-        return VT_ERR_CORRUPT;
+        return VTS_ERR_CORRUPT;
     }
     *message = "lies past the end of the file";
-    return VT_ERR_CORRUPT;
+    return VTS_ERR_CORRUPT;
 }
 
-static int check_failure(struct vts_store *s, const struct vt_error *err, size_t len,
+static int check_failure(struct vts_store *s, const struct vts_error *err, size_t len,
                          const char *name, const char *how)
 {
     const char *want;
@@ -39,7 +40,7 @@ static int check_failure(struct vts_store *s, const struct vt_error *err, size_t
     VT_CHECK(ok);
     if (!ok)
         fprintf(stderr, "  prefix %zu (%s): %s, %s '%s'\n", len, how, s ? "opened" : "failed",
-                vt_status_name(err->status), err->message);
+                vts_status_name(err->status), err->message);
     vts_close(s);
     return ok ? 0 : 1;
 }
@@ -58,7 +59,7 @@ static void every_prefix_fails_cleanly(enum vts_fixture which)
     for (size_t len = 0; len < size; len++) {
         unsigned char *copy = malloc(len ? len : 1);
         memcpy(copy, full, len);
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         char name[64];
         snprintf(name, sizeof name, "prefix-%zu.vts", len);
         failures +=
@@ -75,7 +76,7 @@ static void every_prefix_fails_cleanly(enum vts_fixture which)
     /* the whole file opens and every tile reads back */
     unsigned char *copy = malloc(size);
     memcpy(copy, full, size);
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     unsigned read_failures = 99;
     VT_CHECK_INT_EQ(vts_fixture_exercise(copy, size, "full", &err, &read_failures), 0);
     VT_CHECK_INT_EQ(read_failures, 0);

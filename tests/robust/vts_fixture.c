@@ -5,6 +5,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "vt_error.h"
 #include "vts_format.h"
 #include "vts_writer.h"
 
@@ -46,12 +47,12 @@ size_t vts_fixture_payload(enum vts_fixture which, uint32_t layer, uint32_t leve
     return len;
 }
 
-int vts_fixture_write(const char *path, enum vts_fixture which, struct vt_error *err)
+int vts_fixture_write(const char *path, enum vts_fixture which, struct vts_error *err)
 {
     const struct vts_geometry *g = &geometries[which];
     struct vts_writer *w = vts_writer_create(path, g, vts_fixture_layers(which), err);
     if (!w)
-        return err ? err->status : VT_ERR_IO;
+        return err ? err->status : VTS_ERR_IO;
     int rc = 0;
     unsigned char buf[VTS_FIXTURE_MAX_PAYLOAD];
     for (uint32_t layer = 0; layer < g->layer_count && rc == 0; layer++)
@@ -122,7 +123,7 @@ unsigned char *vts_fixture_bytes(const char *dir, enum vts_fixture which, size_t
 {
     char path[512];
     snprintf(path, sizeof path, "%s/fixture-%d.vts", dir, (int)which);
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     if (vts_fixture_write(path, which, &err) != 0) {
         fprintf(stderr, "cannot write the fixture store: %s\n", err.message);
         return NULL;
@@ -169,7 +170,7 @@ static unsigned walk_store(const struct vts_store *s)
                 for (uint32_t tx = 0; tx < lv.tiles_x; tx++) {
                     struct vts_tile_entry e;
                     size_t len = 1;
-                    struct vt_error err;
+                    struct vts_error err;
                     if (vts_store_tile(s, layer, level, tx, ty, &e, &err) != 0 || e.length > max ||
                         !inside(e.offset, e.length, (size_t)vts_store_file_size(s))) {
                         failures++;
@@ -177,7 +178,7 @@ static unsigned walk_store(const struct vts_store *s)
                     }
                     unsigned flags = (tx + ty) % 2 ? VTS_READ_NO_CRC : 0;
                     int rc = vts_store_read(s, layer, level, tx, ty, buf, max, &len, flags, &err);
-                    if (rc == VT_ERR_CHECKSUM && flags == 0)
+                    if (rc == VTS_ERR_CHECKSUM && flags == 0)
                         failures += strstr(err.message, vts_store_name(s)) == NULL;
                     else if (rc != 0 || len != e.length)
                         failures++;
@@ -198,7 +199,7 @@ static unsigned walk_store(const struct vts_store *s)
 }
 
 int vts_fixture_exercise(const unsigned char *data, size_t size, const char *name,
-                         struct vt_error *err, unsigned *read_failures)
+                         struct vts_error *err, unsigned *read_failures)
 {
     *read_failures = 0;
     vt_error_clear(err);

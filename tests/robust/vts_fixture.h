@@ -31,7 +31,7 @@ size_t vts_fixture_payload(enum vts_fixture which, uint32_t layer, uint32_t leve
                            uint32_t ty, unsigned char *buf);
 
 /* Writes the fixture store at path with vts_writer. Returns 0 or a status (err filled). */
-int vts_fixture_write(const char *path, enum vts_fixture which, struct vt_error *err);
+int vts_fixture_write(const char *path, enum vts_fixture which, struct vts_error *err);
 
 /* Writes the fixture into dir and returns its bytes (malloc'd, *size set), or NULL. */
 unsigned char *vts_fixture_bytes(const char *dir, enum vts_fixture which, size_t *size);
@@ -46,9 +46,9 @@ void vts_fixture_rmdir_all(const char *dir);
 
 /* Opens a store image with vts_open_memory and, when it opens, reads every tile into a buffer of
  * exactly vts_store_max_payload() bytes and walks every accessor. Returns the open status; fills
- * *read_failures with the number of tile reads that failed with anything but VT_ERR_CHECKSUM
+ * *read_failures with the number of tile reads that failed with anything but VTS_ERR_CHECKSUM
  * (never expected for a store that opened). */
 int vts_fixture_exercise(const unsigned char *data, size_t size, const char *name,
-                         struct vt_error *err, unsigned *read_failures);
+                         struct vts_error *err, unsigned *read_failures);
 
 #endif

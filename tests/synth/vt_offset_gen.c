@@ -32,7 +32,7 @@ static int fail(const char *what)
 static int write_layout(const char *path, uint32_t width, uint32_t height, int n, char **specs)
 {
     struct vt_layout l;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     if (vt_layout_alloc(&l, 1, (uint32_t)n, &err) < 0)
         return fail(err.message);
     l.width = width;
@@ -148,7 +148,7 @@ static int write_bench(const char *dir, double megabytes)
     return 0;
 }
 
-static int drop(void *user, const void *data, size_t size, struct vt_error *err)
+static int drop(void *user, const void *data, size_t size, struct vts_error *err)
 {
     (void)data, (void)err;
     *(unsigned long long *)user += size;
@@ -172,7 +172,7 @@ static double cpu_s(void)
 static int time_rewrite(const char *obj, const char *layout_path, int runs)
 {
     struct vt_layout l;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct stat st;
     if (stat(obj, &st) != 0)
         return fail("cannot stat the scene");

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "vt_codec.h"
+#include "vt_error.h"
 #include "vt_image.h"
 #include "vts_writer.h"
 
@@ -77,11 +78,11 @@ static void fill_tile(const struct vt_synth_options *o, struct vt_image *img, ui
             }
 }
 
-int vt_synth_store(const char *path, const struct vt_synth_options *o, struct vt_error *err)
+int vt_synth_store(const char *path, const struct vt_synth_options *o, struct vts_error *err)
 {
     const struct vt_codec *codec = vt_codec_by_fourcc(o->codec);
     if (!codec)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED, "vt-synth: unknown codec");
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED, "vt-synth: unknown codec");
     struct vts_geometry g = {o->width,
                              o->height,
                              o->tile_content_px,
@@ -103,13 +104,13 @@ int vt_synth_store(const char *path, const struct vt_synth_options *o, struct vt
         return rc;
     struct vts_writer *w = vts_writer_create(path, &g, layers, err);
     if (!w)
-        return err ? err->status : VT_ERR_IO;
+        return err ? err->status : VTS_ERR_IO;
     struct vt_image img = {0};
     size_t cap = codec->encoded_bound(g.tile_payload_px, g.tile_payload_px, o->channels, o->sample);
     unsigned char *buf = malloc(cap ? cap : 1);
     rc = vt_image_alloc(&img, g.tile_payload_px, g.tile_payload_px, o->channels, o->sample, err);
     if (!buf && rc == 0)
-        rc = vt_error_set(err, VT_ERR_NOMEM, "vt-synth: out of memory");
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "vt-synth: out of memory");
     struct vt_codec_params params = {0};
     for (uint32_t layer = 0; rc == 0 && layer < g.layer_count; layer++)
         for (uint32_t level = 0; rc == 0 && level < g.level_count; level++) {

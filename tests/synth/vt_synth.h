@@ -34,6 +34,6 @@ bool vt_synth_tile_is_empty(const struct vt_synth_options *o, uint32_t level, ui
                             uint32_t ty);
 
 /* Writes a complete store at path (metadata: generator=vt-synth, seed=<seed>). */
-int vt_synth_store(const char *path, const struct vt_synth_options *o, struct vt_error *err);
+int vt_synth_store(const char *path, const struct vt_synth_options *o, struct vts_error *err);
 
 #endif

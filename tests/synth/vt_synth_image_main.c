@@ -69,7 +69,7 @@ int main(int argc, char **argv)
             "usage: vt-synth-image OUT [--format tiff|png|jpeg|exr] [--size WxH] [--channels N] [--sample u8|u16|f16|f32] [--tile N] [--seed N] [--photo]\n");
         return 2;
     }
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     if (photo) {
         struct vt_image img = vt_synth_photo(o.width, o.height, 3, o.seed, 0.8);
         struct vt_png_file_writer *w =

@@ -14,6 +14,7 @@
 
 #include <OpenEXR/openexr.h>
 
+#include "vt_error.h"
 #include "vts.h"
 
 /* ---- the pattern ---- */
@@ -232,16 +233,16 @@ static int synth_tiff_pixels(TIFF *tif, const struct vt_synth_image_options *o)
 }
 
 static int synth_write_tiff(const char *path, const struct vt_synth_image_options *o,
-                            struct vt_error *err)
+                            struct vts_error *err)
 {
     TIFF *tif = TIFFOpen(path, o->bigtiff ? "w8" : "w");
     if (!tif)
-        return vt_error_set(err, VT_ERR_IO, "cannot create '%s'", path);
+        return vt_error_set(err, VTS_ERR_IO, "cannot create '%s'", path);
     synth_tiff_fields(tif, o);
     int rc = synth_tiff_pixels(tif, o);
     TIFFClose(tif);
     if (rc < 0)
-        return vt_error_set(err, VT_ERR_IO, "cannot write '%s'", path);
+        return vt_error_set(err, VTS_ERR_IO, "cannot write '%s'", path);
     return 0;
 }
 
@@ -319,12 +320,12 @@ static int synth_png_run(struct synth_png *s, const struct vt_synth_image_option
 }
 
 static int synth_write_png(const char *path, const struct vt_synth_image_options *o,
-                           struct vt_error *err)
+                           struct vts_error *err)
 {
     struct synth_png s = {0};
     s.file = fopen(path, "wb");
     if (!s.file)
-        return vt_error_set(err, VT_ERR_IO, "cannot create '%s': %s", path, strerror(errno));
+        return vt_error_set(err, VTS_ERR_IO, "cannot create '%s': %s", path, strerror(errno));
     s.row = calloc((size_t)o->width * 8, 1);
     s.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
     s.info = s.png ? png_create_info_struct(s.png) : NULL;
@@ -332,7 +333,7 @@ static int synth_write_png(const char *path, const struct vt_synth_image_options
     png_destroy_write_struct(&s.png, &s.info);
     free(s.row);
     if (fclose(s.file) != 0 || rc < 0)
-        return vt_error_set(err, VT_ERR_IO, "cannot write '%s'", path);
+        return vt_error_set(err, VTS_ERR_IO, "cannot write '%s'", path);
     return 0;
 }
 
@@ -387,13 +388,13 @@ static int synth_jpeg_run(struct synth_jpeg *s, const struct vt_synth_image_opti
 }
 
 static int synth_write_jpeg(const char *path, const struct vt_synth_image_options *o,
-                            struct vt_error *err)
+                            struct vts_error *err)
 {
     if (o->channels != 1 && o->channels != 3)
-        return vt_error_set(err, VT_ERR_ARG, "JPEG needs 1 or 3 channels");
+        return vt_error_set(err, VTS_ERR_ARG, "JPEG needs 1 or 3 channels");
     struct synth_jpeg *s = calloc(1, sizeof *s);
     if (!s)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     s->file = fopen(path, "wb");
     s->row = malloc((size_t)o->width * o->channels);
     s->c.err = jpeg_std_error(&s->jerr.mgr);
@@ -404,7 +405,7 @@ static int synth_write_jpeg(const char *path, const struct vt_synth_image_option
         rc = -1;
     free(s->row);
     free(s);
-    return rc < 0 ? vt_error_set(err, VT_ERR_IO, "cannot write '%s'", path) : 0;
+    return rc < 0 ? vt_error_set(err, VTS_ERR_IO, "cannot write '%s'", path) : 0;
 }
 
 struct synth_jpeg_dec {
@@ -433,12 +434,12 @@ static int synth_jpeg_decode_run(struct synth_jpeg_dec *s, struct vt_image *out)
     return 0;
 }
 
-int vt_synth_jpeg_decode(const char *path, struct vt_image *out, struct vt_error *err)
+int vt_synth_jpeg_decode(const char *path, struct vt_image *out, struct vts_error *err)
 {
     memset(out, 0, sizeof *out);
     struct synth_jpeg_dec *s = calloc(1, sizeof *s);
     if (!s)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     s->file = fopen(path, "rb");
     s->d.err = jpeg_std_error(&s->jerr.mgr);
     s->jerr.mgr.error_exit = synth_jpeg_error_exit;
@@ -449,7 +450,7 @@ int vt_synth_jpeg_decode(const char *path, struct vt_image *out, struct vt_error
     free(s);
     if (rc < 0) {
         vt_image_release(out);
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "cannot decode '%s'", path);
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot decode '%s'", path);
     }
     return 0;
 }
@@ -611,12 +612,12 @@ static void synth_exr_quiet(exr_const_context_t ctx, exr_result_t code, const ch
 }
 
 static int synth_write_exr(const char *path, const struct vt_synth_image_options *o,
-                           struct vt_error *err)
+                           struct vts_error *err)
 {
     struct synth_exr e;
     if ((o->sample != VTS_SAMPLE_F16 && o->sample != VTS_SAMPLE_F32) ||
         synth_exr_channels(o, &e) < 0)
-        return vt_error_set(err, VT_ERR_ARG, "EXR channel names do not give %u channels",
+        return vt_error_set(err, VTS_ERR_ARG, "EXR channel names do not give %u channels",
                             o->channels);
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.error_handler_fn = synth_exr_quiet;
@@ -628,7 +629,7 @@ static int synth_write_exr(const char *path, const struct vt_synth_image_options
         rv = synth_exr_pixels(ctx, o, &e);
     exr_result_t fin = ctx ? exr_finish(&ctx) : EXR_ERR_SUCCESS;
     if (rv != EXR_ERR_SUCCESS || fin != EXR_ERR_SUCCESS)
-        return vt_error_set(err, VT_ERR_IO, "cannot write '%s': %s", path,
+        return vt_error_set(err, VTS_ERR_IO, "cannot write '%s': %s", path,
                             exr_get_default_error_message(rv != EXR_ERR_SUCCESS ? rv : fin));
     return 0;
 }
@@ -636,13 +637,13 @@ static int synth_write_exr(const char *path, const struct vt_synth_image_options
 /* ---- TGA (uncompressed, top-left origin) ---- */
 
 static int synth_write_tga(const char *path, const struct vt_synth_image_options *o,
-                           struct vt_error *err)
+                           struct vts_error *err)
 {
     if (o->channels == 2 || o->sample != VTS_SAMPLE_U8)
-        return vt_error_set(err, VT_ERR_ARG, "TGA needs 1, 3 or 4 channels of 8 bits");
+        return vt_error_set(err, VTS_ERR_ARG, "TGA needs 1, 3 or 4 channels of 8 bits");
     FILE *f = fopen(path, "wb");
     if (!f)
-        return vt_error_set(err, VT_ERR_IO, "cannot create '%s': %s", path, strerror(errno));
+        return vt_error_set(err, VTS_ERR_IO, "cannot create '%s': %s", path, strerror(errno));
     unsigned char h[18] = {0};
     h[2] = o->channels == 1 ? 3 : 2; /* uncompressed grey / true colour */
     h[12] = (unsigned char)o->width, h[13] = (unsigned char)(o->width >> 8);
@@ -663,16 +664,16 @@ static int synth_write_tga(const char *path, const struct vt_synth_image_options
             fwrite(t, 1, o->channels, f);
         }
     if (fclose(f) != 0)
-        return vt_error_set(err, VT_ERR_IO, "cannot write '%s'", path);
+        return vt_error_set(err, VTS_ERR_IO, "cannot write '%s'", path);
     return 0;
 }
 
 int vt_synth_image_write(const char *path, const struct vt_synth_image_options *o,
-                         struct vt_error *err)
+                         struct vts_error *err)
 {
     if (o->width == 0 || o->height == 0 || o->channels < 1 || o->channels > 4 ||
         vts_sample_bytes(o->sample) == 0)
-        return vt_error_set(err, VT_ERR_ARG, "bad synthetic image shape");
+        return vt_error_set(err, VTS_ERR_ARG, "bad synthetic image shape");
     switch (o->format) {
     case VT_SYNTH_TIFF:
         return synth_write_tiff(path, o, err);
@@ -685,6 +686,6 @@ int vt_synth_image_write(const char *path, const struct vt_synth_image_options *
     case VT_SYNTH_TGA:
         return synth_write_tga(path, o, err);
     default:
-        return vt_error_set(err, VT_ERR_ARG, "unknown synthetic format %u", o->format);
+        return vt_error_set(err, VTS_ERR_ARG, "unknown synthetic format %u", o->format);
     }
 }

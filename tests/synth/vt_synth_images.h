@@ -61,9 +61,9 @@ struct vt_synth_image_options {
 /* Defaults: 97x61 RGBA8 TIFF, seed 1, striped 16 rows, deflate/zip, JPEG quality 90. */
 void vt_synth_image_defaults(struct vt_synth_image_options *o);
 
-/* Writes the image file at path. Returns 0 or VT_ERR_ARG/VT_ERR_IO with a message. */
+/* Writes the image file at path. Returns 0 or VTS_ERR_ARG/VTS_ERR_IO with a message. */
 int vt_synth_image_write(const char *path, const struct vt_synth_image_options *o,
-                         struct vt_error *err);
+                         struct vts_error *err);
 
 /* Fills dst (o->channels, o->sample, any size) with texels [x, x + dst->width) x [y, ...) as an
  * exact reader returns them. Not meaningful for JPEG (lossy): use vt_synth_jpeg_decode(). */
@@ -72,6 +72,6 @@ void vt_synth_image_expected(const struct vt_synth_image_options *o, uint32_t x,
 
 /* Decodes a whole JPEG with libjpeg's defaults (grey or RGB, 8-bit) into *out (free with
  * vt_image_release()): the reference a region reader must match. */
-int vt_synth_jpeg_decode(const char *path, struct vt_image *out, struct vt_error *err);
+int vt_synth_jpeg_decode(const char *path, struct vt_image *out, struct vts_error *err);
 
 #endif

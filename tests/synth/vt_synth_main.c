@@ -82,7 +82,7 @@ int main(int argc, char **argv)
         usage(stderr);
         return 2;
     }
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     if (vt_synth_store(argv[optind], &o, &err) != 0) {
         fprintf(stderr, "vt-synth: %s\n", err.message);
         return 1;

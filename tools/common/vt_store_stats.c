@@ -1,4 +1,5 @@
 #include "vt_store_stats.h"
+#include "vt_error.h"
 
 #include <assert.h>
 #include <math.h>
@@ -71,7 +72,7 @@ static void count_level(const struct vts_store *s, uint32_t layer, uint32_t leve
 }
 
 int vt_store_stats_init(struct vt_store_stats *st, const struct vts_store *store,
-                        struct vt_error *err)
+                        struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(store);
     memset(st, 0, sizeof *st);
@@ -81,7 +82,7 @@ int vt_store_stats_init(struct vt_store_stats *st, const struct vts_store *store
     unsigned char *shared = find_shared(store);
     if (!st->counts || !shared) {
         free(shared);
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory counting the tiles of '%s'",
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory counting the tiles of '%s'",
                             vts_store_name(store));
     }
     for (uint32_t layer = 0; layer < g->layer_count; layer++) {

@@ -28,10 +28,10 @@ struct vt_store_stats {
     double compression_ratio; /* total.raw_bytes / total.bytes; NAN when no payload byte */
 };
 
-/* Counts every index entry of store (no payload is read). Returns 0, or VT_ERR_NOMEM with a
+/* Counts every index entry of store (no payload is read). Returns 0, or VTS_ERR_NOMEM with a
  * message. Release with vt_store_stats_release() either way. */
 int vt_store_stats_init(struct vt_store_stats *st, const struct vts_store *store,
-                        struct vt_error *err);
+                        struct vts_error *err);
 
 /* Frees the counts. Accepts NULL. */
 void vt_store_stats_release(struct vt_store_stats *st);

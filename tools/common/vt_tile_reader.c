@@ -7,10 +7,11 @@
 
 #include "tool_common.h"
 #include "vt_checked.h"
+#include "vt_error.h"
 #include "vt_png_file.h"
 
 int vt_tile_reader_init(struct vt_tile_reader *r, const struct vts_store *store, uint32_t layer,
-                        struct vt_error *err)
+                        struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(store);
     const struct vts_layer *l = vts_store_layer(store, layer);
@@ -20,13 +21,14 @@ int vt_tile_reader_init(struct vt_tile_reader *r, const struct vts_store *store,
     r->codec = vt_codec_by_fourcc(l->codec);
     if (!r->codec) {
         vts_codec_name(l->codec, codec);
-        return vt_error_set(err, VT_ERR_UNSUPPORTED,
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
                             "'%s': layer %u uses codec '%s', which this build cannot decode",
                             vts_store_name(store), layer, codec);
     }
     r->payload = malloc((size_t)vts_store_max_payload(store) + 1);
     if (!r->payload)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory reading '%s'", vts_store_name(store));
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory reading '%s'",
+                            vts_store_name(store));
     return vt_image_alloc(&r->img, g->tile_payload_px, g->tile_payload_px, l->channels, l->sample,
                           err);
 }
@@ -41,9 +43,9 @@ void vt_tile_reader_release(struct vt_tile_reader *r)
 }
 
 int vt_tile_reader_read(struct vt_tile_reader *r, uint32_t level, uint32_t tx, uint32_t ty,
-                        bool *stored, struct vt_error *err)
+                        bool *stored, struct vts_error *err)
 {
-    struct vt_error why = {0};
+    struct vts_error why = {0};
     size_t len = 0;
     int rc = vts_store_read(r->store, r->layer, level, tx, ty, r->payload,
                             vts_store_max_payload(r->store), &len, 0, &why);
@@ -56,7 +58,7 @@ int vt_tile_reader_read(struct vt_tile_reader *r, uint32_t level, uint32_t tx, u
         return 0;
     return vt_error_set(err, rc, "'%s': layer %u level %u tile %u,%u: %s", vts_store_name(r->store),
                         r->layer, level, tx, ty,
-                        rc == VT_ERR_CHECKSUM ? "payload checksum mismatch" : why.message);
+                        rc == VTS_ERR_CHECKSUM ? "payload checksum mismatch" : why.message);
 }
 
 uint32_t vt_tile_reader_png_depth(const struct vt_tile_reader *r)
@@ -108,7 +110,7 @@ void vt_tile_reader_png_row(const struct vt_tile_reader *r, uint32_t x, uint32_t
 /* Writes tile (tx, ty) whole, one row at a time through row (row_bytes). */
 static int write_tile_rows(struct vt_tile_reader *r, uint32_t level, uint32_t tx, uint32_t ty,
                            struct vt_png_file_writer *w, unsigned char *row, size_t row_bytes,
-                           struct vt_error *err)
+                           struct vts_error *err)
 {
     bool stored;
     int rc = vt_tile_reader_read(r, level, tx, ty, &stored, err);
@@ -121,7 +123,7 @@ static int write_tile_rows(struct vt_tile_reader *r, uint32_t level, uint32_t tx
 
 /* Writes the contents of every tile of level, one row of tiles (tile content rows) at a time. */
 static int write_level_rows(struct vt_tile_reader *r, uint32_t level, struct vt_png_file_writer *w,
-                            unsigned char *band, size_t row_bytes, struct vt_error *err)
+                            unsigned char *band, size_t row_bytes, struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(r->store);
     uint32_t edge = g->tile_content_px, border = g->border_px;
@@ -150,7 +152,7 @@ static int write_level_rows(struct vt_tile_reader *r, uint32_t level, struct vt_
 }
 
 int vt_tile_reader_write_png(struct vt_tile_reader *r, uint32_t level, bool one_tile, uint32_t tx,
-                             uint32_t ty, const char *path, struct vt_error *err)
+                             uint32_t ty, const char *path, struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(r->store);
     struct vts_level L;
@@ -163,11 +165,11 @@ int vt_tile_reader_write_png(struct vt_tile_reader *r, uint32_t level, bool one_
     unsigned char *band = NULL;
     if (!vt_size_mul3(width, r->img.channels, depth / 8, &row_bytes) ||
         !vt_size_mul(row_bytes, band_rows, &band_bytes) || !(band = malloc(band_bytes)))
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory for %u rows of %u texels", band_rows,
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for %u rows of %u texels", band_rows,
                             width);
     struct vt_png_file_writer *w =
         vt_png_file_writer_create(path, width, height, r->img.channels, depth, err);
-    int rc = !w         ? (err ? err->status : VT_ERR_IO)
+    int rc = !w         ? (err ? err->status : VTS_ERR_IO)
              : one_tile ? write_tile_rows(r, level, tx, ty, w, band, row_bytes, err)
                         : write_level_rows(r, level, w, band, row_bytes, err);
     if (rc == 0)

@@ -21,20 +21,20 @@ struct vt_tile_reader {
     struct vt_image img;    /* the last tile read: payload edge square, the layer's shape */
 };
 
-/* Prepares to read tiles of layer (< layer count) of store. Returns 0, or VT_ERR_UNSUPPORTED (no
- * decoder for the layer's codec in this build) or VT_ERR_NOMEM with a message naming the store.
+/* Prepares to read tiles of layer (< layer count) of store. Returns 0, or VTS_ERR_UNSUPPORTED (no
+ * decoder for the layer's codec in this build) or VTS_ERR_NOMEM with a message naming the store.
  * Release with vt_tile_reader_release() either way. */
 int vt_tile_reader_init(struct vt_tile_reader *r, const struct vts_store *store, uint32_t layer,
-                        struct vt_error *err);
+                        struct vts_error *err);
 
 /* Frees the buffers. Accepts NULL and a reader whose init failed; may be called twice. */
 void vt_tile_reader_release(struct vt_tile_reader *r);
 
 /* Reads tile (tx, ty) of level into r->img: decoded, or all zero when the tile is empty (*stored
- * false). Returns 0, or the status of the read (VT_ERR_CHECKSUM, VT_ERR_IO...) or of the decoder
- * (VT_ERR_BAD_INPUT) with the message "'<store>': layer L level V tile X,Y: <reason>". */
+ * false). Returns 0, or the status of the read (VTS_ERR_CHECKSUM, VTS_ERR_IO...) or of the decoder
+ * (VTS_ERR_BAD_INPUT) with the message "'<store>': layer L level V tile X,Y: <reason>". */
 int vt_tile_reader_read(struct vt_tile_reader *r, uint32_t level, uint32_t tx, uint32_t ty,
-                        bool *stored, struct vt_error *err);
+                        bool *stored, struct vts_error *err);
 
 /* PNG bit depth for the layer's samples: 8 for u8, 16 for the others. */
 uint32_t vt_tile_reader_png_depth(const struct vt_tile_reader *r);
@@ -52,6 +52,6 @@ void vt_tile_reader_png_row(const struct vt_tile_reader *r, uint32_t x, uint32_t
  * progress line (tool_common) for a whole level. Returns 0, or a negative status with a message
  * (a bad tile is named as by vt_tile_reader_read()). */
 int vt_tile_reader_write_png(struct vt_tile_reader *r, uint32_t level, bool one_tile, uint32_t tx,
-                             uint32_t ty, const char *path, struct vt_error *err);
+                             uint32_t ty, const char *path, struct vts_error *err);
 
 #endif

@@ -10,6 +10,7 @@
 #include "vt_atlas_place.h"
 #include "vt_atlas_scene.h"
 #include "vt_atomic_file.h"
+#include "vt_error.h"
 #include "vt_layout.h"
 
 struct options {
@@ -242,7 +243,7 @@ static int parse_options(int argc, char **argv, struct options *o)
 
 /* Writes "target: dep dep..." with spaces (and other make specials) escaped. */
 static int write_deps(struct vt_atomic_file *f, const char *target, char *const *deps, size_t n,
-                      struct vt_error *err)
+                      struct vts_error *err)
 {
     size_t cap = 4096, len = 0;
     char *buf = malloc(cap);
@@ -273,7 +274,7 @@ static int write_deps(struct vt_atomic_file *f, const char *target, char *const 
             buf[len++] = ':';
     }
     if (!buf)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     buf[len++] = '\n';
     rc = vt_atomic_file_pwrite(f, buf, len, 0, err);
     free(buf);
@@ -307,7 +308,7 @@ static void print_summary(const struct options *o, const struct vt_layout *l,
                r->target_density);
 }
 
-static int scan(const struct options *o, struct vt_atlas_scene *scene, struct vt_error *err)
+static int scan(const struct options *o, struct vt_atlas_scene *scene, struct vts_error *err)
 {
     if (o->textures)
         return vt_atlas_scan_list(scene, o->textures, &o->scan, err);
@@ -327,7 +328,7 @@ static int run(const struct options *o)
     struct vt_layout layout = {0};
     struct vt_atlas_place_report report;
     struct vt_atomic_file deps = {.fd = -1};
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = scan(o, &scene, &err);
     if (!rc)
         rc = vt_atlas_place(&scene, &o->place, &layout, &report, &err);
@@ -348,7 +349,7 @@ static int run(const struct options *o)
         vt_atomic_file_abort(&deps);
     vt_layout_release(&layout);
     vt_atlas_scene_release(&scene);
-    if (rc == VT_ERR_ARG)
+    if (rc == VTS_ERR_ARG)
         return VT_EXIT_USAGE;
     return rc ? VT_EXIT_BAD_INPUT : VT_EXIT_OK;
 }

@@ -7,6 +7,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "vt_error.h"
 #include "vt_version.h"
 
 #define UV_EPS        1e-6
@@ -93,7 +94,7 @@ static int wrap_range(double lo, double hi, uint32_t max_repeat, int32_t *origin
 }
 
 static int check_wrap(const struct vt_atlas_material *m, const struct vt_atlas_place_options *o,
-                      struct sizing *z, struct vt_error *err)
+                      struct sizing *z, struct vts_error *err)
 {
     z->repeat_u = z->repeat_v = 1;
     z->origin_u = z->origin_v = 0;
@@ -105,13 +106,13 @@ static int check_wrap(const struct vt_atlas_material *m, const struct vt_atlas_p
         return 0;
     if (!o->wrap_replicate)
         return vt_error_set(
-            err, VT_ERR_BAD_INPUT,
+            err, VTS_ERR_BAD_INPUT,
             "'%s': material '%s' uses u %g..%g, v %g..%g outside [0,1]: use --wrap replicate",
             m->obj, m->name, m->umin, m->umax, m->vmin, m->vmax);
     if (wrap_range(m->umin, m->umax, o->max_repeat, &z->origin_u, &z->repeat_u) ||
         wrap_range(m->vmin, m->vmax, o->max_repeat, &z->origin_v, &z->repeat_v))
         return vt_error_set(
-            err, VT_ERR_LIMIT,
+            err, VTS_ERR_LIMIT,
             "'%s': material '%s' uses u %g..%g, v %g..%g: more than --max-repeat %u copies", m->obj,
             m->name, m->umin, m->umax, m->vmin, m->vmax, o->max_repeat);
     return 0;
@@ -129,7 +130,7 @@ static int density_scales(struct sizing *z, uint32_t n, uint32_t max_scale, doub
 {
     double *d = malloc((n ? n : 1) * sizeof *d);
     if (!d)
-        return VT_ERR_NOMEM;
+        return VTS_ERR_NOMEM;
     uint32_t k = 0;
     for (uint32_t i = 0; i < n; i++)
         if (z[i].density > 0 && isfinite(z[i].density))
@@ -151,7 +152,7 @@ static int density_scales(struct sizing *z, uint32_t n, uint32_t max_scale, doub
     return 0;
 }
 
-static int size_entry(struct sizing *z, const char *name, struct vt_error *err)
+static int size_entry(struct sizing *z, const char *name, struct vts_error *err)
 {
     double w = (double)z->src_w * z->scale, h = (double)z->src_h * z->scale;
     if (z->scale < 1) {
@@ -159,7 +160,7 @@ static int size_entry(struct sizing *z, const char *name, struct vt_error *err)
         h = ceil(h);
     }
     if (w * z->repeat_u > UINT32_MAX || h * z->repeat_v > UINT32_MAX)
-        return vt_error_set(err, VT_ERR_LIMIT, "material '%s' needs more than 2^32 texels", name);
+        return vt_error_set(err, VTS_ERR_LIMIT, "material '%s' needs more than 2^32 texels", name);
     z->w = (uint32_t)w;
     z->h = (uint32_t)h;
     return 0;
@@ -283,7 +284,7 @@ static int group_materials(const struct vt_atlas_scene *scene,
         cap *= 2;
     uint32_t *table = share ? malloc(cap * sizeof *table) : NULL; /* hash -> first group */
     if (share && !table)
-        return VT_ERR_NOMEM;
+        return VTS_ERR_NOMEM;
     if (table)
         memset(table, 0xff, cap * sizeof *table);
     for (uint32_t i = 0; i < n; i++) {
@@ -341,7 +342,7 @@ static int fill_texture(struct vt_layout_texture *t, const struct vt_atlas_scene
     t->path = vt_atlas_relative_path(output, tx->path);
     t->width = tx->width;
     t->height = tx->height;
-    return t->path ? 0 : VT_ERR_NOMEM;
+    return t->path ? 0 : VTS_ERR_NOMEM;
 }
 
 static int set_aliases(struct vt_layout_entry *e, const struct vt_atlas_scene *scene,
@@ -351,11 +352,11 @@ static int set_aliases(struct vt_layout_entry *e, const struct vt_atlas_scene *s
         return 0;
     e->aliases = calloc(g->count - 1, sizeof *e->aliases);
     if (!e->aliases)
-        return VT_ERR_NOMEM;
+        return VTS_ERR_NOMEM;
     for (uint32_t i = next_member[g->first]; i != NO_GROUP; i = next_member[i]) {
         e->aliases[e->alias_count] = strdup(scene->materials[i].name);
         if (!e->aliases[e->alias_count])
-            return VT_ERR_NOMEM;
+            return VTS_ERR_NOMEM;
         e->alias_count++;
     }
     return 0;
@@ -364,7 +365,8 @@ static int set_aliases(struct vt_layout_entry *e, const struct vt_atlas_scene *s
 static int fill_layout(const struct vt_atlas_scene *scene, const struct vt_atlas_place_options *o,
                        const unsigned *kinds, uint32_t layer_count, const struct group *groups,
                        uint32_t group_count, const uint32_t *next_member,
-                       const struct vt_atlas_rect *rects, struct vt_layout *l, struct vt_error *err)
+                       const struct vt_atlas_rect *rects, struct vt_layout *l,
+                       struct vts_error *err)
 {
     int rc = vt_layout_alloc(l, layer_count, group_count, err);
     if (rc)
@@ -423,15 +425,15 @@ static int fill_layout(const struct vt_atlas_scene *scene, const struct vt_atlas
             nomem |= fill_texture(&e->textures[k], scene, m, kinds[k], o->output) != 0;
     }
     if (nomem)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory building the layout");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory building the layout");
     return 0;
 }
 
 static int check_grid(const struct vt_atlas_scene *scene, const struct vt_atlas_place_options *o,
-                      struct vt_error *err)
+                      struct vts_error *err)
 {
     if ((uint64_t)o->grid_rows * o->grid_cols != scene->material_count)
-        return vt_error_set(err, VT_ERR_ARG, "--grid %ux%u needs %llu files, not %u", o->grid_rows,
+        return vt_error_set(err, VTS_ERR_ARG, "--grid %ux%u needs %llu files, not %u", o->grid_rows,
                             o->grid_cols, (unsigned long long)o->grid_rows * o->grid_cols,
                             scene->material_count);
     const struct vt_atlas_texture *t0 = &scene->textures[scene->materials[0].texture[0]];
@@ -439,13 +441,13 @@ static int check_grid(const struct vt_atlas_scene *scene, const struct vt_atlas_
         const struct vt_atlas_texture *t = &scene->textures[scene->materials[i].texture[0]];
         if (t->width != t0->width || t->height != t0->height)
             return vt_error_set(
-                err, VT_ERR_BAD_INPUT,
+                err, VTS_ERR_BAD_INPUT,
                 "'%s' is %ux%u, not %ux%u like '%s': --grid pieces must have one size", t->path,
                 t->width, t->height, t0->width, t0->height, t0->path);
     }
     if ((uint64_t)t0->width * o->grid_cols > UINT32_MAX ||
         (uint64_t)t0->height * o->grid_rows > UINT32_MAX)
-        return vt_error_set(err, VT_ERR_LIMIT, "the --grid is larger than 2^32 texels");
+        return vt_error_set(err, VTS_ERR_LIMIT, "the --grid is larger than 2^32 texels");
     return 0;
 }
 
@@ -473,13 +475,13 @@ static void prepare_sizes(const struct vt_atlas_scene *scene, struct sizing *z)
 
 int vt_atlas_place(const struct vt_atlas_scene *scene, const struct vt_atlas_place_options *o,
                    struct vt_layout *layout, struct vt_atlas_place_report *report,
-                   struct vt_error *err)
+                   struct vts_error *err)
 {
     memset(layout, 0, sizeof *layout);
     memset(report, 0, sizeof *report);
     uint32_t n = scene->material_count;
     if (n == 0)
-        return vt_error_set(err, VT_ERR_BAD_INPUT,
+        return vt_error_set(err, VTS_ERR_BAD_INPUT,
                             "nothing to place: no face uses a material and no texture is listed");
     bool grid = o->grid_rows && o->grid_cols;
     /* Only the layers some entry has a texture for; diffuse alone when none has any. */
@@ -500,7 +502,7 @@ int vt_atlas_place(const struct vt_atlas_scene *scene, const struct vt_atlas_pla
     uint32_t *next_member = calloc(n, sizeof *next_member), ng = 0;
     int rc = 0;
     if (!z || !rects || !groups || !next_member) {
-        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory for %u entries", n);
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory for %u entries", n);
         goto out;
     }
     if (grid && (rc = check_grid(scene, o, err)))

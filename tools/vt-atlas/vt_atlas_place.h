@@ -38,12 +38,12 @@ struct vt_atlas_place_report {
  * texture file in every layer (the same constant where there is none) and the same scale share
  * one entry, the first used named by it and the others its aliases, unless the union of their UV
  * ranges would need more than max_repeat copies or more copies than separate entries would
- * (--grid pieces never share). Returns 0, VT_ERR_BAD_INPUT
+ * (--grid pieces never share). Returns 0, VTS_ERR_BAD_INPUT
  * ("'scene.obj': material 'ground' uses u 0..8, v 0..8 outside [0,1]: use --wrap replicate"),
- * VT_ERR_LIMIT (the atlas does not fit --max-size, too many copies) or VT_ERR_NOMEM. */
+ * VTS_ERR_LIMIT (the atlas does not fit --max-size, too many copies) or VTS_ERR_NOMEM. */
 int vt_atlas_place(const struct vt_atlas_scene *scene, const struct vt_atlas_place_options *o,
                    struct vt_layout *layout, struct vt_atlas_place_report *report,
-                   struct vt_error *err);
+                   struct vts_error *err);
 
 /* path as seen from the directory of output: absolute paths are kept, relative ones (to the
  * working directory) are rewritten relative to output's directory. malloc'ed; NULL when out of

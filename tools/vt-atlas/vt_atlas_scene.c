@@ -9,6 +9,7 @@
 #include <strings.h>
 #include <sys/stat.h>
 
+#include "vt_error.h"
 #include "vt_image_input.h"
 #include "vt_obj.h"
 #include "vts.h"
@@ -52,7 +53,7 @@ static int strmap_put(struct strmap *m, const char *key, uint32_t value)
         if (!n.keys || !n.values) {
             free(n.keys);
             free(n.values);
-            return VT_ERR_NOMEM;
+            return VTS_ERR_NOMEM;
         }
         for (size_t i = 0; i < m->capacity; i++)
             if (m->keys[i])
@@ -122,7 +123,7 @@ static int grow(void **p, size_t *cap, size_t need, size_t elem)
         n *= 2;
     void *q = realloc(*p, n * elem);
     if (!q)
-        return VT_ERR_NOMEM;
+        return VTS_ERR_NOMEM;
     *p = q;
     *cap = n;
     return 0;
@@ -135,18 +136,18 @@ static struct scene_index *index_of(struct vt_atlas_scene *s)
     return s->index;
 }
 
-static int add_dep(struct vt_atlas_scene *s, const char *path, struct vt_error *err)
+static int add_dep(struct vt_atlas_scene *s, const char *path, struct vts_error *err)
 {
     struct scene_index *ix = index_of(s);
     if (!ix)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     if (strmap_get(&ix->deps, path) >= 0)
         return 0;
     char *copy = strdup(path);
     if (grow((void **)&s->deps, &ix->dep_capacity, s->dep_count + 1, sizeof *s->deps) || !copy ||
         strmap_put(&ix->deps, copy, (uint32_t)s->dep_count)) {
         free(copy);
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     }
     s->deps[s->dep_count++] = copy;
     return 0;
@@ -155,11 +156,11 @@ static int add_dep(struct vt_atlas_scene *s, const char *path, struct vt_error *
 /* Finds or opens the texture at path (header only); -1 in *index when it is missing and
  * missing_skip. where ("'a.mtl':12: map_Kd") prefixes messages. */
 static int add_texture(struct vt_atlas_scene *s, const char *path, const char *where,
-                       const struct vt_atlas_scan_options *o, int32_t *index, struct vt_error *err)
+                       const struct vt_atlas_scan_options *o, int32_t *index, struct vts_error *err)
 {
     struct scene_index *ix = index_of(s);
     if (!ix)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     int64_t found = strmap_get(&ix->textures, path);
     if (found >= 0) {
         *index = (int32_t)found;
@@ -168,7 +169,7 @@ static int add_texture(struct vt_atlas_scene *s, const char *path, const char *w
     struct stat st;
     if (stat(path, &st) != 0) {
         int e = errno;
-        char msg[VT_ERROR_MESSAGE_MAX];
+        char msg[VTS_ERROR_MESSAGE_MAX];
         snprintf(msg, sizeof msg, "%s '%s': %s", where, path, strerror(e));
         if (o->missing_skip && e == ENOENT) {
             if (o->warn) {
@@ -178,7 +179,7 @@ static int add_texture(struct vt_atlas_scene *s, const char *path, const char *w
             *index = -1;
             return 0;
         }
-        return vt_error_set(err, VT_ERR_IO, "%s", msg);
+        return vt_error_set(err, VTS_ERR_IO, "%s", msg);
     }
     char id[64];
     snprintf(id, sizeof id, "%llu:%llu", (unsigned long long)st.st_dev,
@@ -189,11 +190,11 @@ static int add_texture(struct vt_atlas_scene *s, const char *path, const char *w
         return add_dep(s, path, err);
     }
     if (s->texture_count >= o->max_textures)
-        return vt_error_set(err, VT_ERR_LIMIT, "%s '%s': more than %u textures (--max-textures)",
+        return vt_error_set(err, VTS_ERR_LIMIT, "%s '%s': more than %u textures (--max-textures)",
                             where, path, o->max_textures);
     struct vt_input_limits limits = {.max_pixels = o->max_pixels};
     struct vt_source src;
-    struct vt_error ie;
+    struct vts_error ie;
     int rc = vt_image_input_open(path, &limits, &src, &ie);
     if (rc)
         return vt_error_set(err, rc, "%s: %s", where, ie.message);
@@ -208,7 +209,7 @@ static int add_texture(struct vt_atlas_scene *s, const char *path, const char *w
         strmap_put(&ix->files, t.id, s->texture_count)) {
         free(t.path);
         free(t.id);
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     }
     *index = (int32_t)s->texture_count;
     s->textures[s->texture_count++] = t;
@@ -216,11 +217,11 @@ static int add_texture(struct vt_atlas_scene *s, const char *path, const char *w
 }
 
 static int add_material(struct vt_atlas_scene *s, const char *name, uint32_t *index,
-                        struct vt_error *err)
+                        struct vts_error *err)
 {
     struct scene_index *ix = index_of(s);
     if (!ix)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     int64_t found = strmap_get(&ix->materials, name);
     if (found >= 0) {
         *index = (uint32_t)found;
@@ -231,7 +232,7 @@ static int add_material(struct vt_atlas_scene *s, const char *name, uint32_t *in
     if ((cap & (cap - 1)) == 0) {
         struct vt_atlas_material *n = realloc(s->materials, (cap ? cap * 2 : 1) * sizeof *n);
         if (!n)
-            return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+            return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
         s->materials = n;
     }
     struct vt_atlas_material *m = &s->materials[s->material_count];
@@ -239,7 +240,7 @@ static int add_material(struct vt_atlas_scene *s, const char *name, uint32_t *in
     m->name = strdup(name);
     if (!m->name || strmap_put(&ix->materials, m->name, s->material_count)) {
         free(m->name);
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     }
     for (unsigned k = 0; k < VT_ATLAS_KIND_COUNT; k++)
         m->texture[k] = -1;
@@ -265,7 +266,7 @@ struct obj_ctx {
 };
 
 static int on_mtllib(void *user, const struct vt_obj *obj, const char *mtl_path, uint64_t line,
-                     struct vt_error *err)
+                     struct vts_error *err)
 {
     (void)obj;
     struct obj_ctx *c = user;
@@ -281,7 +282,7 @@ static int on_mtllib(void *user, const struct vt_obj *obj, const char *mtl_path,
     char *copy = strdup(mtl_path);
     if (!m || !p || !copy) {
         free(copy);
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     }
     struct vt_obj_limits limits;
     vt_obj_limits_default(&limits);
@@ -290,8 +291,8 @@ static int on_mtllib(void *user, const struct vt_obj *obj, const char *mtl_path,
     c->mtl_paths[c->mtl_count] = copy;
     int rc = vt_mtl_read(mtl_path, &limits, &c->mtls[c->mtl_count], err);
     c->mtl_count++;
-    if (rc == VT_ERR_IO && err) { /* name the mtllib statement too */
-        char msg[VT_ERROR_MESSAGE_MAX];
+    if (rc == VTS_ERR_IO && err) { /* name the mtllib statement too */
+        char msg[VTS_ERROR_MESSAGE_MAX];
         snprintf(msg, sizeof msg, "%s", err->message);
         return vt_error_set(err, rc, "'%s':%llu: mtllib: %s", c->obj_path, (unsigned long long)line,
                             msg);
@@ -316,7 +317,7 @@ static double tri_area2(const double *a, const double *b, const double *c)
 }
 
 static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_face *f,
-                   struct vt_error *err)
+                   struct vts_error *err)
 {
     struct obj_ctx *c = user;
     if (!f->material[0])
@@ -394,7 +395,7 @@ static void set_fill(double fill[4], const double rgb[3], double a)
     fill[3] = a < 0 ? 0 : a > 1 ? 1 : a;
 }
 
-static int resolve_material(struct obj_ctx *c, struct vt_atlas_material *m, struct vt_error *err)
+static int resolve_material(struct obj_ctx *c, struct vt_atlas_material *m, struct vts_error *err)
 {
     static const int kind_of[VT_MTL_MAP_COUNT] = {
         VT_ATLAS_DIFFUSE, VT_ATLAS_AMBIENT, VT_ATLAS_SPECULAR, VT_ATLAS_ALPHA,
@@ -415,7 +416,7 @@ static int resolve_material(struct obj_ctx *c, struct vt_atlas_material *m, stru
     set_fill(m->fill[VT_ATLAS_DISP], black, 1);
     if (!mm) {
         if (c->o->warn) {
-            char msg[VT_ERROR_MESSAGE_MAX];
+            char msg[VTS_ERROR_MESSAGE_MAX];
             snprintf(msg, sizeof msg,
                      "'%s':%llu: material '%s' is not defined in any mtllib: constant grey",
                      c->obj_path, (unsigned long long)m->first_line, m->name);
@@ -432,7 +433,7 @@ static int resolve_material(struct obj_ctx *c, struct vt_atlas_material *m, stru
         unsigned k = order[j];
         if (!mm->maps[k].path || m->texture[kind_of[k]] >= 0)
             continue;
-        char where[VT_ERROR_MESSAGE_MAX];
+        char where[VTS_ERROR_MESSAGE_MAX];
         static const char *const stmt[VT_MTL_MAP_COUNT] = {"map_Kd", "map_Ka", "map_Ks", "map_d",
                                                            "bump",   "norm",   "disp"};
         snprintf(where, sizeof where, "'%s':%llu: %s", c->mtl_paths[mi],
@@ -445,7 +446,7 @@ static int resolve_material(struct obj_ctx *c, struct vt_atlas_material *m, stru
 }
 
 int vt_atlas_scan_obj(struct vt_atlas_scene *scene, const char *obj_path,
-                      const struct vt_atlas_scan_options *o, struct vt_error *err)
+                      const struct vt_atlas_scan_options *o, struct vts_error *err)
 {
     struct obj_ctx c = {
         .scene = scene, .o = o, .obj_path = obj_path, .first_new = scene->material_count};
@@ -454,7 +455,7 @@ int vt_atlas_scan_obj(struct vt_atlas_scene *scene, const char *obj_path,
     limits.max_line_bytes = o->max_line_bytes;
     struct vt_obj *obj = vt_obj_create(&limits, err);
     if (!obj)
-        return err ? err->status : VT_ERR_NOMEM;
+        return err ? err->status : VTS_ERR_NOMEM;
     struct vt_obj_callbacks cb = {.mtllib = on_mtllib, .face = on_face, .user = &c};
     int rc = add_dep(scene, obj_path, err);
     if (!rc)
@@ -475,13 +476,13 @@ int vt_atlas_scan_obj(struct vt_atlas_scene *scene, const char *obj_path,
 
 static int add_file_entry(struct vt_atlas_scene *s, const char *name, const char *path,
                           const char *where, const struct vt_atlas_scan_options *o,
-                          struct vt_error *err)
+                          struct vts_error *err)
 {
     struct scene_index *ix = index_of(s);
     if (!ix)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     if (strmap_get(&ix->materials, name) >= 0)
-        return vt_error_set(err, VT_ERR_BAD_INPUT, "%s '%s' is listed twice", where, name);
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "%s '%s' is listed twice", where, name);
     int32_t ti;
     int rc = add_texture(s, path, where, o, &ti, err);
     if (rc || ti < 0)
@@ -497,11 +498,11 @@ static int add_file_entry(struct vt_atlas_scene *s, const char *name, const char
 }
 
 int vt_atlas_scan_list(struct vt_atlas_scene *scene, const char *list_path,
-                       const struct vt_atlas_scan_options *o, struct vt_error *err)
+                       const struct vt_atlas_scan_options *o, struct vts_error *err)
 {
     FILE *f = fopen(list_path, "r");
     if (!f)
-        return vt_error_set(err, VT_ERR_IO, "cannot open '%s': %s", list_path, strerror(errno));
+        return vt_error_set(err, VTS_ERR_IO, "cannot open '%s': %s", list_path, strerror(errno));
     int rc = add_dep(scene, list_path, err);
     char *line = NULL;
     size_t cap = 0;
@@ -518,29 +519,29 @@ int vt_atlas_scan_list(struct vt_atlas_scene *scene, const char *list_path,
         if (!*p || *p == '#')
             continue;
         if ((size_t)len > o->max_line_bytes) {
-            rc = vt_error_set(err, VT_ERR_LIMIT, "'%s':%llu: line longer than %zu bytes", list_path,
-                              (unsigned long long)no, o->max_line_bytes);
+            rc = vt_error_set(err, VTS_ERR_LIMIT, "'%s':%llu: line longer than %zu bytes",
+                              list_path, (unsigned long long)no, o->max_line_bytes);
             break;
         }
-        char where[VT_ERROR_MESSAGE_MAX];
+        char where[VTS_ERROR_MESSAGE_MAX];
         snprintf(where, sizeof where, "'%s':%llu:", list_path, (unsigned long long)no);
         char *path = vt_obj_resolve_path(list_path, p);
         if (!path) {
-            rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+            rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
             break;
         }
         rc = add_file_entry(scene, p, path, where, o, err);
         free(path);
     }
     if (!rc && ferror(f))
-        rc = vt_error_set(err, VT_ERR_IO, "cannot read '%s': %s", list_path, strerror(errno));
+        rc = vt_error_set(err, VTS_ERR_IO, "cannot read '%s': %s", list_path, strerror(errno));
     free(line);
     fclose(f);
     return rc;
 }
 
 int vt_atlas_scan_files(struct vt_atlas_scene *scene, char *const *paths, uint32_t count,
-                        const struct vt_atlas_scan_options *o, struct vt_error *err)
+                        const struct vt_atlas_scan_options *o, struct vts_error *err)
 {
     for (uint32_t i = 0; i < count; i++) {
         int rc = add_file_entry(scene, paths[i], paths[i], "texture", o, err);

@@ -70,13 +70,13 @@ struct vt_atlas_scene {
  * must be released after success or failure). Return 0 or a negative status with a message
  * naming the file and line ("'a.mtl':12: map_Kd 'x.png': No such file or directory"). */
 int vt_atlas_scan_obj(struct vt_atlas_scene *scene, const char *obj_path,
-                      const struct vt_atlas_scan_options *o, struct vt_error *err);
+                      const struct vt_atlas_scan_options *o, struct vts_error *err);
 /* One entry per line of list_path (blank lines and '#' comments skipped), named by the line. */
 int vt_atlas_scan_list(struct vt_atlas_scene *scene, const char *list_path,
-                       const struct vt_atlas_scan_options *o, struct vt_error *err);
+                       const struct vt_atlas_scan_options *o, struct vts_error *err);
 /* One entry per file, named by its path. */
 int vt_atlas_scan_files(struct vt_atlas_scene *scene, char *const *paths, uint32_t count,
-                        const struct vt_atlas_scan_options *o, struct vt_error *err);
+                        const struct vt_atlas_scan_options *o, struct vts_error *err);
 
 void vt_atlas_scene_release(struct vt_atlas_scene *scene);
 

@@ -6,6 +6,7 @@
 
 #include "tool_common.h"
 #include "vt_atomic_file.h"
+#include "vt_error.h"
 #include "vt_merge.h"
 #include "vt_pool.h"
 #include "vt_shard.h"
@@ -99,7 +100,7 @@ static int parse_options(int argc, char **argv, struct vt_merge_options *o)
 
 /* ---- checks: geometry, layer tables, mode ---- */
 
-static int check_geometry(const struct merge *m, int k, struct vt_error *err)
+static int check_geometry(const struct merge *m, int k, struct vts_error *err)
 {
     const struct vts_geometry *a = vts_store_geometry(m->in[0]), *b = vts_store_geometry(m->in[k]);
     const char *names[] = {"width",     "height",          "tile_content_px",
@@ -113,8 +114,8 @@ static int check_geometry(const struct merge *m, int k, struct vt_error *err)
                            b->flags};
     for (size_t i = 0; i < sizeof va / sizeof va[0]; i++)
         if (va[i] != vb[i])
-            return vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': %s %u != %u in '%s'", m->o->inputs[k],
-                                names[i], vb[i], va[i], m->o->inputs[0]);
+            return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': %s %u != %u in '%s'",
+                                m->o->inputs[k], names[i], vb[i], va[i], m->o->inputs[0]);
     return 0;
 }
 
@@ -158,7 +159,7 @@ static bool same_layer_table(const struct vts_store *a, const struct vts_store *
 }
 
 /* Layers mode: every layer name once, at most VTS_MAX_LAYERS layers in all. */
-static int check_layer_names(const struct merge *m, struct vt_error *err)
+static int check_layer_names(const struct merge *m, struct vts_error *err)
 {
     uint32_t total = 0;
     char diff[128];
@@ -174,7 +175,7 @@ static int check_layer_names(const struct merge *m, struct vt_error *err)
                     if (strncmp(a->name, b->name, VTS_LAYER_NAME_BYTES) != 0)
                         continue;
                     layer_difference(a, b, diff, sizeof diff);
-                    return vt_error_set(err, VT_ERR_BAD_INPUT,
+                    return vt_error_set(err, VTS_ERR_BAD_INPUT,
                                         "layer name '%s' is in both '%s' and '%s'%s%s%s", a->name,
                                         m->o->inputs[j], m->o->inputs[k],
                                         diff[0] ? " (as shards, their layers differ: " : "", diff,
@@ -182,7 +183,7 @@ static int check_layer_names(const struct merge *m, struct vt_error *err)
                 }
     }
     if (total > VTS_MAX_LAYERS)
-        return vt_error_set(err, VT_ERR_LIMIT, "the inputs have %u layers in all, more than %u",
+        return vt_error_set(err, VTS_ERR_LIMIT, "the inputs have %u layers in all, more than %u",
                             total, VTS_MAX_LAYERS);
     return 0;
 }
@@ -234,7 +235,7 @@ static bool complete_shard_set(const struct merge *m)
     return ok;
 }
 
-static int set_metadata(struct merge *m, bool shards, struct vt_error *err)
+static int set_metadata(struct merge *m, bool shards, struct vts_error *err)
 {
     bool single_build = shards && complete_shard_set(m);
     size_t len = 0, cap = 1;
@@ -254,7 +255,7 @@ static int set_metadata(struct merge *m, bool shards, struct vt_error *err)
         cap += strlen(m->o->inputs[k]) + 1;
     char *sources = malloc(cap);
     if (!sources)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory for metadata");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for metadata");
     for (int k = 0; k < m->o->input_count; k++)
         len += (size_t)snprintf(sources + len, cap - len, "%s%s", k ? " " : "", m->o->inputs[k]);
     rc = vts_writer_set_meta(m->out, "merge.sources", sources, err);
@@ -265,21 +266,21 @@ static int set_metadata(struct merge *m, bool shards, struct vt_error *err)
 /* ---- copying tiles ---- */
 
 int vt_merge_read_tile(struct merge *m, int k, int b, uint32_t layer, uint32_t level, uint32_t tx,
-                       uint32_t ty, size_t *len, struct vt_error *err)
+                       uint32_t ty, size_t *len, struct vts_error *err)
 {
-    struct vt_error why = {0};
+    struct vts_error why = {0};
     int rc = vts_store_read(m->in[k], layer, level, tx, ty, m->buf[b], m->buf_cap, len, 0, &why);
     if (rc == 0)
         return 0;
     return vt_error_set(err, rc, "'%s': layer %u level %u tile %u,%u: %s", m->o->inputs[k], layer,
                         level, tx, ty,
-                        rc == VT_ERR_CHECKSUM ? "payload checksum mismatch" : why.message);
+                        rc == VTS_ERR_CHECKSUM ? "payload checksum mismatch" : why.message);
 }
 
 /* Shards mode, one tile: the payload of the first input that stores it; any other input that
  * stores it must hold the same bytes. */
 static int merge_shard_tile(struct merge *m, uint64_t index, uint32_t layer, uint32_t level,
-                            uint32_t tx, uint32_t ty, struct vt_error *err)
+                            uint32_t tx, uint32_t ty, struct vts_error *err)
 {
     int owner = -1, rc = 0;
     size_t len = 0, other_len = 0;
@@ -297,7 +298,7 @@ static int merge_shard_tile(struct merge *m, uint64_t index, uint32_t layer, uin
             rc = vt_merge_read_tile(m, k, 1, layer, level, tx, ty, &other_len, err);
         if (rc == 0 && (other_len != len || memcmp(m->buf[0], m->buf[1], len) != 0))
             rc = vt_error_set(
-                err, VT_ERR_BAD_INPUT,
+                err, VTS_ERR_BAD_INPUT,
                 "tile %u,%u of level %u, layer %u, is stored in both '%s' and '%s' with different bytes",
                 tx, ty, level, layer, m->o->inputs[owner], m->o->inputs[k]);
     }
@@ -309,7 +310,7 @@ static int merge_shard_tile(struct merge *m, uint64_t index, uint32_t layer, uin
 
 /* Visits every tile of the first input's geometry: shards mode merges it across the inputs,
  * layers mode copies it from input k to output layer base + layer. */
-static int copy_tiles(struct merge *m, int k, uint32_t base, uint64_t *done, struct vt_error *err)
+static int copy_tiles(struct merge *m, int k, uint32_t base, uint64_t *done, struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(m->in[k < 0 ? 0 : k]);
     uint64_t index = 0;
@@ -336,7 +337,7 @@ static int copy_tiles(struct merge *m, int k, uint32_t base, uint64_t *done, str
     return rc;
 }
 
-static int create_writer(struct merge *m, bool shards, struct vt_error *err)
+static int create_writer(struct merge *m, bool shards, struct vts_error *err)
 {
     struct vts_geometry g = *vts_store_geometry(m->in[0]);
     struct vts_layer layers[VTS_MAX_LAYERS];
@@ -351,7 +352,7 @@ static int create_writer(struct merge *m, bool shards, struct vt_error *err)
     return m->out ? 0 : err->status;
 }
 
-static int merge(struct merge *m, struct vt_error *err)
+static int merge(struct merge *m, struct vts_error *err)
 {
     bool shards = true;
     uint64_t done = 0, total = 0;
@@ -372,12 +373,12 @@ static int merge(struct merge *m, struct vt_error *err)
     }
     m->copy_layers = vts_store_geometry(m->in[0])->layer_count - (m->shard_build ? 1 : 0);
     if (rc == 0 && m->shard_build && (!shards || m->copy_layers != 1))
-        rc = vt_error_set(err, VT_ERR_BAD_INPUT,
+        rc = vt_error_set(err, VTS_ERR_BAD_INPUT,
                           "the shards' layer tables differ or are not vt-tiles --shard's");
     if (rc == 0 && !shards)
         rc = check_layer_names(m, err);
     if (rc == 0 && (!(m->buf[0] = malloc(m->buf_cap + 1)) || !(m->buf[1] = malloc(m->buf_cap + 1))))
-        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory for tile buffers");
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory for tile buffers");
     if (rc == 0)
         rc = create_writer(m, shards, err);
     if (rc != 0)
@@ -407,9 +408,9 @@ static int merge(struct merge *m, struct vt_error *err)
 
 static int run(const struct vt_merge_options *o)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct merge m = {.o = o, .in = calloc((size_t)o->input_count, sizeof *m.in)};
-    int rc = m.in ? merge(&m, &err) : vt_error_set(&err, VT_ERR_NOMEM, "out of memory");
+    int rc = m.in ? merge(&m, &err) : vt_error_set(&err, VTS_ERR_NOMEM, "out of memory");
     if (rc == 0) {
         struct vts_writer_stats st;
         vts_writer_stats(m.out, &st);

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vt_error.h"
 #include "vt_float_file.h"
 #include "vt_merge.h"
 #include "vt_pool.h"
@@ -28,7 +29,7 @@ static const char *metadata_difference(const struct vts_store *a, const struct v
 }
 
 /* Every input is a shard of one vt-tiles --shard build, each of 1/N .. N/N exactly once. */
-int vt_merge_check_shard_build(const struct merge *m, struct vt_error *err)
+int vt_merge_check_shard_build(const struct merge *m, struct vts_error *err)
 {
     int n = m->o->input_count, with = 0, rc = 0;
     while (!vts_store_meta_find(m->in[with], VT_SHARD_BUILD_KEY))
@@ -39,7 +40,7 @@ int vt_merge_check_shard_build(const struct merge *m, struct vt_error *err)
         const char *v = vts_store_meta_find(m->in[k], SHARD_KEY);
         if (!vts_store_meta_find(m->in[k], VT_SHARD_BUILD_KEY) || vt_shard_parse(v, &index, &c)) {
             rc = vt_error_set(
-                err, VT_ERR_BAD_INPUT,
+                err, VTS_ERR_BAD_INPUT,
                 "'%s' is not a shard of vt-tiles --shard (no %s metadata), unlike '%s'",
                 m->o->inputs[k], VT_SHARD_BUILD_KEY, m->o->inputs[with]);
             break;
@@ -47,23 +48,23 @@ int vt_merge_check_shard_build(const struct merge *m, struct vt_error *err)
         if (k == 0) {
             count = c;
             if (!(owner = malloc(count * sizeof *owner)))
-                return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+                return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
             for (uint32_t i = 0; i < count; i++)
                 owner[i] = -1;
         }
         const char *key = metadata_difference(m->in[0], m->in[k]);
         if (c != count)
-            rc = vt_error_set(err, VT_ERR_BAD_INPUT,
+            rc = vt_error_set(err, VTS_ERR_BAD_INPUT,
                               "'%s' is shard %u/%u but '%s' is a shard of %u: not one build",
                               m->o->inputs[k], index, c, m->o->inputs[0], count);
         else if (owner[index - 1] >= 0)
-            rc = vt_error_set(err, VT_ERR_BAD_INPUT, "shard %u/%u is given twice: '%s' and '%s'",
+            rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "shard %u/%u is given twice: '%s' and '%s'",
                               index, c, m->o->inputs[owner[index - 1]], m->o->inputs[k]);
         else if (key) {
             const char *va = vts_store_meta_find(m->in[k], key);
             const char *vb = vts_store_meta_find(m->in[0], key);
             rc = vt_error_set(
-                err, VT_ERR_BAD_INPUT,
+                err, VTS_ERR_BAD_INPUT,
                 "'%s' (shard %u/%u) is from another build: its %s is '%s', not '%s' as in '%s'",
                 m->o->inputs[k], index, c, key, va ? va : "(none)", vb ? vb : "(none)",
                 m->o->inputs[0]);
@@ -76,7 +77,7 @@ int vt_merge_check_shard_build(const struct merge *m, struct vt_error *err)
             first = i + 1;
     if (rc == 0 && missing)
         rc = vt_error_set(
-            err, VT_ERR_BAD_INPUT,
+            err, VTS_ERR_BAD_INPUT,
             "shard %u/%u is missing%s%.0u%s: merge all %u shards of a vt-tiles --shard build at once",
             first, count, missing > 1 ? " (and " : "", missing > 1 ? missing - 1 : 0,
             missing > 1 ? " more)" : "", count);
@@ -85,12 +86,12 @@ int vt_merge_check_shard_build(const struct merge *m, struct vt_error *err)
 }
 
 static int emit_coarse_tile(void *user, unsigned worker, uint32_t level, uint32_t tx, uint32_t ty,
-                            const struct vt_image *payload, struct vt_error *err)
+                            const struct vt_image *payload, struct vts_error *err)
 {
     struct merge *m = user;
     size_t len = 0;
     if (payload) {
-        struct vt_error cerr = {0};
+        struct vts_error cerr = {0};
         int rc = m->codec->encode(payload, &m->params, m->enc[worker], m->enc_cap, &len, &cerr);
         if (rc)
             return vt_error_set(err, rc, "cannot encode tile %u,%u of level %u: %s", tx, ty, level,
@@ -109,7 +110,7 @@ static int coarse_progress(void *user, uint64_t done, uint64_t total)
 
 /* Copies the carried texels of every shard (layer `layer`, level k) into the pass image f. */
 static int assemble_carried(struct merge *m, struct vt_float_file *f, uint32_t layer, uint32_t k,
-                            uint32_t channels, float *row, struct vt_error *err)
+                            uint32_t channels, float *row, struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(m->in[0]);
     struct vts_level L;
@@ -128,13 +129,13 @@ static int assemble_carried(struct merge *m, struct vt_float_file *f, uint32_t l
                     owner = i;
             }
             if (owner < 0)
-                return vt_error_set(err, VT_ERR_BAD_INPUT,
+                return vt_error_set(err, VTS_ERR_BAD_INPUT,
                                     "no shard holds the carried texels of tile %u,%u of level %u",
                                     tx, ty, k);
             size_t len = 0;
             int rc = vt_merge_read_tile(m, owner, 0, layer, k, tx, ty, &len, err);
             if (rc == 0 && len != want)
-                rc = vt_error_set(err, VT_ERR_BAD_INPUT,
+                rc = vt_error_set(err, VTS_ERR_BAD_INPUT,
                                   "'%s': carried tile %u,%u of level %u has %zu bytes, not %zu",
                                   m->o->inputs[owner], tx, ty, k, len, want);
             uint32_t w = L.width - tx * c < c ? L.width - tx * c : c;
@@ -151,7 +152,7 @@ static int assemble_carried(struct merge *m, struct vt_float_file *f, uint32_t l
 
 /* Builds the levels above the shards' first pass from their carried texels, with the options
  * the shards recorded: the same bytes as the single build's passes. */
-int vt_merge_build_coarse(struct merge *m, struct vt_error *err)
+int vt_merge_build_coarse(struct merge *m, struct vts_error *err)
 {
     const struct vts_store *s0 = m->in[0];
     const struct vts_geometry *g = vts_store_geometry(s0);
@@ -164,11 +165,11 @@ int vt_merge_build_coarse(struct merge *m, struct vt_error *err)
         vt_shard_build_parse(vts_store_meta_find(s0, VT_SHARD_BUILD_KEY), &sb) ||
         F->channels != sb.channels || !filter_name || vt_filter_parse(filter_name, &filter))
         return vt_error_set(
-            err, VT_ERR_BAD_INPUT,
+            err, VTS_ERR_BAD_INPUT,
             "'%s': not a well-formed vt-tiles shard (layer table, %s or filter metadata)",
             m->o->inputs[0], VT_SHARD_BUILD_KEY);
     if (!(m->codec = vt_codec_by_fourcc(L->codec)))
-        return vt_error_set(err, VT_ERR_UNSUPPORTED, "'%s': codec of layer 0 is not available",
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED, "'%s': codec of layer 0 is not available",
                             m->o->inputs[0]);
     m->params = (struct vt_codec_params){L->codec == VTS_CODEC_JPEG ? (int)L->codec_param : 0,
                                          (int)sb.effort, (int)sb.subsampling};
@@ -211,10 +212,10 @@ int vt_merge_build_coarse(struct merge *m, struct vt_error *err)
     m->enc_cap =
         m->codec->encoded_bound(g->tile_payload_px, g->tile_payload_px, L->channels, L->sample);
     m->enc = calloc(po.threads, sizeof *m->enc);
-    int rc = row && m->enc ? 0 : vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+    int rc = row && m->enc ? 0 : vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     for (unsigned i = 0; rc == 0 && i < po.threads; i++)
         if (!(m->enc[i] = malloc(m->enc_cap)))
-            rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory for encode buffers");
+            rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory for encode buffers");
     struct vt_float_file *f = rc ? NULL
                                  : vt_float_file_create(po.temp_dir, plan.carry_width,
                                                         plan.carry_height, sb.channels, err);

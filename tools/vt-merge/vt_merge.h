@@ -43,13 +43,13 @@ struct merge {
 
 /* Reads the payload of a tile of input k into m->buf[b]; *len 0 for an empty tile. */
 int vt_merge_read_tile(struct merge *m, int k, int b, uint32_t layer, uint32_t level, uint32_t tx,
-                       uint32_t ty, size_t *len, struct vt_error *err);
+                       uint32_t ty, size_t *len, struct vts_error *err);
 
 /* Checks that the inputs are the complete shard set of one `vt-tiles --shard` build (one line
  * naming the missing, duplicate or foreign shard otherwise). */
-int vt_merge_check_shard_build(const struct merge *m, struct vt_error *err);
+int vt_merge_check_shard_build(const struct merge *m, struct vts_error *err);
 
 /* Assembles the shards' carried float texels and builds the remaining levels into m->out. */
-int vt_merge_build_coarse(struct merge *m, struct vt_error *err);
+int vt_merge_build_coarse(struct merge *m, struct vts_error *err);
 
 #endif

@@ -117,7 +117,7 @@ int main(int argc, char **argv)
     if (!do_check && same_faces)
         return vt_usage_error("--same-faces needs --check");
 
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vt_obj2ply_mesh a, b;
     memset(&b, 0, sizeof(b));
     int rc = vt_obj2ply_mesh_read(&a, argv[optind], &err);

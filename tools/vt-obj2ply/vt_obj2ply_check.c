@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vt_error.h"
 #include "vt_obj2ply_path.h"
 
 /* The resolved map_Kd path of material index i of m ("" when it has none), made absolute. */
@@ -48,23 +49,23 @@ static bool corner_close(const double a[5], const double b[5], double tol)
 }
 
 int vt_obj2ply_check_compare(const struct vt_obj2ply_mesh *a, const struct vt_obj2ply_mesh *b,
-                             bool same_faces, double tol, struct vt_error *err)
+                             bool same_faces, double tol, struct vts_error *err)
 {
     int rc = 0;
     char **ta = calloc(a->material_count + 1u, sizeof(char *));
     char **tb = calloc(b->material_count + 1u, sizeof(char *));
     if (!ta || !tb) {
-        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
         goto cleanup;
     }
     for (uint32_t i = 0; i < a->material_count; i++)
         if (!(ta[i] = material_texture(a, i))) {
-            rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+            rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
             goto cleanup;
         }
     for (uint32_t i = 0; i < b->material_count; i++) {
         if (!(tb[i] = material_texture(b, i))) {
-            rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+            rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
             goto cleanup;
         }
         bool known = false;
@@ -72,7 +73,7 @@ int vt_obj2ply_check_compare(const struct vt_obj2ply_mesh *a, const struct vt_ob
             known = !strcmp(a->materials[j], b->materials[i]) && !strcmp(ta[j], tb[i]);
         if (!known) {
             rc = vt_error_set(
-                err, VT_ERR_BAD_INPUT,
+                err, VTS_ERR_BAD_INPUT,
                 "'%s': material '%s' (texture '%s') is not a material of '%s' with that texture",
                 b->path, b->materials[i], tb[i], a->path);
             goto cleanup;
@@ -82,7 +83,7 @@ int vt_obj2ply_check_compare(const struct vt_obj2ply_mesh *a, const struct vt_ob
         const struct vt_obj2ply_mesh_tri *t = &b->tris[i];
         for (int k = 0; k < 3; k++)
             if (t->vt[k] == VT_OBJ_NONE) {
-                rc = vt_error_set(err, VT_ERR_BAD_INPUT,
+                rc = vt_error_set(err, VTS_ERR_BAD_INPUT,
                                   "'%s':%" PRIu64 ": a corner has no texture coordinate", b->path,
                                   t->line);
                 goto cleanup;
@@ -90,14 +91,14 @@ int vt_obj2ply_check_compare(const struct vt_obj2ply_mesh *a, const struct vt_ob
     }
     if (same_faces) {
         if (a->tri_count != b->tri_count) {
-            rc = vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': %zu triangles, '%s' has %zu", b->path,
+            rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': %zu triangles, '%s' has %zu", b->path,
                               b->tri_count, a->path, a->tri_count);
             goto cleanup;
         }
         for (size_t i = 0; i < a->tri_count; i++) {
             const struct vt_obj2ply_mesh_tri *x = &a->tris[i], *y = &b->tris[i];
             if (strcmp(a->materials[x->material], b->materials[y->material])) {
-                rc = vt_error_set(err, VT_ERR_BAD_INPUT,
+                rc = vt_error_set(err, VTS_ERR_BAD_INPUT,
                                   "'%s':%" PRIu64 ": material '%s', was '%s' ('%s':%" PRIu64 ")",
                                   b->path, y->line, b->materials[y->material],
                                   a->materials[x->material], a->path, x->line);
@@ -116,7 +117,7 @@ int vt_obj2ply_check_compare(const struct vt_obj2ply_mesh *a, const struct vt_ob
                         found = used[j] = true;
                 }
                 if (!found) {
-                    rc = vt_error_set(err, VT_ERR_BAD_INPUT,
+                    rc = vt_error_set(err, VTS_ERR_BAD_INPUT,
                                       "'%s':%" PRIu64 ": corner (%g %g %g / %g %g) of '%s':%" PRIu64
                                       " is missing",
                                       b->path, y->line, ca[0], ca[1], ca[2], ca[3], ca[4], a->path,

@@ -9,8 +9,8 @@
 #include "vt_obj2ply_mesh.h"
 
 /* Checks b (with its MTL files read) against a; on success prints "vertices A -> B, faces C -> D,
- * materials E -> F" to stdout. Returns 0, or VT_ERR_BAD_INPUT / VT_ERR_NOMEM with err filled. */
+ * materials E -> F" to stdout. Returns 0, or VTS_ERR_BAD_INPUT / VTS_ERR_NOMEM with err filled. */
 int vt_obj2ply_check_compare(const struct vt_obj2ply_mesh *a, const struct vt_obj2ply_mesh *b,
-                             bool same_faces, double tol, struct vt_error *err);
+                             bool same_faces, double tol, struct vts_error *err);
 
 #endif

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vt_error.h"
 #include "vt_obj2ply_out.h"
 
 static void put_u32le(unsigned char *p, uint32_t v)
@@ -23,15 +24,15 @@ static void put_f32le(unsigned char *p, double d)
 }
 
 int vt_obj2ply_convert_write(const struct vt_obj2ply_mesh *m, const char *out_path,
-                             struct vt_error *err)
+                             struct vts_error *err)
 {
     uint32_t nv = vt_obj_position_count(m->obj);
     if (nv > INT32_MAX || m->tri_count > INT32_MAX)
-        return vt_error_set(err, VT_ERR_LIMIT, "'%s': too large for a PLY with int indices",
+        return vt_error_set(err, VTS_ERR_LIMIT, "'%s': too large for a PLY with int indices",
                             m->path);
     struct vt_obj2ply_out *o = malloc(sizeof(*o));
     if (!o)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     o->offset = 0;
     o->used = 0;
     int rc = vt_atomic_file_create(&o->file, out_path, "tmp", err);

@@ -8,6 +8,6 @@
 
 /* Writes m as a PLY to out_path (atomically). Returns 0 or a negative status with err filled. */
 int vt_obj2ply_convert_write(const struct vt_obj2ply_mesh *m, const char *out_path,
-                             struct vt_error *err);
+                             struct vts_error *err);
 
 #endif

@@ -5,17 +5,18 @@
 #include <string.h>
 
 #include "vt_checked.h"
+#include "vt_error.h"
 
-static int push(void **arr, size_t *count, size_t *cap, size_t elem, struct vt_error *err)
+static int push(void **arr, size_t *count, size_t *cap, size_t elem, struct vts_error *err)
 {
     if (*count == *cap) {
         size_t ncap = *cap ? *cap * 2 : 64;
         size_t bytes;
         if (ncap < *cap || !vt_size_mul(ncap, elem, &bytes))
-            return vt_error_set(err, VT_ERR_LIMIT, "too many elements");
+            return vt_error_set(err, VTS_ERR_LIMIT, "too many elements");
         void *n = realloc(*arr, bytes);
         if (!n)
-            return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+            return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
         *arr = n;
         *cap = ncap;
     }
@@ -24,7 +25,7 @@ static int push(void **arr, size_t *count, size_t *cap, size_t elem, struct vt_e
 }
 
 static int mesh_mtllib(void *user, const struct vt_obj *obj, const char *mtl_path, uint64_t line,
-                       struct vt_error *err)
+                       struct vts_error *err)
 {
     (void)obj;
     (void)line;
@@ -34,7 +35,7 @@ static int mesh_mtllib(void *user, const struct vt_obj *obj, const char *mtl_pat
             return 0;
     char *copy = strdup(mtl_path);
     if (!copy)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     int rc = push((void **)&m->mtllibs, &m->mtllib_count, &m->mtllib_cap, sizeof(char *), err);
     if (rc) {
         free(copy);
@@ -45,7 +46,7 @@ static int mesh_mtllib(void *user, const struct vt_obj *obj, const char *mtl_pat
 }
 
 static int mesh_material_index(struct vt_obj2ply_mesh *m, const char *name, uint32_t *out,
-                               struct vt_error *err)
+                               struct vts_error *err)
 {
     for (uint32_t i = m->material_count; i-- > 0;)
         if (!strcmp(m->materials[i], name)) {
@@ -54,12 +55,12 @@ static int mesh_material_index(struct vt_obj2ply_mesh *m, const char *name, uint
         }
     char *copy = strdup(name);
     if (!copy)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     size_t count = m->material_count, cap = m->material_cap;
     int rc = push((void **)&m->materials, &count, &cap, sizeof(char *), err);
     if (rc || count > INT32_MAX) {
         free(copy);
-        return rc ? rc : vt_error_set(err, VT_ERR_LIMIT, "'%s': too many materials", m->path);
+        return rc ? rc : vt_error_set(err, VTS_ERR_LIMIT, "'%s': too many materials", m->path);
     }
     m->material_count = (uint32_t)count;
     m->material_cap = (uint32_t)cap;
@@ -69,7 +70,7 @@ static int mesh_material_index(struct vt_obj2ply_mesh *m, const char *name, uint
 }
 
 static int mesh_face(void *user, const struct vt_obj *obj, const struct vt_obj_face *face,
-                     struct vt_error *err)
+                     struct vts_error *err)
 {
     (void)obj;
     struct vt_obj2ply_mesh *m = user;
@@ -112,7 +113,7 @@ void vt_obj2ply_mesh_release(struct vt_obj2ply_mesh *m)
     memset(m, 0, sizeof(*m));
 }
 
-int vt_obj2ply_mesh_read(struct vt_obj2ply_mesh *m, const char *path, struct vt_error *err)
+int vt_obj2ply_mesh_read(struct vt_obj2ply_mesh *m, const char *path, struct vts_error *err)
 {
     memset(m, 0, sizeof(*m));
     m->path = path;
@@ -123,11 +124,11 @@ int vt_obj2ply_mesh_read(struct vt_obj2ply_mesh *m, const char *path, struct vt_
     return vt_obj_read(m->obj, path, &cb, err);
 }
 
-int vt_obj2ply_mesh_read_mtls(struct vt_obj2ply_mesh *m, struct vt_error *err)
+int vt_obj2ply_mesh_read_mtls(struct vt_obj2ply_mesh *m, struct vts_error *err)
 {
     m->mtls = calloc(m->mtllib_count ? m->mtllib_count : 1, sizeof(*m->mtls));
     if (!m->mtls)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     for (size_t i = 0; i < m->mtllib_count; i++) {
         int rc = vt_mtl_read(m->mtllibs[i], NULL, &m->mtls[i], err);
         if (rc)

@@ -36,10 +36,10 @@ struct vt_obj2ply_mesh {
 
 /* Reads the OBJ at path into m (released with vt_obj2ply_mesh_release() even on failure; path must
  * outlive m). Returns 0 or a negative status with err filled. */
-int vt_obj2ply_mesh_read(struct vt_obj2ply_mesh *m, const char *path, struct vt_error *err);
+int vt_obj2ply_mesh_read(struct vt_obj2ply_mesh *m, const char *path, struct vts_error *err);
 
 /* Reads the MTL files m's mtllib lines name (m->mtls). Returns 0 or a negative status. */
-int vt_obj2ply_mesh_read_mtls(struct vt_obj2ply_mesh *m, struct vt_error *err);
+int vt_obj2ply_mesh_read_mtls(struct vt_obj2ply_mesh *m, struct vts_error *err);
 
 /* Frees everything m holds; m is zeroed (a zeroed m may be released). */
 void vt_obj2ply_mesh_release(struct vt_obj2ply_mesh *m);

@@ -3,7 +3,7 @@
 
 #include <string.h>
 
-int vt_obj2ply_out_flush(struct vt_obj2ply_out *o, struct vt_error *err)
+int vt_obj2ply_out_flush(struct vt_obj2ply_out *o, struct vts_error *err)
 {
     int rc = vt_atomic_file_pwrite(&o->file, o->data, o->used, o->offset, err);
     o->offset += o->used;
@@ -11,7 +11,7 @@ int vt_obj2ply_out_flush(struct vt_obj2ply_out *o, struct vt_error *err)
     return rc;
 }
 
-int vt_obj2ply_out_write(struct vt_obj2ply_out *o, const void *p, size_t n, struct vt_error *err)
+int vt_obj2ply_out_write(struct vt_obj2ply_out *o, const void *p, size_t n, struct vts_error *err)
 {
     const unsigned char *b = p;
     while (n) {
@@ -31,7 +31,7 @@ int vt_obj2ply_out_write(struct vt_obj2ply_out *o, const void *p, size_t n, stru
     return 0;
 }
 
-int vt_obj2ply_out_str(struct vt_obj2ply_out *o, const char *s, struct vt_error *err)
+int vt_obj2ply_out_str(struct vt_obj2ply_out *o, const char *s, struct vts_error *err)
 {
     return vt_obj2ply_out_write(o, s, strlen(s), err);
 }

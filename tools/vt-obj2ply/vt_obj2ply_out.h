@@ -15,12 +15,12 @@ struct vt_obj2ply_out {
 };
 
 /* Writes the buffered bytes at the file's current offset. Returns 0 or a negative status. */
-int vt_obj2ply_out_flush(struct vt_obj2ply_out *o, struct vt_error *err);
+int vt_obj2ply_out_flush(struct vt_obj2ply_out *o, struct vts_error *err);
 
 /* Appends n bytes (flushing when the buffer fills). Returns 0 or a negative status. */
-int vt_obj2ply_out_write(struct vt_obj2ply_out *o, const void *p, size_t n, struct vt_error *err);
+int vt_obj2ply_out_write(struct vt_obj2ply_out *o, const void *p, size_t n, struct vts_error *err);
 
 /* Appends a string. Returns 0 or a negative status. */
-int vt_obj2ply_out_str(struct vt_obj2ply_out *o, const char *s, struct vt_error *err);
+int vt_obj2ply_out_str(struct vt_obj2ply_out *o, const char *s, struct vts_error *err);
 
 #endif

@@ -11,11 +11,12 @@
 #include <sys/types.h>
 
 #include "tool_common.h"
+#include "vt_error.h"
 #include "vt_obj2ply_out.h"
 #include "vt_obj2ply_path.h"
 
 int vt_obj2ply_restore_write(const struct vt_obj2ply_mesh *orig, const char *meshlab_path,
-                             const char *out_path, struct vt_error *err)
+                             const char *out_path, struct vts_error *err)
 {
     struct vt_obj2ply_mesh ml;
     int rc = vt_obj2ply_mesh_read(&ml, meshlab_path, err);
@@ -31,7 +32,7 @@ int vt_obj2ply_restore_write(const struct vt_obj2ply_mesh *orig, const char *mes
     /* the mtllib line: IN.obj's MTL files relative to OUT.obj's directory */
     out_dir = vt_obj2ply_path_absolute(out_path);
     if (!out_dir) {
-        rc = vt_error_set(err, VT_ERR_IO, "'%s': cannot resolve the directory: %s", out_path,
+        rc = vt_error_set(err, VTS_ERR_IO, "'%s': cannot resolve the directory: %s", out_path,
                           strerror(errno));
         goto cleanup;
     }
@@ -41,7 +42,7 @@ int vt_obj2ply_restore_write(const struct vt_obj2ply_mesh *orig, const char *mes
     size_t len = strlen("mtllib") + 2;
     mtllib_line = malloc(len);
     if (!mtllib_line) {
-        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
         goto cleanup;
     }
     strcpy(mtllib_line, "mtllib");
@@ -50,14 +51,14 @@ int vt_obj2ply_restore_write(const struct vt_obj2ply_mesh *orig, const char *mes
         char *rel = abs ? vt_obj2ply_path_relative(out_dir, abs) : NULL;
         free(abs);
         if (!rel) {
-            rc = vt_error_set(err, VT_ERR_IO, "'%s': cannot resolve the path", orig->mtllibs[i]);
+            rc = vt_error_set(err, VTS_ERR_IO, "'%s': cannot resolve the path", orig->mtllibs[i]);
             goto cleanup;
         }
         len += strlen(rel) + 1;
         char *n = realloc(mtllib_line, len);
         if (!n) {
             free(rel);
-            rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+            rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
             goto cleanup;
         }
         mtllib_line = n;
@@ -69,12 +70,12 @@ int vt_obj2ply_restore_write(const struct vt_obj2ply_mesh *orig, const char *mes
 
     in = fopen(meshlab_path, "r");
     if (!in) {
-        rc = vt_error_set(err, VT_ERR_IO, "'%s': %s", meshlab_path, strerror(errno));
+        rc = vt_error_set(err, VTS_ERR_IO, "'%s': %s", meshlab_path, strerror(errno));
         goto cleanup;
     }
     o = malloc(sizeof(*o));
     if (!o) {
-        rc = vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
         goto cleanup;
     }
     o->offset = 0;
@@ -102,7 +103,7 @@ int vt_obj2ply_restore_write(const struct vt_obj2ply_mesh *orig, const char *mes
         if (!strncmp(p, "usemtl", 6) && (p[6] == ' ' || p[6] == '\t')) {
             char name[256];
             if (sscanf(p + 6, " %255s", name) != 1) {
-                rc = vt_error_set(err, VT_ERR_BAD_INPUT, "'%s':%" PRIu64 ": bad usemtl",
+                rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%" PRIu64 ": bad usemtl",
                                   meshlab_path, lineno);
                 break;
             }
@@ -113,7 +114,7 @@ int vt_obj2ply_restore_write(const struct vt_obj2ply_mesh *orig, const char *mes
                 strncmp(file, VT_OBJ2PLY_MESH_TOKEN_PREFIX, strlen(VT_OBJ2PLY_MESH_TOKEN_PREFIX)) ||
                 vt_parse_u32(file + strlen(VT_OBJ2PLY_MESH_TOKEN_PREFIX), 0, UINT32_MAX, &index) ||
                 index >= orig->material_count) {
-                rc = vt_error_set(err, VT_ERR_BAD_INPUT,
+                rc = vt_error_set(err, VTS_ERR_BAD_INPUT,
                                   "'%s':%" PRIu64
                                   ": material '%s' does not name one of '%s' (map_Kd '%s')",
                                   meshlab_path, lineno, name, orig->path, file ? file : "");
@@ -124,7 +125,7 @@ int vt_obj2ply_restore_write(const struct vt_obj2ply_mesh *orig, const char *mes
                 /* faces before any usemtl: expressible only before the first material */
                 if (material_seen) {
                     rc = vt_error_set(
-                        err, VT_ERR_BAD_INPUT,
+                        err, VTS_ERR_BAD_INPUT,
                         "'%s':%" PRIu64
                         ": faces without a material come after faces with one; OBJ cannot say that",
                         meshlab_path, lineno);
@@ -143,7 +144,7 @@ int vt_obj2ply_restore_write(const struct vt_obj2ply_mesh *orig, const char *mes
         rc = vt_obj2ply_out_write(o, buf, (size_t)n, err);
     }
     if (!rc && ferror(in))
-        rc = vt_error_set(err, VT_ERR_IO, "'%s': read error", meshlab_path);
+        rc = vt_error_set(err, VTS_ERR_IO, "'%s': read error", meshlab_path);
     if (!rc)
         rc = vt_obj2ply_out_flush(o, err);
     if (!rc) {

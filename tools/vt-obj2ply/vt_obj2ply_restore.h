@@ -9,6 +9,6 @@
 /* Rewrites meshlab_path (written from orig's PLY) into out_path (atomically) with orig's materials
  * and mtllib. Returns 0 or a negative status with err filled. */
 int vt_obj2ply_restore_write(const struct vt_obj2ply_mesh *orig, const char *meshlab_path,
-                             const char *out_path, struct vt_error *err);
+                             const char *out_path, struct vts_error *err);
 
 #endif

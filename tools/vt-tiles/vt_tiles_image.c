@@ -8,6 +8,7 @@
 
 #include "tool_common.h"
 #include "vt_codec.h"
+#include "vt_error.h"
 #include "vt_image_input.h"
 #include "vt_pool.h"
 #include "vt_pyramid.h"
@@ -27,12 +28,12 @@ struct run {
 };
 
 static int emit_tile(void *user, unsigned worker, uint32_t level, uint32_t tx, uint32_t ty,
-                     const struct vt_image *payload, struct vt_error *err)
+                     const struct vt_image *payload, struct vts_error *err)
 {
     struct run *r = user;
     size_t len = 0;
     if (payload) {
-        struct vt_error cerr = {0};
+        struct vts_error cerr = {0};
         int rc = r->codec->encode(payload, &r->params, r->bufs[worker], r->cap, &len, &cerr);
         if (rc)
             return vt_error_set(err, rc, "cannot encode tile %u,%u of level %u: %s", tx, ty, level,
@@ -44,7 +45,7 @@ static int emit_tile(void *user, unsigned worker, uint32_t level, uint32_t tx, u
 /* A shard's carried texels: one tile of the extra layer (vt_shard.h) per first-pass block. */
 static int carry_tile(void *user, unsigned worker, uint32_t x, uint32_t y, uint32_t width,
                       uint32_t height, uint32_t channels, const float *texels, size_t stride,
-                      struct vt_error *err)
+                      struct vts_error *err)
 {
     struct run *r = user;
     vt_shard_pack(r->bufs[worker], r->payload_px, r->border, texels, width, height, channels,
@@ -56,12 +57,12 @@ static int carry_tile(void *user, unsigned worker, uint32_t x, uint32_t y, uint3
 
 /* Shard metadata (after the single build's): shard=I/N, what the merge needs, the input's id. */
 static int set_shard_metadata(struct vts_writer *w, const struct vt_tiles_image_options *o,
-                              const struct vt_shard_build *b, struct vt_error *err)
+                              const struct vt_shard_build *b, struct vts_error *err)
 {
     char value[256];
     struct stat st;
     if (stat(o->input, &st) != 0)
-        return vt_error_set(err, VT_ERR_IO, "'%s': cannot stat the input", o->input);
+        return vt_error_set(err, VTS_ERR_IO, "'%s': cannot stat the input", o->input);
     snprintf(value, sizeof value, "%u/%u", o->shard, o->shard_count);
     int rc = vts_writer_set_meta(w, VT_SHARD_KEY, value, err);
     vt_shard_build_format(b, value, sizeof value);
@@ -110,7 +111,7 @@ static const struct vt_codec *choose_codec(const struct vt_tiles_image_options *
 }
 
 static int open_sources(const struct vt_tiles_image_options *o, struct vt_source *src, unsigned n,
-                        struct vt_error *err)
+                        struct vts_error *err)
 {
     struct vt_input_limits limits = {o->max_pixels};
     int rc = vt_image_input_open(o->input, &limits, &src[0], err);
@@ -120,7 +121,7 @@ static int open_sources(const struct vt_tiles_image_options *o, struct vt_source
 }
 
 static int set_metadata(struct vts_writer *w, const struct vt_tiles_image_options *o,
-                        const char *codec, struct vt_error *err)
+                        const char *codec, struct vts_error *err)
 {
     char quality[16];
     snprintf(quality, sizeof quality, "%u", o->quality);
@@ -169,7 +170,7 @@ static int make_geometry(struct vt_tiles_image_options *o, const struct vt_sourc
 }
 
 static int build(struct run *r, struct vt_source *src, const struct vt_pyramid_options *po,
-                 struct vt_error *err)
+                 struct vts_error *err)
 {
     struct vt_source *ptrs[256];
     for (unsigned i = 0; i < po->threads; i++)
@@ -189,13 +190,13 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
     struct vt_tiles_image_options *o = &copy;
     struct vt_source src[256];
     memset(src, 0, sizeof src);
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct run r = {.o = o};
     struct vts_geometry g;
     int status = VT_EXIT_BAD_INPUT, rc = 0;
     struct stat in_stat;
     if (o->shard && (stat(o->input, &in_stat) != 0 || !S_ISREG(in_stat.st_mode))) {
-        rc = vt_error_set(&err, VT_ERR_BAD_INPUT,
+        rc = vt_error_set(&err, VTS_ERR_BAD_INPUT,
                           "'%s': --shard needs INPUT to be a regular file (every shard reads it)",
                           o->input);
         goto out;
@@ -246,7 +247,7 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
     r.bufs = calloc(o->threads, sizeof *r.bufs);
     for (unsigned i = 0; r.bufs && i < o->threads; i++)
         if (!(r.bufs[i] = malloc(r.cap))) {
-            rc = vt_error_set(&err, VT_ERR_NOMEM, "out of memory for encode buffers");
+            rc = vt_error_set(&err, VTS_ERR_NOMEM, "out of memory for encode buffers");
             goto out;
         }
     if (!(r.writer = vts_writer_create(o->output, &g, layers, &err))) {

@@ -12,6 +12,7 @@
 #include "vt_atlas_build.h"
 #include "vt_atomic_file.h"
 #include "vt_codec.h"
+#include "vt_error.h"
 #include "vt_image_input.h"
 #include "vt_layout.h"
 #include "vt_png_file.h"
@@ -35,7 +36,7 @@ struct layout_run {
     struct vt_input_limits limits;
 };
 
-static int open_texture(void *user, const char *path, struct vt_source *out, struct vt_error *err)
+static int open_texture(void *user, const char *path, struct vt_source *out, struct vts_error *err)
 {
     const struct layout_run *r = user;
     return vt_image_input_open(path, &r->limits, out, err);
@@ -50,12 +51,12 @@ static int show_progress(void *user, uint64_t done, uint64_t total)
 }
 
 static int emit_tile(void *user, unsigned worker, uint32_t slot, uint32_t level, uint32_t tx,
-                     uint32_t ty, const struct vt_image *payload, struct vt_error *err)
+                     uint32_t ty, const struct vt_image *payload, struct vts_error *err)
 {
     struct layout_run *r = user;
     size_t len = 0;
     if (payload) {
-        struct vt_error cerr = {0};
+        struct vts_error cerr = {0};
         int rc = r->codecs[slot]->encode(payload, &r->params[slot], r->bufs[worker], r->cap, &len,
                                          &cerr);
         if (rc)
@@ -102,7 +103,7 @@ static int pick_layers(struct layout_run *r)
 
 /* Codec of one layer (like vt-tiles: png for alpha, normals and data, else jpeg). */
 static int pick_codec(struct layout_run *r, uint32_t slot, struct vts_layer *layer,
-                      struct vt_error *err)
+                      struct vts_error *err)
 {
     const struct vt_tiles_layout_options *o = r->o;
     struct vt_atlas_layer_format f;
@@ -137,7 +138,7 @@ static int pick_codec(struct layout_run *r, uint32_t slot, struct vts_layer *lay
     return 0;
 }
 
-static int set_metadata(struct layout_run *r, struct vt_error *err)
+static int set_metadata(struct layout_run *r, struct vts_error *err)
 {
     const struct vt_tiles_layout_options *o = r->o;
     char names[VT_LAYOUT_MAX_LAYERS * 64] = "", codecs[VT_LAYOUT_MAX_LAYERS * 8] = "";
@@ -167,7 +168,7 @@ static int set_metadata(struct layout_run *r, struct vt_error *err)
     return 0;
 }
 
-static int write_store(struct layout_run *r, struct vt_error *err)
+static int write_store(struct layout_run *r, struct vts_error *err)
 {
     struct vts_layer layers[VT_LAYOUT_MAX_LAYERS];
     for (uint32_t s = 0; s < r->nslots; s++) {
@@ -181,7 +182,7 @@ static int write_store(struct layout_run *r, struct vt_error *err)
         if (!(r->bufs[i] = malloc(r->cap)))
             break;
     if (!r->bufs || !r->bufs[threads - 1]) {
-        vt_error_set(err, VT_ERR_NOMEM, "out of memory for encode buffers");
+        vt_error_set(err, VTS_ERR_NOMEM, "out of memory for encode buffers");
         return VT_EXIT_BAD_INPUT;
     }
     uint32_t c = r->lay.tile_content, b = r->lay.border;
@@ -234,7 +235,7 @@ struct tiff_out {
 };
 
 static int tiff_start(struct tiff_out *t, const char *path, uint32_t w, uint32_t h, uint32_t ch,
-                      struct vt_error *err)
+                      struct vts_error *err)
 {
     int rc = vt_atomic_file_create(&t->file, path, "tmp", err);
     if (rc)
@@ -244,7 +245,7 @@ static int tiff_start(struct tiff_out *t, const char *path, uint32_t w, uint32_t
         !(t->tif = TIFFFdOpen(fd, path, w * (uint64_t)h * ch > (1ull << 31) ? "w8" : "w"))) {
         if (fd >= 0)
             close(fd);
-        return vt_error_set(err, VT_ERR_IO, "cannot write '%s'", path);
+        return vt_error_set(err, VTS_ERR_IO, "cannot write '%s'", path);
     }
     uint16_t extra = ch == 2 || ch == 4 ? EXTRASAMPLE_UNASSALPHA : 0;
     TIFFSetField(t->tif, TIFFTAG_IMAGEWIDTH, w);
@@ -261,27 +262,27 @@ static int tiff_start(struct tiff_out *t, const char *path, uint32_t w, uint32_t
 }
 
 static int export_band(struct vt_png_file_writer *png, struct tiff_out *t, const char *path,
-                       const struct vt_image *band, uint32_t y0, struct vt_error *err)
+                       const struct vt_image *band, uint32_t y0, struct vts_error *err)
 {
     if (png)
         return vt_png_file_writer_rows(png, band->pixels, band->height, band->stride, err);
     for (uint32_t j = 0; j < band->height; j++)
         if (TIFFWriteScanline(t->tif, vt_image_at(band, 0, j), y0 + j, 0) < 0)
-            return vt_error_set(err, VT_ERR_IO, "cannot write '%s'", path);
+            return vt_error_set(err, VTS_ERR_IO, "cannot write '%s'", path);
     return 0;
 }
 
-static int export_atlas(struct layout_run *r, struct vt_error *err)
+static int export_atlas(struct layout_run *r, struct vts_error *err)
 {
     const char *path = r->o->export_atlas;
     uint32_t w = r->lay.width, h = r->lay.height;
     if ((uint64_t)w * h > EXPORT_MAX_TEXELS)
-        return vt_error_set(err, VT_ERR_LIMIT,
+        return vt_error_set(err, VTS_ERR_LIMIT,
                             "cannot export '%s': the atlas has %ux%u texels, more than %llu", path,
                             w, h, (unsigned long long)EXPORT_MAX_TEXELS);
     bool is_png = ends_with(path, ".png");
     if (!is_png && !ends_with(path, ".tif") && !ends_with(path, ".tiff"))
-        return vt_error_set(err, VT_ERR_ARG,
+        return vt_error_set(err, VTS_ERR_ARG,
                             "cannot export '%s': the name must end in .png, .tif or .tiff", path);
     struct vt_atlas_layer_format f;
     vt_atlas_build_format(r->build, 0, &f);
@@ -323,7 +324,7 @@ static int export_atlas(struct layout_run *r, struct vt_error *err)
 
 /* ---- run ---- */
 
-static int start_build(struct layout_run *r, struct vt_error *err)
+static int start_build(struct layout_run *r, struct vts_error *err)
 {
     const struct vt_tiles_layout_options *o = r->o;
     r->limits.max_pixels = o->max_pixels;
@@ -353,7 +354,7 @@ int vt_tiles_layout_run(const struct vt_tiles_layout_options *options)
     if (o->threads > 256)
         o->threads = 256;
     struct layout_run r = {.o = o};
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int status = VT_EXIT_BAD_INPUT;
     if (!o->output && !o->export_atlas)
         return vt_usage_error("missing -o OUT.vts (or --export-atlas FILE)");

@@ -9,6 +9,7 @@
 #include <time.h>
 
 #include "tool_common.h"
+#include "vt_error.h"
 #include "vtv_camera.h"
 #include "vtv_context.h"
 #include "vtv_mesh.h"
@@ -121,7 +122,7 @@ static void apply_input(struct app *a, const struct vtv_input *in)
     }
 }
 
-static int setup(struct app *a, struct vt_error *err)
+static int setup(struct app *a, struct vts_error *err)
 {
     const struct vtv_options *o = a->o;
     a->store = vts_open(o->store_path, err);
@@ -129,7 +130,7 @@ static int setup(struct app *a, struct vt_error *err)
         return err->status;
     uint32_t layer;
     if (find_layer(a->store, o->layer_name, &layer) != 0)
-        return vt_error_set(err, VT_ERR_ARG, "%s: no layer '%s'", o->store_path, o->layer_name);
+        return vt_error_set(err, VTS_ERR_ARG, "%s: no layer '%s'", o->store_path, o->layer_name);
     const struct vts_geometry *g = vts_store_geometry(a->store);
     a->three_d = o->obj_path != NULL;
     int st = a->three_d ? vtv_mesh_read_obj(&a->mesh, o->obj_path, err)
@@ -176,14 +177,14 @@ static int setup(struct app *a, struct vt_error *err)
     a->shot = malloc((size_t)o->width * o->height * 4);
     a->stats = calloc(o->frames ? o->frames : 1, sizeof(*a->stats));
     if (!a->feedback || !a->shot || !a->stats)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     a->trilinear = o->trilinear;
     a->debug = o->debug;
     return 0;
 }
 
 /* One frame; returns 0 or a negative status. */
-static int frame(struct app *a, uint64_t i, struct vtv_frame_stats *st, struct vt_error *err)
+static int frame(struct app *a, uint64_t i, struct vtv_frame_stats *st, struct vts_error *err)
 {
     struct vtv_view v;
     frame_view(a, i, &v);
@@ -205,15 +206,15 @@ static int frame(struct app *a, uint64_t i, struct vtv_frame_stats *st, struct v
     vtv_render_feedback(&a->render, &v, jx, jy, a->feedback);
     if (vtv_stream_request(&a->stream, a->feedback,
                            (size_t)a->render.fb_width * a->render.fb_height, st) != 0)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     GLenum e = glGetError();
     if (e != GL_NO_ERROR)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED, "OpenGL error 0x%x in frame %" PRIu64,
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED, "OpenGL error 0x%x in frame %" PRIu64,
                             (unsigned)e, i);
     return 0;
 }
 
-static int loop(struct app *a, struct vt_error *err)
+static int loop(struct app *a, struct vts_error *err)
 {
     const struct vtv_options *o = a->o;
     uint64_t n = 0;
@@ -299,7 +300,7 @@ int vtv_app_run(const struct vtv_options *o)
     struct app a;
     memset(&a, 0, sizeof(a));
     a.o = o;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int st = setup(&a, &err);
     if (st == 0)
         st = loop(&a, &err);
@@ -320,5 +321,5 @@ int vtv_app_run(const struct vtv_options *o)
     free(a.stats);
     if (st == 0)
         return VT_EXIT_OK;
-    return st == VT_ERR_ARG ? VT_EXIT_USAGE : VT_EXIT_BAD_INPUT;
+    return st == VTS_ERR_ARG ? VT_EXIT_USAGE : VT_EXIT_BAD_INPUT;
 }

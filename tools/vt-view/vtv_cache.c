@@ -6,9 +6,10 @@
 #include <string.h>
 
 #include "vt_checked.h"
+#include "vt_error.h"
 
 int vtv_cache_init(struct vtv_cache *c, const struct vts_store *store, uint32_t slots,
-                   struct vt_error *err)
+                   struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(store);
     memset(c, 0, sizeof(*c));
@@ -17,8 +18,8 @@ int vtv_cache_init(struct vtv_cache *c, const struct vts_store *store, uint32_t 
         vts_store_level(store, l, &c->levels[l]);
     c->tile_count = vts_geometry_tiles_per_layer(g);
     if (slots < 1 || slots > 65536) {
-        vt_error_set(err, VT_ERR_ARG, "cache of %u tiles: must be 1..65536", slots);
-        return VT_ERR_ARG;
+        vt_error_set(err, VTS_ERR_ARG, "cache of %u tiles: must be 1..65536", slots);
+        return VTS_ERR_ARG;
     }
     c->slots = slots;
     c->slots_x = (uint32_t)ceil(sqrt((double)slots));
@@ -29,9 +30,9 @@ int vtv_cache_init(struct vtv_cache *c, const struct vts_store *store, uint32_t 
         c->pt_height += c->levels[l].tiles_y;
     }
     if (c->pt_width > 16384 || c->pt_height > 16384 || c->tile_count > (1ull << 28)) {
-        vt_error_set(err, VT_ERR_LIMIT, "%s: %llu tiles per layer is too many for the page table",
+        vt_error_set(err, VTS_ERR_LIMIT, "%s: %llu tiles per layer is too many for the page table",
                      vts_store_name(store), (unsigned long long)c->tile_count);
-        return VT_ERR_LIMIT;
+        return VTS_ERR_LIMIT;
     }
     size_t n = (size_t)c->tile_count;
     c->state = calloc(n, 1);
@@ -42,8 +43,8 @@ int vtv_cache_init(struct vtv_cache *c, const struct vts_store *store, uint32_t 
     c->changes = malloc(VTV_CACHE_MAX_CHANGES * sizeof(*c->changes));
     if (!c->state || !c->slot_of || !c->slot_tile || !c->slot_stamp || !c->pt || !c->changes) {
         vtv_cache_free(c);
-        vt_error_set(err, VT_ERR_NOMEM, "out of memory for the tile cache");
-        return VT_ERR_NOMEM;
+        vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the tile cache");
+        return VTS_ERR_NOMEM;
     }
     for (size_t i = 0; i < n; i++)
         c->slot_of[i] = VTV_NO_SLOT;

@@ -50,9 +50,9 @@ struct vtv_cache {
 #define VTV_CACHE_MAX_CHANGES 4096u
 
 /* Sets up the state of every tile of store and a cache of `slots` physical slots (a near-square
- * grid). Returns 0 or VT_ERR_NOMEM / VT_ERR_LIMIT with a message. */
+ * grid). Returns 0 or VTS_ERR_NOMEM / VTS_ERR_LIMIT with a message. */
 int vtv_cache_init(struct vtv_cache *c, const struct vts_store *store, uint32_t slots,
-                   struct vt_error *err);
+                   struct vts_error *err);
 void vtv_cache_free(struct vtv_cache *c);
 
 /* Index of tile (level, x, y) in the state arrays, and back. */

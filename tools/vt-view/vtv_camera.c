@@ -1,5 +1,6 @@
 /* vt-view cameras and camera files. */
 #include "vtv_camera.h"
+#include "vt_error.h"
 
 #define VTV_PI 3.14159265358979323846
 
@@ -10,12 +11,12 @@
 #include <string.h>
 
 int vtv_camera_path_read(struct vtv_camera_path *p, const char *path, unsigned values,
-                         struct vt_error *err)
+                         struct vts_error *err)
 {
     memset(p, 0, sizeof(*p));
     FILE *f = fopen(path, "r");
     if (!f)
-        return vt_error_set(err, VT_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
+        return vt_error_set(err, VTS_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
     char line[512];
     unsigned lineno = 0;
     int st = 0;
@@ -40,20 +41,20 @@ int vtv_camera_path_read(struct vtv_camera_path *p, const char *path, unsigned v
         if (n == 0 && *s == '\0')
             continue;
         if (n != values || *s != '\0') {
-            st = vt_error_set(err, VT_ERR_BAD_INPUT, "'%s' line %u: expected %u numbers", path,
+            st = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s' line %u: expected %u numbers", path,
                               lineno, values);
             break;
         }
         if (values == 3 && !(c.v[2] > 0)) {
-            st =
-                vt_error_set(err, VT_ERR_BAD_INPUT, "'%s' line %u: zoom must be > 0", path, lineno);
+            st = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s' line %u: zoom must be > 0", path,
+                              lineno);
             break;
         }
         if (p->count == cap) {
             cap = cap ? cap * 2 : 16;
             struct vtv_camera *nf = realloc(p->frames, cap * sizeof(*nf));
             if (!nf) {
-                st = vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+                st = vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
                 break;
             }
             p->frames = nf;
@@ -62,7 +63,7 @@ int vtv_camera_path_read(struct vtv_camera_path *p, const char *path, unsigned v
     }
     fclose(f);
     if (st == 0 && p->count == 0)
-        st = vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': no camera in the file", path);
+        st = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': no camera in the file", path);
     if (st != 0)
         vtv_camera_path_free(p);
     return st;

@@ -21,7 +21,7 @@ struct vtv_camera_path {
 
 /* Reads a camera file with `values` numbers per line (3 or 7); '#' starts a comment. */
 int vtv_camera_path_read(struct vtv_camera_path *p, const char *path, unsigned values,
-                         struct vt_error *err);
+                         struct vts_error *err);
 void vtv_camera_path_free(struct vtv_camera_path *p);
 const struct vtv_camera *vtv_camera_path_at(const struct vtv_camera_path *p, uint64_t frame);
 

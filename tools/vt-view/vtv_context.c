@@ -1,5 +1,6 @@
 /* vt-view GL contexts: EGL surfaceless through libepoxy, or GLFW (X11, GLX). */
 #include "vtv_context.h"
+#include "vt_error.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -18,16 +19,16 @@ struct vtv_context {
     double scroll;
 };
 
-struct vtv_context *vtv_context_headless(struct vt_error *err)
+struct vtv_context *vtv_context_headless(struct vts_error *err)
 {
     struct vtv_context *c = calloc(1, sizeof(*c));
     if (!c) {
-        vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
         return NULL;
     }
     c->dpy = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
     if (c->dpy == EGL_NO_DISPLAY || !eglInitialize(c->dpy, NULL, NULL)) {
-        vt_error_set(err, VT_ERR_UNSUPPORTED, "no EGL surfaceless display (error 0x%x)",
+        vt_error_set(err, VTS_ERR_UNSUPPORTED, "no EGL surfaceless display (error 0x%x)",
                      (unsigned)eglGetError());
         free(c);
         return NULL;
@@ -46,7 +47,8 @@ struct vtv_context *vtv_context_headless(struct vt_error *err)
     if (!eglChooseConfig(c->dpy, ca, &cfg, 1, &n) || n < 1 ||
         (c->ctx = eglCreateContext(c->dpy, cfg, EGL_NO_CONTEXT, xa)) == EGL_NO_CONTEXT ||
         !eglMakeCurrent(c->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, c->ctx)) {
-        vt_error_set(err, VT_ERR_UNSUPPORTED, "cannot create an OpenGL 3.3 core EGL context (0x%x)",
+        vt_error_set(err, VTS_ERR_UNSUPPORTED,
+                     "cannot create an OpenGL 3.3 core EGL context (0x%x)",
                      (unsigned)eglGetError());
         vtv_context_destroy(c);
         return NULL;
@@ -62,19 +64,19 @@ static void on_scroll(GLFWwindow *w, double dx, double dy)
 }
 
 struct vtv_context *vtv_context_window(uint32_t width, uint32_t height, const char *title,
-                                       struct vt_error *err)
+                                       struct vts_error *err)
 {
     if (!glfwInit()) {
         const char *msg = NULL;
         glfwGetError(&msg);
-        vt_error_set(err, VT_ERR_UNSUPPORTED, "cannot open a window: %s (use --headless)",
+        vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot open a window: %s (use --headless)",
                      msg ? msg : "glfwInit failed");
         return NULL;
     }
     struct vtv_context *c = calloc(1, sizeof(*c));
     if (!c) {
         glfwTerminate();
-        vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
         return NULL;
     }
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
@@ -85,7 +87,7 @@ struct vtv_context *vtv_context_window(uint32_t width, uint32_t height, const ch
     if (!c->win) {
         const char *msg = NULL;
         glfwGetError(&msg);
-        vt_error_set(err, VT_ERR_UNSUPPORTED, "cannot create a window: %s",
+        vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot create a window: %s",
                      msg ? msg : "unknown error");
         free(c);
         glfwTerminate();

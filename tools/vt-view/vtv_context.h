@@ -17,9 +17,9 @@ struct vtv_input {
 
 struct vtv_context;
 
-struct vtv_context *vtv_context_headless(struct vt_error *err);
+struct vtv_context *vtv_context_headless(struct vts_error *err);
 struct vtv_context *vtv_context_window(uint32_t width, uint32_t height, const char *title,
-                                       struct vt_error *err);
+                                       struct vts_error *err);
 void vtv_context_destroy(struct vtv_context *c);
 
 bool vtv_context_is_window(const struct vtv_context *c);

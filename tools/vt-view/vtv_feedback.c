@@ -35,7 +35,7 @@ static int reserve(struct vtv_feedback *f, size_t n)
         cap *= 2;
     struct vtv_request *p = realloc(f->items, cap * sizeof(*p));
     if (!p)
-        return VT_ERR_NOMEM;
+        return VTS_ERR_NOMEM;
     f->items = p;
     f->capacity = cap;
     return 0;
@@ -49,7 +49,7 @@ int vtv_feedback_reduce(struct vtv_feedback *f, const struct vtv_cache *c, const
     if (n > f->keys_capacity) {
         uint64_t *k = realloc(f->keys, n * sizeof(*k));
         if (!k)
-            return VT_ERR_NOMEM;
+            return VTS_ERR_NOMEM;
         f->keys = k;
         f->keys_capacity = n;
     }
@@ -69,7 +69,7 @@ int vtv_feedback_reduce(struct vtv_feedback *f, const struct vtv_cache *c, const
         while (j < nk && f->keys[j] == f->keys[i])
             j++;
         if (reserve(f, f->count + c->level_count) != 0)
-            return VT_ERR_NOMEM;
+            return VTS_ERR_NOMEM;
         struct vtv_request r = {.index = f->keys[i], .pixels = j - i};
         vtv_cache_coords(c, r.index, &r.level, &r.x, &r.y);
         f->items[f->count++] = r;

@@ -24,7 +24,7 @@ struct vtv_feedback {
     uint64_t direct; /* tiles asked for by pixels, before the ancestors */
 };
 
-/* pixels: n RGBA16UI texels. Returns 0 or VT_ERR_NOMEM. */
+/* pixels: n RGBA16UI texels. Returns 0 or VTS_ERR_NOMEM. */
 int vtv_feedback_reduce(struct vtv_feedback *f, const struct vtv_cache *c, const uint16_t *pixels,
                         size_t n);
 void vtv_feedback_free(struct vtv_feedback *f);

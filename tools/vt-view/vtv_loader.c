@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "vt_codec.h"
+#include "vt_error.h"
 #include "vt_image.h"
 
 #define VTV_QUEUE_MAX 1024u
@@ -115,14 +116,14 @@ static struct vtv_load *load(struct vtv_loader *l, struct scratch *sc, uint64_t 
     r->level = level;
     r->x = x;
     r->y = y;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     size_t len = 0, need = l->max_payload ? l->max_payload : 1;
     int st = 0;
     if (sc->capacity < need) {
         free(sc->payload);
         sc->capacity = 0;
         if (!(sc->payload = malloc(need)))
-            st = vt_error_set(&err, VT_ERR_NOMEM, "out of memory reading a tile");
+            st = vt_error_set(&err, VTS_ERR_NOMEM, "out of memory reading a tile");
         else
             sc->capacity = need;
     }
@@ -137,7 +138,7 @@ static struct vtv_load *load(struct vtv_loader *l, struct scratch *sc, uint64_t 
     r->bytes_read = len;
     if (st == 0 && len > 0 && l->bc_bytes) {
         if (len != l->bc_bytes)
-            st = vt_error_set(&err, VT_ERR_BAD_INPUT,
+            st = vt_error_set(&err, VTS_ERR_BAD_INPUT,
                               "'%s': tile %u,%u of level %u: %zu bytes of BC blocks, expected %zu",
                               vts_store_name(l->store), x, y, level, len, l->bc_bytes);
         else
@@ -241,11 +242,11 @@ static void *worker(void *arg)
 }
 
 struct vtv_loader *vtv_loader_create(const struct vts_store *store, uint32_t layer,
-                                     uint32_t threads, unsigned flags, struct vt_error *err)
+                                     uint32_t threads, unsigned flags, struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(store);
     if (layer >= g->layer_count) {
-        vt_error_set(err, VT_ERR_ARG, "%s: no layer %u (the store has %u)", vts_store_name(store),
+        vt_error_set(err, VTS_ERR_ARG, "%s: no layer %u (the store has %u)", vts_store_name(store),
                      layer, g->layer_count);
         return NULL;
     }
@@ -254,19 +255,19 @@ struct vtv_loader *vtv_loader_create(const struct vts_store *store, uint32_t lay
     if (!codec) {
         char name[5];
         vts_codec_name(info->codec, name);
-        vt_error_set(err, VT_ERR_UNSUPPORTED, "%s: codec '%s' is not built into vt-view",
+        vt_error_set(err, VTS_ERR_UNSUPPORTED, "%s: codec '%s' is not built into vt-view",
                      vts_store_name(store), name);
         return NULL;
     }
     if (info->sample != VTS_SAMPLE_U8 && info->sample != VTS_SAMPLE_U16) {
-        vt_error_set(err, VT_ERR_UNSUPPORTED,
+        vt_error_set(err, VTS_ERR_UNSUPPORTED,
                      "%s: layer '%s' has %s samples; vt-view shows u8 and u16",
                      vts_store_name(store), info->name, vts_sample_name(info->sample));
         return NULL;
     }
     struct vtv_loader *l = calloc(1, sizeof(*l));
     if (!l) {
-        vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
         return NULL;
     }
     l->store = store;
@@ -286,13 +287,13 @@ struct vtv_loader *vtv_loader_create(const struct vts_store *store, uint32_t lay
         l->threads = calloc(threads, sizeof(*l->threads));
         if (!l->threads) {
             vtv_loader_destroy(l);
-            vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+            vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
             return NULL;
         }
         for (uint32_t i = 0; i < threads; i++) {
             if (pthread_create(&l->threads[i], NULL, worker, l) != 0) {
                 vtv_loader_destroy(l);
-                vt_error_set(err, VT_ERR_NOMEM, "cannot start a loader thread");
+                vt_error_set(err, VTS_ERR_NOMEM, "cannot start a loader thread");
                 return NULL;
             }
             l->thread_count++;

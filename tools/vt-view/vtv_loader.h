@@ -34,7 +34,7 @@ enum vtv_loader_flags {
  * Returns NULL and fills err on failure (bad layer, codec not built in, sample type other than
  * u8/u16). */
 struct vtv_loader *vtv_loader_create(const struct vts_store *store, uint32_t layer,
-                                     uint32_t threads, unsigned flags, struct vt_error *err);
+                                     uint32_t threads, unsigned flags, struct vts_error *err);
 void vtv_loader_destroy(struct vtv_loader *l);
 
 /* Reads and decodes one tile on the calling thread (one such thread at a time: it uses the

@@ -4,13 +4,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vt_error.h"
 #include "vt_obj.h"
 
 static int push_vertex(struct vtv_mesh *m, uint32_t *cap, const float v[5])
 {
     if (m->vertex_count == *cap) {
         if (*cap >= (1u << 27))
-            return VT_ERR_LIMIT;
+            return VTS_ERR_LIMIT;
         uint32_t nc = *cap ? *cap * 2 : 1024;
         float *p = realloc(m->vertices, (size_t)nc * 5 * sizeof(float));
         uint32_t *q = realloc(m->indices, (size_t)nc * sizeof(uint32_t));
@@ -19,7 +20,7 @@ static int push_vertex(struct vtv_mesh *m, uint32_t *cap, const float v[5])
         if (q)
             m->indices = q;
         if (!p || !q)
-            return VT_ERR_NOMEM;
+            return VTS_ERR_NOMEM;
         *cap = nc;
     }
     memcpy(m->vertices + (size_t)m->vertex_count * 5, v, 5 * sizeof(float));
@@ -33,14 +34,14 @@ static int push_vertex(struct vtv_mesh *m, uint32_t *cap, const float v[5])
     return 0;
 }
 
-int vtv_mesh_quad(struct vtv_mesh *m, double width, double height, struct vt_error *err)
+int vtv_mesh_quad(struct vtv_mesh *m, double width, double height, struct vts_error *err)
 {
     memset(m, 0, sizeof(*m));
     m->vertices = malloc(4 * 5 * sizeof(float));
     m->indices = malloc(6 * sizeof(uint32_t));
     if (!m->vertices || !m->indices) {
         vtv_mesh_free(m);
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     }
     const float w = (float)width, h = (float)height;
     const float v[20] = {0, 0, 0, 0, 0, w, 0, 0, 1, 0, w, h, 0, 1, 1, 0, h, 0, 0, 1};
@@ -75,7 +76,7 @@ static void corner(const struct vt_obj *obj, const struct vt_obj_corner *c, floa
 }
 
 static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_face *f,
-                   struct vt_error *err)
+                   struct vts_error *err)
 {
     struct obj_ctx *ctx = user;
     float a[5], b[5], c[5];
@@ -95,7 +96,7 @@ static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_fac
     return 0;
 }
 
-int vtv_mesh_read_obj(struct vtv_mesh *m, const char *path, struct vt_error *err)
+int vtv_mesh_read_obj(struct vtv_mesh *m, const char *path, struct vts_error *err)
 {
     memset(m, 0, sizeof(*m));
     for (int k = 0; k < 3; k++) {
@@ -110,7 +111,7 @@ int vtv_mesh_read_obj(struct vtv_mesh *m, const char *path, struct vt_error *err
     int st = vt_obj_read(obj, path, &cb, err);
     vt_obj_destroy(obj);
     if (st == 0 && m->index_count == 0)
-        st = vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': no faces", path);
+        st = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': no faces", path);
     if (st != 0)
         vtv_mesh_free(m);
     return st;

@@ -15,8 +15,8 @@ struct vtv_mesh {
     double lo[3], hi[3]; /* bounding box */
 };
 
-int vtv_mesh_quad(struct vtv_mesh *m, double width, double height, struct vt_error *err);
-int vtv_mesh_read_obj(struct vtv_mesh *m, const char *path, struct vt_error *err);
+int vtv_mesh_quad(struct vtv_mesh *m, double width, double height, struct vts_error *err);
+int vtv_mesh_read_obj(struct vtv_mesh *m, const char *path, struct vts_error *err);
 void vtv_mesh_free(struct vtv_mesh *m);
 
 #endif

@@ -7,14 +7,15 @@
 #include <string.h>
 
 #include "vt_atomic_file.h"
+#include "vt_error.h"
 #include "vt_png_file.h"
 
 int vtv_write_screenshot(const char *path, const uint8_t *rgba, uint32_t w, uint32_t h,
-                         struct vt_error *err)
+                         struct vts_error *err)
 {
     uint8_t *row = malloc((size_t)w * 3);
     if (!row)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     struct vt_png_file_writer *pw = vt_png_file_writer_create(path, w, h, 3, 8, err);
     int st = pw ? 0 : err->status;
     for (uint32_t y = 0; st == 0 && y < h; y++) {
@@ -55,13 +56,13 @@ static void frame_json(FILE *f, const struct vtv_frame_stats *s)
 }
 
 int vtv_write_stats(const char *path, const struct vtv_run_info *info,
-                    const struct vtv_frame_stats *frames, size_t count, struct vt_error *err)
+                    const struct vtv_frame_stats *frames, size_t count, struct vts_error *err)
 {
     char *buf = NULL;
     size_t len = 0;
     FILE *f = open_memstream(&buf, &len);
     if (!f)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     fputs("{\n  \"store\": ", f);
     json_string(f, info->store);
     fprintf(f, ",\n  \"mode\": \"%s\",\n  \"renderer\": \"%s\",\n  \"filtering\": \"%s\",\n",

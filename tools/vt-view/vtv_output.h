@@ -10,7 +10,7 @@
 
 /* rgba: w x h RGBA8 rows, top first. Written atomically. */
 int vtv_write_screenshot(const char *path, const uint8_t *rgba, uint32_t w, uint32_t h,
-                         struct vt_error *err);
+                         struct vts_error *err);
 
 struct vtv_run_info {
     const char *store;
@@ -25,6 +25,6 @@ struct vtv_run_info {
 
 /* Frames without timings first (deterministic under --sync), then "timing_ms". */
 int vtv_write_stats(const char *path, const struct vtv_run_info *info,
-                    const struct vtv_frame_stats *frames, size_t count, struct vt_error *err);
+                    const struct vtv_frame_stats *frames, size_t count, struct vts_error *err);
 
 #endif

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vt_error.h"
 #include "vt_image.h"
 #include "vt_image_input.h"
 #include "vt_obj.h"
@@ -28,14 +29,14 @@ struct load_ctx {
 };
 
 static int on_mtllib(void *user, const struct vt_obj *obj, const char *mtl_path, uint64_t line,
-                     struct vt_error *err)
+                     struct vts_error *err)
 {
     (void)obj;
     (void)line;
     struct load_ctx *c = user;
     struct vt_mtl *m = realloc(c->mtls, (c->mtl_count + 1) * sizeof(*m));
     if (!m)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     c->mtls = m;
     memset(&m[c->mtl_count], 0, sizeof(*m));
     int st = vt_mtl_read(mtl_path, NULL, &m[c->mtl_count], err);
@@ -43,7 +44,7 @@ static int on_mtllib(void *user, const struct vt_obj *obj, const char *mtl_path,
     return st;
 }
 
-static int material_index(struct load_ctx *c, const char *name, struct vt_error *err)
+static int material_index(struct load_ctx *c, const char *name, struct vts_error *err)
 {
     if (c->cur < c->mat_count && strcmp(c->mats[c->cur].name, name) == 0)
         return 0;
@@ -52,14 +53,14 @@ static int material_index(struct load_ctx *c, const char *name, struct vt_error 
             return 0;
     struct mat_geo *m = realloc(c->mats, (c->mat_count + 1) * sizeof(*m));
     if (!m)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     c->mats = m;
     memset(&m[c->mat_count], 0, sizeof(*m));
     m[c->mat_count].uv_lo[0] = m[c->mat_count].uv_lo[1] = 1e300;
     m[c->mat_count].uv_hi[0] = m[c->mat_count].uv_hi[1] = -1e300;
     m[c->mat_count].name = strdup(name);
     if (!m[c->mat_count].name)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     c->cur = c->mat_count++;
     return 0;
 }
@@ -69,11 +70,11 @@ static int push(struct load_ctx *c, const struct vt_obj *obj, const struct vt_ob
     struct mat_geo *m = &c->mats[c->cur];
     if (m->n == m->cap) {
         if (m->cap >= ((size_t)1 << 27))
-            return VT_ERR_LIMIT;
+            return VTS_ERR_LIMIT;
         size_t nc = m->cap ? m->cap * 2 : 256;
         float *p = realloc(m->v, nc * 5 * sizeof(float));
         if (!p)
-            return VT_ERR_NOMEM;
+            return VTS_ERR_NOMEM;
         m->v = p;
         m->cap = nc;
     }
@@ -98,7 +99,7 @@ static int push(struct load_ctx *c, const struct vt_obj *obj, const struct vt_ob
 }
 
 static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_face *f,
-                   struct vt_error *err)
+                   struct vts_error *err)
 {
     struct load_ctx *c = user;
     int st = material_index(c, f->material, err);
@@ -108,7 +109,7 @@ static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_fac
             st = push(c, obj, &f->corners[i]);
         if (st == 0)
             st = push(c, obj, &f->corners[i + 1]);
-        if (st != 0 && st != VT_ERR_NOMEM)
+        if (st != 0 && st != VTS_ERR_NOMEM)
             return vt_error_set(err, st, "'%s':%llu: too many triangles", c->path,
                                 (unsigned long long)f->line);
         if (st != 0)
@@ -137,7 +138,7 @@ static void to_rgba8(const struct vt_image *img, uint8_t *out)
         }
 }
 
-static int load_texture(const char *path, bool srgb, GLuint *out, struct vt_error *err)
+static int load_texture(const char *path, bool srgb, GLuint *out, struct vts_error *err)
 {
     struct vt_source src;
     struct vt_image img = {0};
@@ -149,12 +150,12 @@ static int load_texture(const char *path, bool srgb, GLuint *out, struct vt_erro
     GLint max_size = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
     if (in->sample != VTS_SAMPLE_U8 && in->sample != VTS_SAMPLE_U16) {
-        st = vt_error_set(err, VT_ERR_UNSUPPORTED,
+        st = vt_error_set(err, VTS_ERR_UNSUPPORTED,
                           "'%s': --reference-scene shows 8- and 16-bit textures only", path);
         goto cleanup;
     }
     if (in->width > (uint32_t)max_size || in->height > (uint32_t)max_size) {
-        st = vt_error_set(err, VT_ERR_LIMIT, "'%s': %ux%u is larger than GL_MAX_TEXTURE_SIZE %d",
+        st = vt_error_set(err, VTS_ERR_LIMIT, "'%s': %ux%u is larger than GL_MAX_TEXTURE_SIZE %d",
                           path, in->width, in->height, max_size);
         goto cleanup;
     }
@@ -165,7 +166,7 @@ static int load_texture(const char *path, bool srgb, GLuint *out, struct vt_erro
         goto cleanup;
     rgba = malloc((size_t)in->width * in->height * 4); /* each edge <= GL_MAX_TEXTURE_SIZE */
     if (!rgba) {
-        st = vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        st = vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
         goto cleanup;
     }
     to_rgba8(&img, rgba);
@@ -191,7 +192,7 @@ static float srgb_to_linear(double c)
 
 /* The texture or colour of material m (first MTL file that defines it, as vt-atlas does). */
 static int setup_part(struct vtv_reference_scene *s, struct load_ctx *c, const struct mat_geo *g,
-                      bool srgb, struct vtv_reference_part *part, struct vt_error *err)
+                      bool srgb, struct vtv_reference_part *part, struct vts_error *err)
 {
     const char *name = g->name;
     const struct vt_mtl_material *mat = NULL;
@@ -227,7 +228,7 @@ static int setup_part(struct vtv_reference_scene *s, struct load_ctx *c, const s
     if (p)
         c->tex_paths = p;
     if (!t || !p || !(p[s->texture_count] = strdup(path)))
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     t[s->texture_count] = 0;
     s->texture_count++;
     int st = load_texture(path, srgb, &t[s->texture_count - 1], err);
@@ -236,7 +237,7 @@ static int setup_part(struct vtv_reference_scene *s, struct load_ctx *c, const s
 }
 
 int vtv_reference_scene_load(struct vtv_reference_scene *s, const char *obj_path, bool srgb,
-                             struct vt_error *err)
+                             struct vts_error *err)
 {
     memset(s, 0, sizeof(*s));
     struct load_ctx c = {.path = obj_path, .cur = UINT32_MAX};
@@ -255,13 +256,13 @@ int vtv_reference_scene_load(struct vtv_reference_scene *s, const char *obj_path
     for (uint32_t i = 0; i < c.mat_count; i++)
         total += c.mats[i].n;
     if (st == 0 && total == 0)
-        st = vt_error_set(err, VT_ERR_BAD_INPUT, "'%s': no faces", obj_path);
+        st = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': no faces", obj_path);
     if (st != 0)
         goto cleanup;
     s->parts = calloc(c.mat_count, sizeof(*s->parts));
     all = malloc(total * 5 * sizeof(float)); /* total < mat_count * 2^27 */
     if (!s->parts || !all) {
-        st = vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        st = vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
         goto cleanup;
     }
     size_t first = 0;

@@ -37,7 +37,7 @@ struct vtv_reference_scene {
 /* Reads obj_path and its MTL files, loads the textures (srgb: the frame is sRGB-encoded, so sRGB
  * textures decode to linear light). Returns 0 or a negative status naming the file. */
 int vtv_reference_scene_load(struct vtv_reference_scene *s, const char *obj_path, bool srgb,
-                             struct vt_error *err);
+                             struct vts_error *err);
 /* Draws the scene into the main framebuffer with the view's camera and filtering. */
 void vtv_reference_scene_draw(struct vtv_render *r, const struct vtv_reference_scene *s,
                               const struct vtv_view *v);

@@ -6,9 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vt_error.h"
 #include "vtv_shaders.h"
 
-static GLuint compile(GLenum type, const char *src, const char *what, struct vt_error *err)
+static GLuint compile(GLenum type, const char *src, const char *what, struct vts_error *err)
 {
     GLuint s = glCreateShader(type);
     glShaderSource(s, 1, &src, NULL);
@@ -18,14 +19,14 @@ static GLuint compile(GLenum type, const char *src, const char *what, struct vt_
     if (!ok) {
         char log[512] = "";
         glGetShaderInfoLog(s, sizeof(log), NULL, log);
-        vt_error_set(err, VT_ERR_UNSUPPORTED, "cannot compile the %s shader: %s", what, log);
+        vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot compile the %s shader: %s", what, log);
         glDeleteShader(s);
         return 0;
     }
     return s;
 }
 
-static GLuint program(const char *fs_src, const char *what, struct vt_error *err)
+static GLuint program(const char *fs_src, const char *what, struct vts_error *err)
 {
     GLuint vs = compile(GL_VERTEX_SHADER, vtv_vs_source, "vertex", err);
     GLuint fs = vs ? compile(GL_FRAGMENT_SHADER, fs_src, what, err) : 0;
@@ -44,7 +45,7 @@ static GLuint program(const char *fs_src, const char *what, struct vt_error *err
     if (!ok) {
         char log[512] = "";
         glGetProgramInfoLog(p, sizeof(log), NULL, log);
-        vt_error_set(err, VT_ERR_UNSUPPORTED, "cannot link the %s program: %s", what, log);
+        vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot link the %s program: %s", what, log);
         glDeleteProgram(p);
         return 0;
     }
@@ -61,7 +62,7 @@ static GLuint renderbuffer(GLenum format, uint32_t w, uint32_t h)
 }
 
 int vtv_render_init(struct vtv_render *r, uint32_t width, uint32_t height, uint32_t fb_width,
-                    uint32_t fb_height, struct vt_error *err)
+                    uint32_t fb_height, struct vts_error *err)
 {
     memset(r, 0, sizeof(*r));
     r->width = width;
@@ -75,7 +76,7 @@ int vtv_render_init(struct vtv_render *r, uint32_t width, uint32_t height, uint3
         return err->status;
     r->fallback_pixels = malloc((size_t)width * height);
     if (!r->fallback_pixels)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     r->has_s3tc = epoxy_has_gl_extension("GL_EXT_texture_compression_s3tc");
     r->has_srgb_s3tc =
         r->has_s3tc && (epoxy_gl_version() >= 21 || epoxy_has_gl_extension("GL_EXT_texture_sRGB"));
@@ -95,7 +96,7 @@ int vtv_render_init(struct vtv_render *r, uint32_t width, uint32_t height, uint3
     GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glDrawBuffers(2, bufs);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED, "the main framebuffer is incomplete");
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED, "the main framebuffer is incomplete");
 
     r->rb_request = renderbuffer(GL_RGBA16UI, fb_width, fb_height);
     r->rb_fb_depth = renderbuffer(GL_DEPTH_COMPONENT24, fb_width, fb_height);
@@ -104,7 +105,7 @@ int vtv_render_init(struct vtv_render *r, uint32_t width, uint32_t height, uint3
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, r->rb_request);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, r->rb_fb_depth);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        return vt_error_set(err, VT_ERR_UNSUPPORTED, "the feedback framebuffer is incomplete");
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED, "the feedback framebuffer is incomplete");
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -151,7 +152,7 @@ void vtv_render_set_mesh(struct vtv_render *r, const float *vertices, uint32_t n
 
 int vtv_render_set_cache(struct vtv_render *r, const struct vtv_cache *c,
                          const struct vts_geometry *g, bool srgb, uint32_t bc_codec,
-                         struct vt_error *err)
+                         struct vts_error *err)
 {
     GLint max_size = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
@@ -159,7 +160,7 @@ int vtv_render_set_cache(struct vtv_render *r, const struct vtv_cache *c,
     uint64_t ph = (uint64_t)c->slots_y * g->tile_payload_px;
     if (pw > (uint64_t)max_size || ph > (uint64_t)max_size)
         return vt_error_set(
-            err, VT_ERR_LIMIT,
+            err, VTS_ERR_LIMIT,
             "a cache of %u tiles of %u px needs a %llux%llu texture; this GL allows %d: use a smaller --cache",
             c->slots, g->tile_payload_px, (unsigned long long)pw, (unsigned long long)ph, max_size);
     r->srgb = srgb;
@@ -322,12 +323,12 @@ void vtv_render_feedback(struct vtv_render *r, const struct vtv_view *v, float j
 }
 
 int vtv_render_set_reference(struct vtv_render *r, const uint8_t *rgba, uint32_t w, uint32_t h,
-                             bool srgb, struct vt_error *err)
+                             bool srgb, struct vts_error *err)
 {
     GLint max_size = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
     if (w > (uint32_t)max_size || h > (uint32_t)max_size)
-        return vt_error_set(err, VT_ERR_LIMIT,
+        return vt_error_set(err, VTS_ERR_LIMIT,
                             "--reference: level 0 is %ux%u, larger than GL_MAX_TEXTURE_SIZE %d", w,
                             h, max_size);
     glGenTextures(1, &r->tex_reference);

@@ -43,7 +43,7 @@ struct vtv_view {
 };
 
 int vtv_render_init(struct vtv_render *r, uint32_t width, uint32_t height, uint32_t fb_width,
-                    uint32_t fb_height, struct vt_error *err);
+                    uint32_t fb_height, struct vts_error *err);
 void vtv_render_free(struct vtv_render *r);
 
 /* Geometry: n vertices of 5 floats (x, y, z, u, v), index_count triangle indices. */
@@ -51,11 +51,11 @@ void vtv_render_set_mesh(struct vtv_render *r, const float *vertices, uint32_t n
                          const uint32_t *indices, uint32_t index_count);
 
 /* Page table and physical texture for the cache (srgb: an sRGB-encoded layer; bc_codec: a BC
- * codec whose blocks are uploaded compressed, from vtv_render_bc_format, or 0); VT_ERR_LIMIT when
+ * codec whose blocks are uploaded compressed, from vtv_render_bc_format, or 0); VTS_ERR_LIMIT when
  * the physical texture would be larger than GL_MAX_TEXTURE_SIZE. */
 int vtv_render_set_cache(struct vtv_render *r, const struct vtv_cache *c,
                          const struct vts_geometry *g, bool srgb, uint32_t bc_codec,
-                         struct vt_error *err);
+                         struct vts_error *err);
 /* The GL format for BC payloads of codec (VTS_CODEC_BC1/BC3) when this GL can take them as they
  * are (S3TC, and sRGB S3TC for an sRGB layer, payload edge a multiple of 4); 0 otherwise. */
 GLenum vtv_render_bc_format(const struct vtv_render *r, uint32_t codec, bool srgb,
@@ -74,9 +74,9 @@ uint64_t vtv_render_vt(struct vtv_render *r, const struct vtv_view *v);
 void vtv_render_feedback(struct vtv_render *r, const struct vtv_view *v, float jx, float jy,
                          uint16_t *out);
 
-/* The reference: one mipmapped RGBA8 texture of w x h texels (VT_ERR_LIMIT when too large). */
+/* The reference: one mipmapped RGBA8 texture of w x h texels (VTS_ERR_LIMIT when too large). */
 int vtv_render_set_reference(struct vtv_render *r, const uint8_t *rgba, uint32_t w, uint32_t h,
-                             bool srgb, struct vt_error *err);
+                             bool srgb, struct vts_error *err);
 void vtv_render_reference(struct vtv_render *r, const struct vtv_view *v);
 /* The reference pass's frame and program, for other geometry (vtv_reference.c): texture unit 0,
  * uniforms u_mode, u_kd, u_range (vtv_shaders.c). Returns the program; end with _end(). */

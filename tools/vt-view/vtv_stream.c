@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "tool_common.h"
+#include "vt_error.h"
 
 /* Puts one finished load into the cache. Returns false when no slot could be freed. */
 static bool apply(struct vtv_stream *s, struct vtv_load *r, struct vtv_frame_stats *st)
@@ -37,7 +38,7 @@ static bool apply(struct vtv_stream *s, struct vtv_load *r, struct vtv_frame_sta
 
 int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, uint32_t layer,
                     uint32_t slots, uint32_t threads, bool sync, uint32_t budget, bool bc_upload,
-                    struct vtv_render *render, struct vt_error *err)
+                    struct vtv_render *render, struct vts_error *err)
 {
     memset(s, 0, sizeof(*s));
     s->render = render;
@@ -49,11 +50,11 @@ int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, uint32_
         return st;
     const struct vts_level *top = &s->cache.levels[s->cache.level_count - 1];
     if ((uint64_t)top->tiles_x * top->tiles_y > slots / 2)
-        return vt_error_set(err, VT_ERR_ARG,
+        return vt_error_set(err, VTS_ERR_ARG,
                             "--cache %u is too small: the coarsest level alone has %u tiles", slots,
                             top->tiles_x * top->tiles_y);
     if (layer >= vts_store_geometry(store)->layer_count)
-        return vt_error_set(err, VT_ERR_ARG, "%s: no layer %u", vts_store_name(store), layer);
+        return vt_error_set(err, VTS_ERR_ARG, "%s: no layer %u", vts_store_name(store), layer);
     const struct vts_layer *info = vts_store_layer(store, layer);
     bool srgb = info->colour == VTS_COLOUR_SRGB;
     uint32_t pp = vts_store_geometry(store)->tile_payload_px;
@@ -71,7 +72,7 @@ int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, uint32_
     s->pending_lxy = malloc(cap * 3 * sizeof(*s->pending_lxy));
     s->dropped = malloc(cap * sizeof(*s->dropped));
     if (!s->pending || !s->pending_lxy || !s->dropped)
-        return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     struct vtv_frame_stats dummy = {0};
     uint32_t top_level = s->cache.level_count - 1;
     for (uint32_t y = 0; y < top->tiles_y; y++) {
@@ -79,7 +80,7 @@ int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, uint32_
             uint64_t idx = vtv_cache_index(&s->cache, top_level, x, y);
             struct vtv_load *r = vtv_loader_load_now(s->loader, idx, top_level, x, y);
             if (!r)
-                return vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+                return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
             if (r->status != 0) {
                 st = vt_error_set(err, r->status, "%s", r->error);
                 vtv_load_free(r);
@@ -145,7 +146,7 @@ int vtv_stream_request(struct vtv_stream *s, const uint16_t *pixels, size_t n,
     struct vtv_cache *c = &s->cache;
     s->stamp++;
     if (vtv_feedback_reduce(&s->feedback, c, pixels, n) != 0)
-        return VT_ERR_NOMEM;
+        return VTS_ERR_NOMEM;
     st->requested = s->feedback.count;
     if (!s->sync) { /* take back what no thread started on */
         uint32_t nd = vtv_loader_submit(s->loader, NULL, NULL, 0, s->dropped);
@@ -175,26 +176,26 @@ int vtv_stream_request(struct vtv_stream *s, const uint16_t *pixels, size_t n,
     return 0;
 }
 
-uint8_t *vtv_stream_level0(const struct vts_store *store, uint32_t layer, struct vt_error *err)
+uint8_t *vtv_stream_level0(const struct vts_store *store, uint32_t layer, struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(store);
     struct vts_level lv;
     vts_store_level(store, 0, &lv);
     if ((uint64_t)g->width * g->height > (1ull << 28)) {
-        vt_error_set(err, VT_ERR_LIMIT, "--reference: level 0 is too large (%ux%u)", g->width,
+        vt_error_set(err, VTS_ERR_LIMIT, "--reference: level 0 is too large (%ux%u)", g->width,
                      g->height);
         return NULL;
     }
     struct vtv_loader *l = vtv_loader_create(store, layer, 0, 0, err);
     uint8_t *img = l ? calloc((size_t)g->width * g->height, 4) : NULL;
     if (l && !img)
-        vt_error_set(err, VT_ERR_NOMEM, "out of memory");
+        vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     uint32_t cp = g->tile_content_px, pp = g->tile_payload_px;
     for (uint32_t ty = 0; img && ty < lv.tiles_y; ty++) {
         for (uint32_t tx = 0; img && tx < lv.tiles_x; tx++) {
             struct vtv_load *r = vtv_loader_load_now(l, 0, 0, tx, ty);
             if (!r || r->status != 0) {
-                vt_error_set(err, r ? r->status : VT_ERR_NOMEM, "%s", r ? r->error : "no memory");
+                vt_error_set(err, r ? r->status : VTS_ERR_NOMEM, "%s", r ? r->error : "no memory");
                 vtv_load_free(r);
                 free(img);
                 img = NULL;

@@ -44,7 +44,7 @@ struct vtv_stream {
  * texture as stored when the GL can take them (else they are decoded on the CPU). */
 int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, uint32_t layer,
                     uint32_t slots, uint32_t threads, bool sync, uint32_t budget, bool bc_upload,
-                    struct vtv_render *render, struct vt_error *err);
+                    struct vtv_render *render, struct vts_error *err);
 void vtv_stream_free(struct vtv_stream *s);
 
 /* Before the main pass: applies finished loads (sync: loads the pending list now). */
@@ -55,6 +55,6 @@ int vtv_stream_request(struct vtv_stream *s, const uint16_t *pixels, size_t n,
                        struct vtv_frame_stats *st);
 
 /* Level 0 of the layer decoded into one RGBA8 image (free() it); NULL and err on failure. */
-uint8_t *vtv_stream_level0(const struct vts_store *store, uint32_t layer, struct vt_error *err);
+uint8_t *vtv_stream_level0(const struct vts_store *store, uint32_t layer, struct vts_error *err);
 
 #endif

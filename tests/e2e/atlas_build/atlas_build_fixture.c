@@ -51,7 +51,7 @@ void abuild_texture(struct abuild_tex *t, const char *name, uint32_t w, uint32_t
                 p[3] = (uint8_t)(x < w / 4 ? 0 : 64 + ((r >> 16) & 127));
         }
     snprintf(t->path, sizeof t->path, "%s/%s.png", abuild_dir, name);
-    struct vt_error err;
+    struct vts_error err;
     struct vt_png_file_writer *pw = vt_png_file_writer_create(t->path, w, h, ch, 8, &err);
     REQUIRE(pw != NULL);
     if (!pw)
@@ -84,7 +84,7 @@ int abuild_run(const char *args)
 bool abuild_reader_open(struct abuild_reader *r, const char *path, uint32_t layer)
 {
     memset(r, 0, sizeof *r);
-    struct vt_error err;
+    struct vts_error err;
     r->s = vts_open(path, &err);
     if (!r->s) {
         fprintf(stderr, "%s\n", err.message);
@@ -112,7 +112,7 @@ const struct vt_image *abuild_reader_tile(struct abuild_reader *r, uint32_t leve
 {
     if (r->valid && r->level == level && r->tx == tx && r->ty == ty)
         return r->empty ? NULL : &r->tile;
-    struct vt_error err;
+    struct vts_error err;
     size_t len;
     r->valid = false;
     if (vts_store_read(r->s, r->layer, level, tx, ty, r->buf, vts_store_max_payload(r->s) + 1, &len,

@@ -41,7 +41,7 @@ static const struct place places[] = {
 static void write_layout(const char *name, const char *missing)
 {
     struct vt_layout l;
-    struct vt_error err;
+    struct vts_error err;
     VT_CHECK_INT_EQ(vt_layout_alloc(&l, 2, NPLACES + 1, &err), 0);
     l.width = 2048, l.height = 1024, l.tile_content = CONTENT, l.border = BORDER;
     l.layers[0] = (struct vt_layout_layer){abuild_strdup("diffuse"), abuild_strdup("map_Kd"),
@@ -119,7 +119,7 @@ static void test_threads_give_identical_bytes(void)
 
 static void test_layer_formats(void)
 {
-    struct vt_error err;
+    struct vts_error err;
     struct vts_store *s = vts_open(store_j1, &err);
     VT_CHECK(s != NULL);
     if (!s)
@@ -225,7 +225,7 @@ static void test_borders_clamp_to_texture(void)
 
 static void test_empty_tiles_are_empty(void)
 {
-    struct vt_error err;
+    struct vts_error err;
     struct vts_store *s = vts_open(store_j1, &err);
     if (!s)
         return;
@@ -294,7 +294,7 @@ static void test_export_matches_level0(void)
              abuild_dir, png);
     VT_CHECK_INT_EQ(abuild_run(args), 0);
     struct vt_image img;
-    struct vt_error err;
+    struct vts_error err;
     if (vt_png_file_read(png, &img, &err)) {
         VT_CHECK(false);
         return;
@@ -325,7 +325,7 @@ static void test_export_tiff_rgba(void)
              layout_path, abuild_dir, tif);
     VT_CHECK_INT_EQ(abuild_run(args), 0);
     struct vt_source src;
-    struct vt_error err;
+    struct vts_error err;
     if (vt_image_input_open(tif, NULL, &src, &err)) {
         fprintf(stderr, "%s\n", err.message);
         VT_CHECK(false);
@@ -385,7 +385,7 @@ static void test_single_layer_store(void)
     snprintf(out, sizeof out, "%s/mask.vts", abuild_dir);
     snprintf(args, sizeof args, "--layout %s -o %s --layer mask -q", layout_path, out);
     VT_CHECK_INT_EQ(abuild_run(args), 0);
-    struct vt_error err;
+    struct vts_error err;
     struct vts_store *s = vts_open(out, &err);
     VT_CHECK(s != NULL);
     if (!s)

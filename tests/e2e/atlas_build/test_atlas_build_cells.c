@@ -22,7 +22,7 @@ static void test_mixed_coarse_texels(void)
     struct abuild_tex small[6];
     static const uint32_t xy[6][2] = {{0, 0}, {8, 0}, {0, 8}, {8, 8}, {32, 0}, {40, 0}};
     struct vt_layout l;
-    struct vt_error err;
+    struct vts_error err;
     VT_CHECK_INT_EQ(vt_layout_alloc(&l, 1, 6, &err), 0);
     l.width = 256, l.height = 256, l.tile_content = 16, l.border = 2;
     l.layers[0] = (struct vt_layout_layer){abuild_strdup("diffuse"), abuild_strdup("map_Kd"),
@@ -95,7 +95,7 @@ static void test_mixed_coarse_texels(void)
 static void build_pieces(uint32_t group, const char *name, struct abuild_tex *pieces)
 {
     struct vt_layout l;
-    struct vt_error err;
+    struct vts_error err;
     VT_CHECK_INT_EQ(vt_layout_alloc(&l, 1, 2, &err), 0);
     l.width = 128, l.height = 64, l.tile_content = 32, l.border = 4;
     l.layers[0] = (struct vt_layout_layer){abuild_strdup("diffuse"), abuild_strdup("map_Kd"),
@@ -174,7 +174,7 @@ static void test_gutter_repeats_edges(void)
     struct vt_image m1[N];
     static const char *names[N] = {"gutA", "gutB", "gutC", "gutD"};
     struct vt_layout l;
-    struct vt_error err;
+    struct vts_error err;
     VT_CHECK_INT_EQ(vt_layout_alloc(&l, 1, N, &err), 0);
     l.width = 128, l.height = 64, l.tile_content = 64, l.border = 4; /* 2 levels */
     l.layers[0] = (struct vt_layout_layer){abuild_strdup("diffuse"), abuild_strdup("map_Kd"),

@@ -125,13 +125,13 @@ struct scene {
 };
 
 static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_face *face,
-                   struct vt_error *err)
+                   struct vts_error *err)
 {
     (void)obj;
     struct scene *s = user;
     for (uint32_t i = 1; i + 1 < face->corner_count; i++) {
         if (s->tri_count == sizeof(s->tris) / sizeof(s->tris[0]))
-            return vt_error_set(err, VT_ERR_LIMIT, "too many faces");
+            return vt_error_set(err, VTS_ERR_LIMIT, "too many faces");
         struct tri *t = &s->tris[s->tri_count++];
         uint32_t idx[3] = {0, i, i + 1};
         for (int k = 0; k < 3; k++) {
@@ -144,7 +144,7 @@ static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_fac
 }
 
 static int on_mtllib(void *user, const struct vt_obj *obj, const char *path, uint64_t line,
-                     struct vt_error *err)
+                     struct vts_error *err)
 {
     (void)obj;
     (void)line;
@@ -157,7 +157,7 @@ static int on_mtllib(void *user, const struct vt_obj *obj, const char *path, uin
 static bool load(struct scene *s, const char *path)
 {
     memset(s, 0, sizeof(*s));
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     s->obj = vt_obj_create(NULL, &err);
     struct vt_obj_callbacks cb = {.mtllib = on_mtllib, .face = on_face, .user = s};
     if (!s->obj || vt_obj_read(s->obj, path, &cb, &err) || !s->mtllib[0] ||

@@ -54,7 +54,7 @@ static uint8_t pattern(uint32_t t, uint32_t i, uint32_t j, uint32_t c)
 static void write_texture(uint32_t t)
 {
     const struct tex *x = &texs[t];
-    struct vt_error err;
+    struct vts_error err;
     struct vt_png_file_writer *w = vt_png_file_writer_create(path(x->file), x->w, x->h, 3, 8, &err);
     VT_CHECK(w != NULL);
     uint8_t *row = malloc((size_t)x->w * 3);
@@ -110,7 +110,7 @@ static void write_scene(void)
 /* The layout: two entries, each shared by two materials, each found by both names. */
 static void check_layout(struct vt_layout *l)
 {
-    struct vt_error err;
+    struct vts_error err;
     VT_CHECK_INT_EQ(vt_layout_read(path("atlas.json"), NULL, l, &err), 0);
     VT_CHECK_INT_EQ(l->entry_count, 2);
     if (l->entry_count != 2)
@@ -151,13 +151,13 @@ int main(int argc, char **argv)
     for (int m = 0; m < MAT_COUNT; m++)
         names[m] = mats[m].name;
     struct vt_test_corners a, b;
-    struct vt_error rerr;
+    struct vts_error rerr;
     VT_CHECK_INT_EQ(vt_test_corners_read(path("scene.obj"), names, MAT_COUNT, &a, &rerr), 0);
     VT_CHECK_INT_EQ(vt_test_corners_read(path("scene.vt.obj"), NULL, 0, &b, &rerr), 0);
     VT_CHECK_INT_EQ(a.count, 3 * 30 * MAT_COUNT + 6);
     VT_CHECK_INT_EQ(b.count, a.count);
     struct vt_image atlas = {0};
-    struct vt_error err;
+    struct vts_error err;
     VT_CHECK_INT_EQ(vt_png_file_read(path("level0.png"), &atlas, &err), 0);
     uint32_t equal = 0, in_cell = 0, per_mat[MAT_COUNT] = {0};
     for (uint32_t k = 0; k < a.count && k < b.count && atlas.pixels && l.entry_count == 2; k++) {

@@ -54,7 +54,7 @@ static uint8_t pattern(uint32_t t, uint32_t i, uint32_t j, uint32_t c)
 static void write_texture(uint32_t t)
 {
     const struct tex *x = &texs[t];
-    struct vt_error err;
+    struct vts_error err;
     char name[64];
     snprintf(name, sizeof name, "tex/%s.png", x->name);
     struct vt_png_file_writer *w =
@@ -151,7 +151,7 @@ int main(int argc, char **argv)
         name_ptrs[t] = names[t];
     }
     struct vt_test_corners a, b;
-    struct vt_error err;
+    struct vts_error err;
     VT_CHECK_INT_EQ(vt_test_corners_read(path("scene.obj"), name_ptrs, TEX_COUNT, &a, &err), 0);
     /* The rewritten scene has one material: its corners keep the order, not the names. */
     VT_CHECK_INT_EQ(vt_test_corners_read(path("scene.vt.obj"), NULL, 0, &b, &err), 0);

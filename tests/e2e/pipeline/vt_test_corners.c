@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vt_error.h"
 #include "vt_obj.h"
 
 struct reader {
@@ -14,7 +15,7 @@ struct reader {
 };
 
 static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_face *f,
-                   struct vt_error *err)
+                   struct vts_error *err)
 {
     struct reader *r = user;
     struct vt_test_corners *c = r->c;
@@ -32,7 +33,7 @@ static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_fac
             if (uv)
                 c->uv = uv;
             if (!material || !uv)
-                return vt_error_set(err, VT_ERR_NOMEM, "out of memory for face corners");
+                return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for face corners");
             c->cap = cap;
         }
         const double *vt = f->corners[k].vt == VT_OBJ_NONE
@@ -47,12 +48,12 @@ static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_fac
 }
 
 int vt_test_corners_read(const char *file, const char *const *names, int name_count,
-                         struct vt_test_corners *c, struct vt_error *err)
+                         struct vt_test_corners *c, struct vts_error *err)
 {
     memset(c, 0, sizeof *c);
     struct vt_obj *obj = vt_obj_create(NULL, err);
     if (!obj)
-        return err ? err->status : VT_ERR_NOMEM;
+        return err ? err->status : VTS_ERR_NOMEM;
     struct reader r = {c, names, name_count};
     struct vt_obj_callbacks cb = {.face = on_face, .user = &r};
     int rc = vt_obj_read(obj, file, &cb, err);

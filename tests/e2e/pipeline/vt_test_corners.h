@@ -17,7 +17,7 @@ struct vt_test_corners {
 /* Reads the OBJ at file (lib/obj/vt_obj.h) into *c (zeroed first). Returns 0 or the reader's status
  * with its message in err. Release *c with vt_test_corners_release() either way. */
 int vt_test_corners_read(const char *file, const char *const *names, int name_count,
-                         struct vt_test_corners *c, struct vt_error *err);
+                         struct vt_test_corners *c, struct vts_error *err);
 void vt_test_corners_release(struct vt_test_corners *c);
 
 /* Prints "+ cmd" on stderr and runs it with system(); returns its status. */

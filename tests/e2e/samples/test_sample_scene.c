@@ -44,7 +44,7 @@ static struct uv_range *range_for(struct scan *s, const char *name)
 }
 
 static int on_mtllib(void *user, const struct vt_obj *obj, const char *path, uint64_t line,
-                     struct vt_error *err)
+                     struct vts_error *err)
 {
     (void)obj, (void)line, (void)err;
     struct scan *s = user;
@@ -54,7 +54,7 @@ static int on_mtllib(void *user, const struct vt_obj *obj, const char *path, uin
 }
 
 static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_face *f,
-                   struct vt_error *err)
+                   struct vts_error *err)
 {
     (void)err;
     struct scan *s = user;
@@ -115,7 +115,7 @@ static void test_scene(void)
     snprintf(obj_path, sizeof(obj_path), "%s/scene.obj", dir);
     snprintf(mtl_path, sizeof(mtl_path), "%s/scene.mtl", dir);
 
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vt_mtl mtl = {0};
     VT_CHECK_INT_EQ(vt_mtl_read(mtl_path, NULL, &mtl, &err), 0);
     if (err.status)

@@ -282,7 +282,7 @@ static void sixteen_bit_and_float_inputs_keep_their_precision(void)
     o.height = 61;
     o.channels = 3;
     o.sample = VTS_SAMPLE_F32;
-    struct vt_error err;
+    struct vts_error err;
     VT_CHECK_INT_EQ(vt_synth_image_write(tiles_path("f32.tif"), &o, &err), 0);
     VT_CHECK_INT_EQ(
         tiles_run(tiles_path("f32.tif"), tiles_path("f32.vts"), "--tile-size 32 --border 1"), 0);
@@ -312,7 +312,7 @@ static void premultiplied_exr_is_not_premultiplied_again(void)
     o.channels = 4;
     o.sample = VTS_SAMPLE_F32;
     o.compression = VT_SYNTH_EXR_NONE;
-    struct vt_error err;
+    struct vts_error err;
     VT_CHECK_INT_EQ(vt_synth_image_write(tiles_path("pm.exr"), &o, &err), 0);
     VT_CHECK_INT_EQ(tiles_run(tiles_path("pm.exr"), tiles_path("pm.vts"),
                               "--tile-size 16 --border 1 --codec raw --filter box"),

@@ -23,7 +23,7 @@ const char *tiles_path(const char *name)
 
 int tiles_write_png(const char *path, const struct vt_image *img)
 {
-    struct vt_error err;
+    struct vts_error err;
     uint32_t depth = img->sample == VTS_SAMPLE_U16 ? 16 : 8;
     struct vt_png_file_writer *w =
         vt_png_file_writer_create(path, img->width, img->height, img->channels, depth, &err);
@@ -72,7 +72,7 @@ int tiles_read_payload(const struct vts_store *s, uint32_t level, uint32_t tx, u
 {
     const struct vts_geometry *g = vts_store_geometry(s);
     const struct vts_layer *L = vts_store_layer(s, 0);
-    struct vt_error err;
+    struct vts_error err;
     if (vt_image_alloc(out, g->tile_payload_px, g->tile_payload_px, L->channels, L->sample, &err))
         return -1;
     size_t cap = vts_store_max_payload(s) + 1, len;

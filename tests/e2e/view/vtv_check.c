@@ -16,7 +16,7 @@
 
 static int load(const char *path, struct vt_image *img)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     if (vt_png_file_read(path, img, &err) != 0) {
         fprintf(stderr, "vtv_check: %s\n", err.message);
         return -1;
@@ -128,7 +128,7 @@ static int diff(int argc, char **argv)
     if (argc != 5)
         return 2;
     struct vt_image a = {0}, b = {0};
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     if (load(argv[2], &a) || load(argv[3], &b))
         return 2;
     if (a.width != b.width || a.height != b.height || a.channels < 3 || b.channels < 3)

@@ -44,7 +44,7 @@ static int write_texture(const char *dir, unsigned t)
     const struct tex *x = &texs[t];
     char path[4096];
     snprintf(path, sizeof path, "%s/tex/%s.png", dir, x->name);
-    struct vt_error err;
+    struct vts_error err;
     struct vt_png_file_writer *w = vt_png_file_writer_create(path, x->w, x->h, 3, 8, &err);
     unsigned char *row = malloc((size_t)x->w * 3);
     int st = w && row ? 0 : -1;

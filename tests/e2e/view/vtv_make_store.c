@@ -20,7 +20,7 @@ static uint8_t clamp8(double v)
     return (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : lround(v));
 }
 
-static int fail(const struct vt_error *err)
+static int fail(const struct vts_error *err)
 {
     fprintf(stderr, "vtv_make_store: %s\n", err->message);
     return 1;
@@ -57,7 +57,7 @@ int main(int argc, char **argv)
     }
     if (!out || size < 1 || tile < 1)
         return 2;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     const struct vt_codec *codec = vt_codec_find(codec_name);
     if (!codec)
         return 2;

@@ -170,20 +170,20 @@ static void refuses_bad_tile_size_and_too_small_limit(void)
 {
     struct vt_atlas_rect r[1] = {{.width = 5000, .height = 10}};
     struct vt_atlas_pack_options o = {.tile_content = 100, .max_edge = 4096};
-    struct vt_error err;
-    VT_CHECK_INT_EQ(vt_atlas_pack(r, 1, &o, NULL, &err), VT_ERR_ARG);
+    struct vts_error err;
+    VT_CHECK_INT_EQ(vt_atlas_pack(r, 1, &o, NULL, &err), VTS_ERR_ARG);
     VT_CHECK_STR_CONTAINS(err.message, "not a power of two");
     o.tile_content = 128;
-    VT_CHECK_INT_EQ(vt_atlas_pack(r, 1, &o, NULL, &err), VT_ERR_LIMIT);
+    VT_CHECK_INT_EQ(vt_atlas_pack(r, 1, &o, NULL, &err), VTS_ERR_LIMIT);
     VT_CHECK_STR_CONTAINS(err.message, "atlas size limit 4096");
     r[0].width = 0;
-    VT_CHECK_INT_EQ(vt_atlas_pack(r, 1, &o, NULL, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(vt_atlas_pack(r, 1, &o, NULL, &err), VTS_ERR_ARG);
     /* Many tiles that do not fit in a 2x2-tile limit. */
     struct vt_atlas_rect many[5];
     for (int i = 0; i < 5; i++)
         many[i] = (struct vt_atlas_rect){.width = 128, .height = 128};
     o.max_edge = 256;
-    VT_CHECK_INT_EQ(vt_atlas_pack(many, 5, &o, NULL, &err), VT_ERR_LIMIT);
+    VT_CHECK_INT_EQ(vt_atlas_pack(many, 5, &o, NULL, &err), VTS_ERR_LIMIT);
     VT_CHECK_STR_CONTAINS(err.message, "do not fit");
 }
 
@@ -265,12 +265,12 @@ static void gutter_cells_surround_subtile_content(void)
     for (int i = 0; i < 4; i++)
         VT_CHECK(q[i].cell_width == 32 && q[i].x == q[i].cell_x + 4 && q[i].alignment == 4);
     /* Bad gutters. */
-    struct vt_error err;
+    struct vts_error err;
     o.gutter = 3;
-    VT_CHECK_INT_EQ(vt_atlas_pack(q, 4, &o, NULL, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(vt_atlas_pack(q, 4, &o, NULL, &err), VTS_ERR_ARG);
     VT_CHECK_STR_CONTAINS(err.message, "gutter 3 is not 0 or a power of two");
     o.gutter = 256;
-    VT_CHECK_INT_EQ(vt_atlas_pack(q, 4, &o, NULL, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(vt_atlas_pack(q, 4, &o, NULL, &err), VTS_ERR_ARG);
     /* Without gutter the cell starts at the content. */
     o.gutter = 0;
     VT_CHECK_INT_EQ(vt_atlas_pack(q, 4, &o, NULL, NULL), 0);

@@ -69,7 +69,7 @@ static unsigned char *encode_alloc(const struct vt_codec *codec, const struct vt
     size_t bound = codec->encoded_bound(img->width, img->height, img->channels, img->sample);
     unsigned char *buf = malloc(bound ? bound : 1);
     struct vt_codec_params params = {.effort = effort};
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = codec->encode(img, &params, buf, bound, len, &err);
     VT_CHECK_INT_EQ(rc, 0);
     if (rc != 0) {
@@ -84,7 +84,7 @@ static unsigned char *encode_alloc(const struct vt_codec *codec, const struct vt
 /* Decodes payload into a fresh image of the given shape (pad bytes of padding, preset to 0xcd). */
 static int decode_into(const struct vt_codec *codec, const void *payload, size_t len,
                        struct vt_image *dst, uint32_t w, uint32_t h, uint32_t channels,
-                       uint32_t sample, struct vt_error *err)
+                       uint32_t sample, struct vts_error *err)
 {
     size_t row = (size_t)w * channels * vts_sample_bytes(sample);
     *dst = (struct vt_image){w, h, channels, sample, row + 5, NULL};
@@ -142,7 +142,7 @@ static void raw_round_trips_every_channel_count_and_sample(void)
     rng_seed(1);
     for (uint32_t channels = 1; channels <= 4; channels++) {
         for (uint32_t sample = VTS_SAMPLE_U8; sample <= VTS_SAMPLE_F32; sample++) {
-            struct vt_error err = {0};
+            struct vts_error err = {0};
             VT_CHECK_INT_EQ(raw->check(264, channels, sample, &err), 0);
             struct vt_image src = image_make(7, 5, channels, sample, 13);
             size_t row = image_row_bytes(&src), len = 0;
@@ -183,23 +183,23 @@ static void raw_rejects_payload_of_wrong_size(void)
     struct vt_image src = image_make(16, 16, 4, VTS_SAMPLE_U8, 0);
     size_t len = 0;
     unsigned char *payload = encode_alloc(raw, &src, 0, &len);
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vt_image dst;
     VT_CHECK_INT_EQ(decode_into(raw, payload, len - 1, &dst, 16, 16, 4, VTS_SAMPLE_U8, &err),
-                    VT_ERR_BAD_INPUT);
+                    VTS_ERR_BAD_INPUT);
     VT_CHECK_STR_CONTAINS(err.message, "1023");
     VT_CHECK_STR_CONTAINS(err.message, "1024");
     free(dst.pixels);
     unsigned char *longer = calloc(1, len + 1);
     VT_CHECK_INT_EQ(decode_into(raw, longer, len + 1, &dst, 16, 16, 4, VTS_SAMPLE_U8, &err),
-                    VT_ERR_BAD_INPUT);
+                    VTS_ERR_BAD_INPUT);
     VT_CHECK_STR_CONTAINS(err.message, "1025");
     free(dst.pixels);
     VT_CHECK_INT_EQ(decode_into(raw, payload, len, &dst, 16, 16, 3, VTS_SAMPLE_U8, &err),
-                    VT_ERR_BAD_INPUT);
+                    VTS_ERR_BAD_INPUT);
     free(dst.pixels);
     VT_CHECK_INT_EQ(decode_into(raw, NULL, 0, &dst, 16, 16, 4, VTS_SAMPLE_U8, &err),
-                    VT_ERR_BAD_INPUT);
+                    VTS_ERR_BAD_INPUT);
     free(dst.pixels);
     free(longer);
     free(payload);
@@ -209,12 +209,12 @@ static void raw_rejects_payload_of_wrong_size(void)
 static void raw_refuses_bad_shapes_and_small_buffers(void)
 {
     const struct vt_codec *raw = vt_codec_find("raw");
-    struct vt_error err = {0};
-    VT_CHECK_INT_EQ(raw->check(256, 0, VTS_SAMPLE_U8, &err), VT_ERR_UNSUPPORTED);
-    VT_CHECK_INT_EQ(raw->check(256, 5, VTS_SAMPLE_U8, &err), VT_ERR_UNSUPPORTED);
-    VT_CHECK_INT_EQ(raw->check(256, 4, 0, &err), VT_ERR_UNSUPPORTED);
-    VT_CHECK_INT_EQ(raw->check(256, 4, 9, &err), VT_ERR_UNSUPPORTED);
-    VT_CHECK_INT_EQ(raw->check(16384, 4, VTS_SAMPLE_F32, &err), VT_ERR_UNSUPPORTED); /* 4 GiB */
+    struct vts_error err = {0};
+    VT_CHECK_INT_EQ(raw->check(256, 0, VTS_SAMPLE_U8, &err), VTS_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(raw->check(256, 5, VTS_SAMPLE_U8, &err), VTS_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(raw->check(256, 4, 0, &err), VTS_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(raw->check(256, 4, 9, &err), VTS_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(raw->check(16384, 4, VTS_SAMPLE_F32, &err), VTS_ERR_UNSUPPORTED); /* 4 GiB */
     VT_CHECK_INT_EQ(raw->check(16384, 4, VTS_SAMPLE_F16, &err), 0);
     VT_CHECK_INT_EQ(raw->encoded_bound(8, 8, 5, VTS_SAMPLE_U8), 0);
     VT_CHECK_INT_EQ(raw->encoded_bound(0, 8, 4, VTS_SAMPLE_U8), 0);
@@ -222,10 +222,10 @@ static void raw_refuses_bad_shapes_and_small_buffers(void)
     struct vt_image src = image_make(8, 8, 2, VTS_SAMPLE_F16, 0);
     unsigned char buf[8 * 8 * 4];
     size_t len = 99;
-    VT_CHECK_INT_EQ(raw->encode(&src, NULL, buf, sizeof buf - 1, &len, &err), VT_ERR_LIMIT);
+    VT_CHECK_INT_EQ(raw->encode(&src, NULL, buf, sizeof buf - 1, &len, &err), VTS_ERR_LIMIT);
     VT_CHECK_INT_EQ(len, 0);
     src.stride = 8 * 4 - 1;
-    VT_CHECK_INT_EQ(raw->encode(&src, NULL, buf, sizeof buf, &len, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(raw->encode(&src, NULL, buf, sizeof buf, &len, &err), VTS_ERR_ARG);
     free(src.pixels);
 }
 
@@ -240,7 +240,7 @@ static void png_round_trips_exactly(void)
         for (uint32_t channels = 1; channels <= 4; channels++) {
             for (uint32_t sample = VTS_SAMPLE_U8; sample <= VTS_SAMPLE_U16; sample++) {
                 uint32_t w = sizes[s][0], h = sizes[s][1];
-                struct vt_error err = {0};
+                struct vts_error err = {0};
                 VT_CHECK_INT_EQ(png->check(w, channels, sample, &err), 0);
                 struct vt_image src = image_make(w, h, channels, sample, 3);
                 size_t len = 0;
@@ -269,7 +269,7 @@ static void png_noise_fits_the_bound_at_every_effort(void)
         size_t len = 0;
         unsigned char *payload = encode_alloc(png, &src, effort, &len);
         struct vt_image dst;
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         VT_CHECK_INT_EQ(decode_into(png, payload, len, &dst, 264, 264, 4, VTS_SAMPLE_U16, &err), 0);
         VT_CHECK(image_equal(&src, &dst));
         free(dst.pixels);
@@ -285,16 +285,16 @@ static void png_encode_refuses_small_buffer_and_bad_effort(void)
     struct vt_image src = image_make(33, 17, 3, VTS_SAMPLE_U8, 0);
     size_t len = 0, len2 = 99;
     unsigned char *payload = encode_alloc(png, &src, 1, &len);
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     unsigned char *small = malloc(len - 1);
-    VT_CHECK_INT_EQ(png->encode(&src, NULL, small, len - 1, &len2, &err), VT_ERR_LIMIT);
+    VT_CHECK_INT_EQ(png->encode(&src, NULL, small, len - 1, &len2, &err), VTS_ERR_LIMIT);
     VT_CHECK_INT_EQ(len2, 0);
     VT_CHECK_STR_CONTAINS(err.message, "png encode");
-    VT_CHECK_INT_EQ(png->encode(&src, NULL, small, 0, &len2, &err), VT_ERR_LIMIT);
+    VT_CHECK_INT_EQ(png->encode(&src, NULL, small, 0, &len2, &err), VTS_ERR_LIMIT);
     struct vt_codec_params params = {.effort = 10};
-    VT_CHECK_INT_EQ(png->encode(&src, &params, payload, len, &len2, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(png->encode(&src, &params, payload, len, &len2, &err), VTS_ERR_ARG);
     params.effort = -1;
-    VT_CHECK_INT_EQ(png->encode(&src, &params, payload, len, &len2, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(png->encode(&src, &params, payload, len, &len2, &err), VTS_ERR_ARG);
     free(small);
     free(payload);
     free(src.pixels);
@@ -303,21 +303,21 @@ static void png_encode_refuses_small_buffer_and_bad_effort(void)
 static void png_refuses_float_samples(void)
 {
     const struct vt_codec *png = vt_codec_find("png");
-    struct vt_error err = {0};
-    VT_CHECK_INT_EQ(png->check(256, 4, VTS_SAMPLE_F16, &err), VT_ERR_UNSUPPORTED);
+    struct vts_error err = {0};
+    VT_CHECK_INT_EQ(png->check(256, 4, VTS_SAMPLE_F16, &err), VTS_ERR_UNSUPPORTED);
     VT_CHECK_STR_CONTAINS(err.message, "f16");
     VT_CHECK_STR_CONTAINS(err.message, "use raw");
-    VT_CHECK_INT_EQ(png->check(256, 1, VTS_SAMPLE_F32, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(png->check(256, 1, VTS_SAMPLE_F32, &err), VTS_ERR_UNSUPPORTED);
     VT_CHECK_STR_CONTAINS(err.message, "use raw");
-    VT_CHECK_INT_EQ(png->check(256, 5, VTS_SAMPLE_U8, &err), VT_ERR_UNSUPPORTED);
-    VT_CHECK_INT_EQ(png->check(256, 0, VTS_SAMPLE_U8, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(png->check(256, 5, VTS_SAMPLE_U8, &err), VTS_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(png->check(256, 0, VTS_SAMPLE_U8, &err), VTS_ERR_UNSUPPORTED);
     VT_CHECK_INT_EQ(png->encoded_bound(256, 256, 4, VTS_SAMPLE_F32), 0);
     rng_seed(7);
     struct vt_image src = image_make(4, 4, 4, VTS_SAMPLE_F16, 0);
     unsigned char buf[4096];
     size_t len;
-    VT_CHECK_INT_EQ(png->encode(&src, NULL, buf, sizeof buf, &len, &err), VT_ERR_UNSUPPORTED);
-    VT_CHECK_INT_EQ(png->decode(buf, sizeof buf, &src, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(png->encode(&src, NULL, buf, sizeof buf, &len, &err), VTS_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(png->decode(buf, sizeof buf, &src, &err), VTS_ERR_UNSUPPORTED);
     free(src.pixels);
 }
 
@@ -326,9 +326,9 @@ static bool png_prefix_fails_cleanly(const unsigned char *payload, size_t cut, s
 {
     unsigned char *prefix = dup_prefix(payload, cut);
     struct vt_image dst;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = decode_into(vt_codec_find("png"), prefix, cut, &dst, 33, 17, 4, VTS_SAMPLE_U16, &err);
-    bool clean = rc == VT_ERR_BAD_INPUT && strncmp(err.message, "png payload: ", 13) == 0;
+    bool clean = rc == VTS_ERR_BAD_INPUT && strncmp(err.message, "png payload: ", 13) == 0;
     if (!clean)
         fprintf(stderr, "  cut %zu of %zu: rc %d '%s'\n", cut, len, rc, err.message);
     free(dst.pixels);
@@ -362,9 +362,9 @@ static void check_shape_mismatch(uint32_t w, uint32_t h, uint32_t channels, uint
     size_t len = 0;
     unsigned char *payload = encode_alloc(png, &src, 1, &len);
     struct vt_image dst;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     VT_CHECK_INT_EQ(decode_into(png, payload, len, &dst, tw, th, tchannels, tsample, &err),
-                    VT_ERR_BAD_INPUT);
+                    VTS_ERR_BAD_INPUT);
     VT_CHECK_STR_CONTAINS(err.message, expect);
     free(dst.pixels);
     free(payload);
@@ -393,8 +393,8 @@ static void png_decode_rejects_garbage_and_trailing_bytes(void)
         if (len >= 8 && len % 2) /* half of them get past the signature check */
             memcpy(junk, signature, 8);
         struct vt_image dst;
-        struct vt_error err = {0};
-        if (decode_into(png, junk, len, &dst, 8, 8, 4, VTS_SAMPLE_U8, &err) != VT_ERR_BAD_INPUT)
+        struct vts_error err = {0};
+        if (decode_into(png, junk, len, &dst, 8, 8, 4, VTS_SAMPLE_U8, &err) != VTS_ERR_BAD_INPUT)
             failures++;
         free(dst.pixels);
         free(junk);
@@ -406,9 +406,9 @@ static void png_decode_rejects_garbage_and_trailing_bytes(void)
     unsigned char *longer = calloc(1, len + 1);
     memcpy(longer, payload, len);
     struct vt_image dst;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     VT_CHECK_INT_EQ(decode_into(png, longer, len + 1, &dst, 8, 8, 1, VTS_SAMPLE_U8, &err),
-                    VT_ERR_BAD_INPUT);
+                    VTS_ERR_BAD_INPUT);
     VT_CHECK_STR_CONTAINS(err.message, "1 bytes after IEND");
     free(dst.pixels);
     free(longer);
@@ -457,10 +457,10 @@ static void png_decode_survives_mutations_with_valid_crcs(void)
             copy[8 + rng_next() % (len - 8)] ^= (unsigned char)(1u << (rng_next() % 8));
         png_fix_crcs(copy, len);
         struct vt_image dst;
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         int rc = decode_into(png, copy, len, &dst, 20, 12, 2, VTS_SAMPLE_U8, &err);
         decoded += rc == 0;
-        bad_status += rc != 0 && rc != VT_ERR_BAD_INPUT;
+        bad_status += rc != 0 && rc != VTS_ERR_BAD_INPUT;
         free(dst.pixels);
         free(copy);
     }
@@ -495,7 +495,7 @@ static void png_decodes_foreign_16bit_and_interlaced_payloads(void)
 {
     const struct vt_codec *png = vt_codec_find("png");
     struct vt_image dst;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     VT_CHECK_INT_EQ(decode_into(png, fixture_gray16_2x1, sizeof fixture_gray16_2x1, &dst, 2, 1, 1,
                                 VTS_SAMPLE_U16, &err),
                     0);

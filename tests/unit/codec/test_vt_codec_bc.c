@@ -24,7 +24,7 @@ static unsigned char *encode_alloc(const struct vt_codec *codec, const struct vt
     size_t bound = codec->encoded_bound(img->width, img->height, img->channels, img->sample);
     unsigned char *buf = malloc(bound ? bound : 1);
     struct vt_codec_params params = {.effort = effort};
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = codec->encode(img, &params, buf, bound, len, &err);
     VT_CHECK_INT_EQ(rc, 0);
     if (rc != 0) {
@@ -39,7 +39,7 @@ static unsigned char *encode_alloc(const struct vt_codec *codec, const struct vt
 /* Decodes payload into a fresh u8 image (stride padded by 5 bytes preset to 0xcd). */
 static int decode_into(const struct vt_codec *codec, const void *payload, size_t len,
                        struct vt_image *dst, uint32_t w, uint32_t h, uint32_t channels,
-                       struct vt_error *err)
+                       struct vts_error *err)
 {
     *dst = (struct vt_image){w, h, channels, VTS_SAMPLE_U8, (size_t)w * channels + 5, NULL};
     dst->pixels = malloc(dst->stride * h);
@@ -52,7 +52,7 @@ static int decode_block(const char *codec_name, const unsigned char *block, size
                         unsigned char texels[16][4])
 {
     struct vt_image dst = {4, 4, 4, VTS_SAMPLE_U8, 16, texels};
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = vt_codec_find(codec_name)->decode(block, len, &dst, &err);
     if (rc)
         fprintf(stderr, "  decode: %s\n", err.message);
@@ -122,7 +122,7 @@ static void bc1_decodes_three_colour_transparent_block_by_hand(void)
     VT_CHECK_INT_EQ(block_mismatches(texels, transparent, zeros), 0);
     /* an RGB tile gets the black of the transparent texels */
     struct vt_image rgb;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     VT_CHECK_INT_EQ(decode_into(vt_codec_find("bc1"), block, 8, &rgb, 4, 4, 3, &err), 0);
     const unsigned char *t = (const unsigned char *)rgb.pixels + 3 * rgb.stride + 3 * 3;
     VT_CHECK(t[0] == 0 && t[1] == 0 && t[2] == 0);
@@ -249,7 +249,7 @@ static double round_trip_psnr(const char *codec_name, const struct vt_image *img
     size_t len = 0;
     unsigned char *payload = encode_alloc(codec, img, effort, &len);
     struct vt_image dst;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = decode_into(codec, payload, len, &dst, img->width, img->height, img->channels, &err);
     VT_CHECK_INT_EQ(rc, 0);
     double psnr = rc ? 0 : vt_synth_psnr_u8(img, &dst);
@@ -318,7 +318,7 @@ static void bc1_stores_alpha_as_one_bit(void)
         size_t len = 0;
         unsigned char *payload = encode_alloc(bc1, &img, effort, &len);
         struct vt_image dst;
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         VT_CHECK_INT_EQ(decode_into(bc1, payload, len, &dst, 64, 64, 4, &err), 0);
         int wrong_alpha = 0, wrong_black = 0;
         double sum = 0;
@@ -412,30 +412,30 @@ static void bc_solid_colours_in_rgb565_decode_exactly(void)
 static void bc_check_refuses_what_it_cannot_store(void)
 {
     const struct vt_codec *bc1 = vt_codec_find("bc1"), *bc3 = vt_codec_find("bc3");
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     VT_CHECK(bc1 && bc1->fourcc == VTS_CODEC_BC1 && !bc1->lossless);
     VT_CHECK(bc3 && bc3->fourcc == VTS_CODEC_BC3 && !bc3->lossless);
     VT_CHECK(vt_codec_by_fourcc(VTS_CODEC_BC1) == bc1 && vt_codec_by_fourcc(VTS_CODEC_BC3) == bc3);
     VT_CHECK_INT_EQ(bc1->check(256, 3, VTS_SAMPLE_U8, &err), 0);
     VT_CHECK_INT_EQ(bc1->check(264, 4, VTS_SAMPLE_U8, &err), 0);
     VT_CHECK_INT_EQ(bc3->check(264, 4, VTS_SAMPLE_U8, &err), 0);
-    VT_CHECK_INT_EQ(bc1->check(258, 3, VTS_SAMPLE_U8, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(bc1->check(258, 3, VTS_SAMPLE_U8, &err), VTS_ERR_UNSUPPORTED);
     VT_CHECK_STR_CONTAINS(err.message,
                           "bc1 needs a tile payload that is a multiple of 4 (got 258)");
     VT_CHECK_STR_CONTAINS(err.message, "--border 4");
-    VT_CHECK_INT_EQ(bc3->check(130, 4, VTS_SAMPLE_U8, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(bc3->check(130, 4, VTS_SAMPLE_U8, &err), VTS_ERR_UNSUPPORTED);
     VT_CHECK_STR_CONTAINS(err.message,
                           "bc3 needs a tile payload that is a multiple of 4 (got 130)");
-    VT_CHECK_INT_EQ(bc1->check(256, 3, VTS_SAMPLE_U16, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(bc1->check(256, 3, VTS_SAMPLE_U16, &err), VTS_ERR_UNSUPPORTED);
     VT_CHECK_STR_CONTAINS(err.message, "8-bit samples only (got u16)");
-    VT_CHECK_INT_EQ(bc3->check(256, 4, VTS_SAMPLE_F32, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(bc3->check(256, 4, VTS_SAMPLE_F32, &err), VTS_ERR_UNSUPPORTED);
     VT_CHECK_STR_CONTAINS(err.message, "use png or raw");
-    VT_CHECK_INT_EQ(bc1->check(256, 2, VTS_SAMPLE_U8, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(bc1->check(256, 2, VTS_SAMPLE_U8, &err), VTS_ERR_UNSUPPORTED);
     VT_CHECK_STR_CONTAINS(err.message, "bc1 needs 3 or 4 channels (RGB or RGBA), got 2");
-    VT_CHECK_INT_EQ(bc1->check(256, 1, VTS_SAMPLE_U8, &err), VT_ERR_UNSUPPORTED);
-    VT_CHECK_INT_EQ(bc3->check(256, 3, VTS_SAMPLE_U8, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(bc1->check(256, 1, VTS_SAMPLE_U8, &err), VTS_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(bc3->check(256, 3, VTS_SAMPLE_U8, &err), VTS_ERR_UNSUPPORTED);
     VT_CHECK_STR_CONTAINS(err.message, "bc3 needs 4 channels (RGBA), got 3: use bc1");
-    VT_CHECK_INT_EQ(bc1->check(0, 3, VTS_SAMPLE_U8, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(bc1->check(0, 3, VTS_SAMPLE_U8, &err), VTS_ERR_UNSUPPORTED);
     VT_CHECK_INT_EQ(bc1->encoded_bound(256, 256, 3, VTS_SAMPLE_U8), 256 * 256 / 2);
     VT_CHECK_INT_EQ(bc3->encoded_bound(264, 264, 4, VTS_SAMPLE_U8), 264 * 264);
     VT_CHECK_INT_EQ(bc1->encoded_bound(258, 258, 3, VTS_SAMPLE_U8), 0);
@@ -449,20 +449,20 @@ static void bc_encode_refuses_bad_effort_shape_and_small_buffer(void)
     struct vt_image img = vt_synth_photo(8, 8, 3, 4, 0.5);
     unsigned char buf[64];
     size_t len = 99;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vt_codec_params params = {.effort = 2};
-    VT_CHECK_INT_EQ(bc1->encode(&img, &params, buf, sizeof buf, &len, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(bc1->encode(&img, &params, buf, sizeof buf, &len, &err), VTS_ERR_ARG);
     VT_CHECK_STR_CONTAINS(err.message, "effort 2");
     VT_CHECK_INT_EQ(len, 0);
-    VT_CHECK_INT_EQ(bc1->encode(&img, NULL, buf, 31, &len, &err), VT_ERR_LIMIT);
+    VT_CHECK_INT_EQ(bc1->encode(&img, NULL, buf, 31, &len, &err), VTS_ERR_LIMIT);
     VT_CHECK_INT_EQ(bc1->encode(&img, NULL, buf, 32, &len, &err), 0);
     VT_CHECK_INT_EQ(len, 32);
     img.width = 6; /* not a whole number of blocks */
-    VT_CHECK_INT_EQ(bc1->encode(&img, NULL, buf, sizeof buf, &len, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(bc1->encode(&img, NULL, buf, sizeof buf, &len, &err), VTS_ERR_UNSUPPORTED);
     VT_CHECK_STR_CONTAINS(err.message, "4x4 blocks");
     img.width = 8;
     img.channels = 2;
-    VT_CHECK_INT_EQ(bc1->encode(&img, NULL, buf, sizeof buf, &len, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(bc1->encode(&img, NULL, buf, sizeof buf, &len, &err), VTS_ERR_UNSUPPORTED);
     free(img.pixels);
 }
 
@@ -476,26 +476,26 @@ static void bc_decode_rejects_payloads_of_wrong_length(void)
         unsigned char *payload = encode_alloc(codec, &img, 0, &len);
         VT_CHECK_INT_EQ(len, c ? 256 : 128);
         struct vt_image dst;
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         unsigned char *short_one = dup_prefix(payload, len - 1);
         VT_CHECK_INT_EQ(decode_into(codec, short_one, len - 1, &dst, 16, 16, 4, &err),
-                        VT_ERR_BAD_INPUT);
+                        VTS_ERR_BAD_INPUT);
         VT_CHECK_STR_CONTAINS(err.message,
                               c ? "bc3 payload: 255 bytes != 256" : "127 bytes != 128");
         free(dst.pixels);
         unsigned char *long_one = calloc(1, len + 1);
         memcpy(long_one, payload, len);
         VT_CHECK_INT_EQ(decode_into(codec, long_one, len + 1, &dst, 16, 16, 4, &err),
-                        VT_ERR_BAD_INPUT);
+                        VTS_ERR_BAD_INPUT);
         free(dst.pixels);
-        VT_CHECK_INT_EQ(decode_into(codec, NULL, 0, &dst, 16, 16, 4, &err), VT_ERR_BAD_INPUT);
+        VT_CHECK_INT_EQ(decode_into(codec, NULL, 0, &dst, 16, 16, 4, &err), VTS_ERR_BAD_INPUT);
         free(dst.pixels);
         /* a tile of another size: the length tells */
-        VT_CHECK_INT_EQ(decode_into(codec, payload, len, &dst, 16, 20, 4, &err), VT_ERR_BAD_INPUT);
+        VT_CHECK_INT_EQ(decode_into(codec, payload, len, &dst, 16, 20, 4, &err), VTS_ERR_BAD_INPUT);
         free(dst.pixels);
         /* and a destination this codec does not produce is the caller's error */
         VT_CHECK_INT_EQ(decode_into(codec, payload, len, &dst, 16, 16, 2, &err),
-                        VT_ERR_UNSUPPORTED);
+                        VTS_ERR_UNSUPPORTED);
         free(dst.pixels);
         free(long_one);
         free(short_one);

@@ -33,7 +33,7 @@ static unsigned char *encode_alloc(const struct vt_image *img, int quality, int 
     size_t bound = jpeg->encoded_bound(img->width, img->height, img->channels, img->sample);
     unsigned char *buf = malloc(bound ? bound : 1);
     struct vt_codec_params params = {.quality = quality, .subsampling = subsampling};
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = jpeg->encode(img, &params, buf, bound, len, &err);
     VT_CHECK_INT_EQ(rc, 0);
     if (rc != 0) {
@@ -47,7 +47,7 @@ static unsigned char *encode_alloc(const struct vt_image *img, int quality, int 
 
 /* Decodes payload into a fresh u8 image (stride padded by 5 bytes preset to 0xcd). */
 static int decode_into(const void *payload, size_t len, struct vt_image *dst, uint32_t w,
-                       uint32_t h, uint32_t channels, struct vt_error *err)
+                       uint32_t h, uint32_t channels, struct vts_error *err)
 {
     *dst = (struct vt_image){w, h, channels, VTS_SAMPLE_U8, (size_t)w * channels + 5, NULL};
     dst->pixels = malloc(dst->stride * h);
@@ -62,7 +62,7 @@ static double round_trip_psnr(const struct vt_image *img, int quality, int subsa
     size_t len = 0;
     unsigned char *payload = encode_alloc(img, quality, subsampling, &len);
     struct vt_image dst;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = decode_into(payload, len, &dst, img->width, img->height, img->channels, &err);
     VT_CHECK_INT_EQ(rc, 0);
     if (rc)
@@ -173,25 +173,25 @@ static void jpeg_reads_rows_through_the_stride(void)
 static void jpeg_check_refuses_alpha_and_deep_samples(void)
 {
     const struct vt_codec *jpeg = vt_codec_find("jpeg");
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     VT_CHECK(jpeg && jpeg->fourcc == VTS_CODEC_JPEG && !jpeg->lossless);
     VT_CHECK(vt_codec_by_fourcc(VTS_CODEC_JPEG) == jpeg);
     VT_CHECK_INT_EQ(jpeg->check(256, 1, VTS_SAMPLE_U8, &err), 0);
     VT_CHECK_INT_EQ(jpeg->check(258, 3, VTS_SAMPLE_U8, &err), 0);
     for (uint32_t channels = 2; channels <= 4; channels += 2) {
-        VT_CHECK_INT_EQ(jpeg->check(256, channels, VTS_SAMPLE_U8, &err), VT_ERR_UNSUPPORTED);
+        VT_CHECK_INT_EQ(jpeg->check(256, channels, VTS_SAMPLE_U8, &err), VTS_ERR_UNSUPPORTED);
         VT_CHECK_STR_CONTAINS(err.message, "jpeg cannot store alpha: use png, bc3 or raw");
         VT_CHECK_STR_CONTAINS(err.message, "vt-tiles drops an alpha that is opaque everywhere");
     }
-    VT_CHECK_INT_EQ(jpeg->check(256, 3, VTS_SAMPLE_U16, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(jpeg->check(256, 3, VTS_SAMPLE_U16, &err), VTS_ERR_UNSUPPORTED);
     VT_CHECK_STR_CONTAINS(err.message, "jpeg stores 8-bit samples only");
     VT_CHECK_STR_CONTAINS(err.message, "use png or raw");
-    VT_CHECK_INT_EQ(jpeg->check(256, 1, VTS_SAMPLE_F32, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(jpeg->check(256, 1, VTS_SAMPLE_F32, &err), VTS_ERR_UNSUPPORTED);
     VT_CHECK_STR_CONTAINS(err.message, "jpeg stores 8-bit samples only (got f32)");
-    VT_CHECK_INT_EQ(jpeg->check(256, 3, VTS_SAMPLE_F16, &err), VT_ERR_UNSUPPORTED);
-    VT_CHECK_INT_EQ(jpeg->check(256, 5, VTS_SAMPLE_U8, &err), VT_ERR_UNSUPPORTED);
-    VT_CHECK_INT_EQ(jpeg->check(0, 3, VTS_SAMPLE_U8, &err), VT_ERR_UNSUPPORTED);
-    VT_CHECK_INT_EQ(jpeg->check(65501, 3, VTS_SAMPLE_U8, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(jpeg->check(256, 3, VTS_SAMPLE_F16, &err), VTS_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(jpeg->check(256, 5, VTS_SAMPLE_U8, &err), VTS_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(jpeg->check(0, 3, VTS_SAMPLE_U8, &err), VTS_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(jpeg->check(65501, 3, VTS_SAMPLE_U8, &err), VTS_ERR_UNSUPPORTED);
     VT_CHECK_INT_EQ(jpeg->encoded_bound(256, 256, 4, VTS_SAMPLE_U8), 0);
     VT_CHECK_INT_EQ(jpeg->encoded_bound(256, 256, 3, VTS_SAMPLE_U16), 0);
     VT_CHECK(jpeg->encoded_bound(256, 256, 3, VTS_SAMPLE_U8) > 256 * 256 * 3);
@@ -204,24 +204,24 @@ static void jpeg_encode_refuses_bad_params_and_small_buffers(void)
     struct vt_image img = vt_synth_photo(16, 16, 3, 5, 0.6);
     size_t bound = jpeg->encoded_bound(16, 16, 3, VTS_SAMPLE_U8), len = 99;
     unsigned char *buf = malloc(bound);
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vt_codec_params params = {.quality = 101};
-    VT_CHECK_INT_EQ(jpeg->encode(&img, &params, buf, bound, &len, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(jpeg->encode(&img, &params, buf, bound, &len, &err), VTS_ERR_ARG);
     VT_CHECK_STR_CONTAINS(err.message, "quality 101");
     VT_CHECK_INT_EQ(len, 0);
     params = (struct vt_codec_params){.quality = -1};
-    VT_CHECK_INT_EQ(jpeg->encode(&img, &params, buf, bound, &len, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(jpeg->encode(&img, &params, buf, bound, &len, &err), VTS_ERR_ARG);
     params = (struct vt_codec_params){.subsampling = 411};
-    VT_CHECK_INT_EQ(jpeg->encode(&img, &params, buf, bound, &len, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(jpeg->encode(&img, &params, buf, bound, &len, &err), VTS_ERR_ARG);
     VT_CHECK_STR_CONTAINS(err.message, "subsampling 411");
-    VT_CHECK_INT_EQ(jpeg->encode(&img, NULL, buf, 100, &len, &err), VT_ERR_LIMIT);
+    VT_CHECK_INT_EQ(jpeg->encode(&img, NULL, buf, 100, &len, &err), VTS_ERR_LIMIT);
     VT_CHECK_INT_EQ(jpeg->encode(&img, NULL, buf, bound, &len, &err), 0);
     img.channels = 4;
-    VT_CHECK_INT_EQ(jpeg->encode(&img, NULL, buf, bound, &len, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(jpeg->encode(&img, NULL, buf, bound, &len, &err), VTS_ERR_UNSUPPORTED);
     VT_CHECK_STR_CONTAINS(err.message, "jpeg cannot store alpha");
     img.channels = 3;
     img.sample = VTS_SAMPLE_U16;
-    VT_CHECK_INT_EQ(jpeg->encode(&img, NULL, buf, bound, &len, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(jpeg->encode(&img, NULL, buf, bound, &len, &err), VTS_ERR_UNSUPPORTED);
     free(buf);
     free(img.pixels);
 }
@@ -234,9 +234,9 @@ static bool prefix_fails_cleanly(const unsigned char *payload, size_t cut, uint3
 {
     unsigned char *prefix = dup_prefix(payload, cut);
     struct vt_image dst;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = decode_into(prefix, cut, &dst, edge, edge, channels, &err);
-    bool clean = rc == VT_ERR_BAD_INPUT && strncmp(err.message, "jpeg payload: ", 14) == 0;
+    bool clean = rc == VTS_ERR_BAD_INPUT && strncmp(err.message, "jpeg payload: ", 14) == 0;
     if (!clean)
         fprintf(stderr, "  cut %zu: rc %d '%s'\n", cut, rc, err.message);
     free(dst.pixels);
@@ -273,8 +273,8 @@ static void jpeg_decode_rejects_garbage(void)
         if (len >= 2 && len % 2) /* half of them start with an SOI marker */
             junk[0] = 0xff, junk[1] = 0xd8;
         struct vt_image dst;
-        struct vt_error err = {0};
-        if (decode_into(junk, len, &dst, 8, 8, 3, &err) != VT_ERR_BAD_INPUT)
+        struct vts_error err = {0};
+        if (decode_into(junk, len, &dst, 8, 8, 3, &err) != VTS_ERR_BAD_INPUT)
             failures++;
         free(dst.pixels);
         free(junk);
@@ -294,10 +294,10 @@ static void jpeg_decode_survives_bit_flips(void)
         for (int flips = 1 + i % 3; flips > 0; flips--)
             copy[2 + rng_next() % (len - 2)] ^= (unsigned char)(1u << (rng_next() % 8));
         struct vt_image dst;
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         int rc = decode_into(copy, len, &dst, 32, 32, 3, &err);
         rejected += rc != 0;
-        bad_status += rc != 0 && rc != VT_ERR_BAD_INPUT;
+        bad_status += rc != 0 && rc != VTS_ERR_BAD_INPUT;
         free(dst.pixels);
         free(copy);
     }
@@ -315,8 +315,8 @@ static void check_mismatch(uint32_t w, uint32_t h, uint32_t channels, uint32_t t
     size_t len = 0;
     unsigned char *payload = encode_alloc(&img, 85, 420, &len);
     struct vt_image dst;
-    struct vt_error err = {0};
-    VT_CHECK_INT_EQ(decode_into(payload, len, &dst, tw, th, tchannels, &err), VT_ERR_BAD_INPUT);
+    struct vts_error err = {0};
+    VT_CHECK_INT_EQ(decode_into(payload, len, &dst, tw, th, tchannels, &err), VTS_ERR_BAD_INPUT);
     VT_CHECK_STR_CONTAINS(err.message, expect);
     free(dst.pixels);
     free(payload);
@@ -334,8 +334,8 @@ static void jpeg_decode_rejects_other_shapes(void)
     size_t len = 0;
     unsigned char *payload = encode_alloc(&img, 85, 420, &len);
     struct vt_image dst;
-    struct vt_error err = {0};
-    VT_CHECK_INT_EQ(decode_into(payload, len, &dst, 16, 16, 4, &err), VT_ERR_UNSUPPORTED);
+    struct vts_error err = {0};
+    VT_CHECK_INT_EQ(decode_into(payload, len, &dst, 16, 16, 4, &err), VTS_ERR_UNSUPPORTED);
     free(dst.pixels);
     free(payload);
     free(img.pixels);
@@ -352,9 +352,9 @@ static void jpeg_decodes_again_after_a_failed_decode(void)
     for (size_t cut = 3; payload && cut < len; cut += 31) {
         unsigned char *prefix = dup_prefix(payload, cut);
         struct vt_image dst;
-        failures += decode_into(prefix, cut, &dst, 24, 24, 3, NULL) != VT_ERR_BAD_INPUT;
+        failures += decode_into(prefix, cut, &dst, 24, 24, 3, NULL) != VTS_ERR_BAD_INPUT;
         free(dst.pixels);
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         int rc = decode_into(payload, len, &dst, 24, 24, 3, &err);
         if (rc)
             fprintf(stderr, "  after cut %zu: %s\n", cut, err.message);

@@ -72,9 +72,9 @@ static void filter_names_parse_and_print(void)
         VT_CHECK_INT_EQ(kind, i);
     }
     VT_CHECK(strcmp(vt_filter_name(VT_FILTER_LANCZOS3), "lanczos3") == 0);
-    VT_CHECK_INT_EQ(vt_filter_parse("Box", &kind), VT_ERR_ARG);
-    VT_CHECK_INT_EQ(vt_filter_parse("", &kind), VT_ERR_ARG);
-    VT_CHECK_INT_EQ(vt_filter_parse(NULL, &kind), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(vt_filter_parse("Box", &kind), VTS_ERR_ARG);
+    VT_CHECK_INT_EQ(vt_filter_parse("", &kind), VTS_ERR_ARG);
+    VT_CHECK_INT_EQ(vt_filter_parse(NULL, &kind), VTS_ERR_ARG);
     VT_CHECK(strcmp(vt_filter_name((enum vt_filter_kind)9), "?") == 0);
 }
 
@@ -642,7 +642,7 @@ static void wrap_reads_positions_across_the_edge(void)
     VT_CHECK(dst.px[0] == triangle_sum(c0, c0, c0, c0));
     /* wrap needs -1: a src starting at 0 does not cover it */
     struct vt_fregion narrow = {0, 0, 9, 8, 1, px + 1};
-    VT_CHECK_INT_EQ(reduce(&k, &wrap, &narrow, &dst), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(reduce(&k, &wrap, &narrow, &dst), VTS_ERR_ARG);
     free(src.px);
     free(dst.px);
 }
@@ -656,29 +656,29 @@ static void reduce_rejects_src_that_does_not_cover_the_taps(void)
     /* dst [4, 8) x [4, 8) needs finer [7, 17) on both axes */
     region_alloc(&src, 7, 7, 10, 10, 2);
     region_alloc(&dst, 4, 4, 4, 4, 2);
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     size_t n = vt_filter_reduce_scratch(&k, &src, &dst);
     float *scratch = malloc(n * sizeof(float));
     VT_CHECK_INT_EQ(vt_filter_reduce(&k, &e, &src, &dst, scratch, n, &err), 0);
     struct vt_fregion s = src;
     s.x0 = 8;
-    VT_CHECK_INT_EQ(vt_filter_reduce(&k, &e, &s, &dst, scratch, n, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(vt_filter_reduce(&k, &e, &s, &dst, scratch, n, &err), VTS_ERR_ARG);
     VT_CHECK_STR_CONTAINS(err.message, "does not cover");
     s = src;
     s.height = 9;
-    VT_CHECK_INT_EQ(vt_filter_reduce(&k, &e, &s, &dst, scratch, n, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(vt_filter_reduce(&k, &e, &s, &dst, scratch, n, &err), VTS_ERR_ARG);
     s = src;
     s.y0 = 6;
-    VT_CHECK_INT_EQ(vt_filter_reduce(&k, &e, &s, &dst, scratch, n, &err), VT_ERR_ARG);
-    VT_CHECK_INT_EQ(vt_filter_reduce(&k, &e, &src, &dst, scratch, n - 1, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(vt_filter_reduce(&k, &e, &s, &dst, scratch, n, &err), VTS_ERR_ARG);
+    VT_CHECK_INT_EQ(vt_filter_reduce(&k, &e, &src, &dst, scratch, n - 1, &err), VTS_ERR_ARG);
     s = src;
     s.channels = 3;
-    VT_CHECK_INT_EQ(vt_filter_reduce(&k, &e, &s, &dst, scratch, n, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(vt_filter_reduce(&k, &e, &s, &dst, scratch, n, &err), VTS_ERR_ARG);
     /* at the level edge the clamped taps need less: dst [30, 32) of 64 reads [59, 64) */
     struct vt_fregion edge_src = {59, 59, 5, 5, 2, src.px}, edge_dst = {30, 30, 2, 2, 2, dst.px};
     VT_CHECK_INT_EQ(reduce(&k, &e, &edge_src, &edge_dst), 0);
     edge_src.width = 4;
-    VT_CHECK_INT_EQ(reduce(&k, &e, &edge_src, &edge_dst), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(reduce(&k, &e, &edge_src, &edge_dst), VTS_ERR_ARG);
     free(scratch);
     free(src.px);
     free(dst.px);

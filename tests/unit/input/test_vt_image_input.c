@@ -37,7 +37,7 @@ static bool oiio_is_loaded(void)
 static bool write_image(const struct vt_synth_image_options *o, const char *name, char *path,
                         size_t path_size)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     tmp_path(path, path_size, name);
     int rc = vt_synth_image_write(path, o, &err);
     if (rc < 0)
@@ -75,7 +75,7 @@ static bool region_matches(struct vt_source *src, const struct vt_synth_image_op
                            uint32_t h)
 {
     struct vt_image got, want;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     w = x + w > o->width ? o->width - x : w; /* regions chosen for tile sizes may stick out */
     h = y + h > o->height ? o->height - y : h;
     if (vt_image_alloc(&got, w, h, src->info.channels, src->info.sample, NULL) < 0)
@@ -169,7 +169,7 @@ static void check_file(const struct vt_synth_image_options *o, const char *name,
     if (!write_image(o, name, path, sizeof path))
         return;
     struct vt_source src;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = vt_image_input_open(path, NULL, &src, &err);
     if (rc < 0)
         fprintf(stderr, "%s: %s\n", name, err.message);
@@ -322,7 +322,7 @@ static void jpeg_regions_equal_a_full_decode(void)
         if (!write_image(&o, cases[i].name, path, sizeof path))
             continue;
         struct vt_image ref;
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         VT_CHECK_INT_EQ(vt_synth_jpeg_decode(path, &ref, &err), 0);
         struct vt_source src;
         int rc = vt_image_input_open(path, NULL, &src, &err);
@@ -384,7 +384,7 @@ static void fallback_reads_tga_and_loads_oiio_only_then(void)
         return;
     VT_CHECK(!oiio_is_loaded());
     struct vt_source src;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = vt_image_input_open(path, NULL, &src, &err);
 #ifdef VT_TEST_HAVE_OIIO
     if (rc < 0)
@@ -408,7 +408,7 @@ static void fallback_reads_tga_and_loads_oiio_only_then(void)
         }
     }
 #else
-    VT_CHECK_INT_EQ(rc, VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(rc, VTS_ERR_UNSUPPORTED);
     VT_CHECK_STR_CONTAINS(err.message, "built without OpenImageIO");
     VT_CHECK(!oiio_is_loaded());
 #endif
@@ -418,7 +418,7 @@ static void fallback_reads_tga_and_loads_oiio_only_then(void)
 
 /* Opens path and reads all of it: 0, or the first failure's status (err filled). */
 static int open_and_read_all(const char *path, const struct vt_input_limits *limits,
-                             struct vt_error *err, struct vt_synth_image_options *check)
+                             struct vts_error *err, struct vt_synth_image_options *check)
 {
     struct vt_source src;
     int rc = vt_image_input_open(path, limits, &src, err);
@@ -465,13 +465,13 @@ static void check_damaged_copies(const struct vt_synth_image_options *o, const c
     size_t step = len / 97 + 1;
     bool exact = o->format != VT_SYNTH_JPEG;
     for (size_t n = 8; n < len; n += (n < 64 ? 1 : step)) {
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         VT_CHECK(write_bytes(bad, bytes, n));
         struct vt_synth_image_options copy = *o;
         int rc = open_and_read_all(bad, &limits, &err, exact ? &copy : NULL);
-        if (rc < 0 && rc != VT_ERR_BAD_INPUT)
+        if (rc < 0 && rc != VTS_ERR_BAD_INPUT)
             fprintf(stderr, "prefix %zu of %s: %s\n", n, name, err.message);
-        VT_CHECK(rc == 0 || rc == VT_ERR_BAD_INPUT);
+        VT_CHECK(rc == 0 || rc == VTS_ERR_BAD_INPUT);
         VT_CHECK(rc == 0 || strstr(err.message, bad));
     }
     uint32_t state = 12345;
@@ -485,7 +485,7 @@ static void check_damaged_copies(const struct vt_synth_image_options *o, const c
             size_t at = 8 + (state >> 8) % (len - 8);
             copy[at] ^= (unsigned char)(1u << (state >> 28) % 8 | (i % 3 == 0 ? 0xff : 0));
         }
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         VT_CHECK(write_bytes(bad, copy, len));
         int rc = open_and_read_all(bad, &limits, &err, NULL);
         VT_CHECK(rc == 0 || strstr(err.message, bad));
@@ -546,21 +546,21 @@ static void write_png_header(const char *path, uint32_t width, uint32_t height)
 static void limits_are_checked_before_decoding(void)
 {
     char path[256];
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vt_source src;
     struct vt_input_limits low = {1000000};
     tmp_path(path, sizeof path, "huge.png");
     write_png_header(path, 100000, 100000);
-    VT_CHECK_INT_EQ(vt_image_input_open(path, &low, &src, &err), VT_ERR_LIMIT);
+    VT_CHECK_INT_EQ(vt_image_input_open(path, &low, &src, &err), VTS_ERR_LIMIT);
     VT_CHECK_STR_CONTAINS(err.message, "100000x100000 texels exceeds --max-pixels 1000000");
     write_png_header(path, 200000, 200000);
-    VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VT_ERR_LIMIT);
+    VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VTS_ERR_LIMIT);
     char want[400];
     snprintf(want, sizeof want, "'%s': 200000x200000 texels exceeds --max-pixels 17179869184",
              path);
     VT_CHECK_STR_CONTAINS(err.message, want);
     write_png_header(path, 1000, 1000); /* within limits: the missing IDAT is the error */
-    VT_CHECK_INT_EQ(open_and_read_all(path, &low, &err, NULL), VT_ERR_BAD_INPUT);
+    VT_CHECK_INT_EQ(open_and_read_all(path, &low, &err, NULL), VTS_ERR_BAD_INPUT);
     VT_CHECK_STR_CONTAINS(err.message, path);
 
     const uint32_t formats[] = {VT_SYNTH_TIFF, VT_SYNTH_JPEG, VT_SYNTH_EXR};
@@ -571,7 +571,7 @@ static void limits_are_checked_before_decoding(void)
             synth(formats[i], 3, formats[i] == VT_SYNTH_EXR ? VTS_SAMPLE_F16 : VTS_SAMPLE_U8);
         if (!write_image(&o, names[i], path, sizeof path))
             continue;
-        VT_CHECK_INT_EQ(vt_image_input_open(path, &tiny, &src, &err), VT_ERR_LIMIT);
+        VT_CHECK_INT_EQ(vt_image_input_open(path, &tiny, &src, &err), VTS_ERR_LIMIT);
         VT_CHECK_STR_CONTAINS(err.message, "97x61 texels exceeds --max-pixels 5916");
         tiny.max_pixels++;
         VT_CHECK_INT_EQ(open_and_read_all(path, &tiny, &err, NULL), 0);
@@ -600,7 +600,7 @@ static bool patch_tiff_tag(unsigned char *b, size_t len, uint16_t tag, uint32_t 
 static void bad_headers_are_refused(void)
 {
     char path[256];
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vt_source src;
     struct vt_synth_image_options o = synth(VT_SYNTH_TIFF, 1, VTS_SAMPLE_U8);
     o.compression = VT_SYNTH_TIFF_NONE;
@@ -610,26 +610,26 @@ static void bad_headers_are_refused(void)
         VT_CHECK(b && patch_tiff_tag(b, len, 256, 0));
         VT_CHECK(b && write_bytes(path, b, len));
         free(b);
-        VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VT_ERR_BAD_INPUT);
+        VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VTS_ERR_BAD_INPUT);
         VT_CHECK_STR_CONTAINS(err.message, path);
     }
     o = synth(VT_SYNTH_TIFF, 4, VTS_SAMPLE_U8);
     o.extra_channels = 1;
     if (write_image(&o, "five_channels.tif", path, sizeof path)) {
-        VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VT_ERR_UNSUPPORTED);
+        VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VTS_ERR_UNSUPPORTED);
         VT_CHECK_STR_CONTAINS(err.message, "5 channels");
     }
     o = synth(VT_SYNTH_EXR, 4, VTS_SAMPLE_F16);
     o.exr_channels = "P,Q,S,T,U";
     if (write_image(&o, "five_channels.exr", path, sizeof path)) {
-        VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VT_ERR_UNSUPPORTED);
+        VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VTS_ERR_UNSUPPORTED);
         VT_CHECK_STR_CONTAINS(err.message, "5 channels");
     }
     tmp_path(path, sizeof path, "empty.png");
     VT_CHECK(write_bytes(path, "", 0));
-    VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VT_ERR_BAD_INPUT);
+    VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VTS_ERR_BAD_INPUT);
     tmp_path(path, sizeof path, "missing.tif");
-    VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VT_ERR_IO);
+    VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VTS_ERR_IO);
     VT_CHECK_STR_CONTAINS(err.message, path);
     VT_CHECK(src.ops == NULL && src.ctx == NULL);
 }
@@ -637,20 +637,20 @@ static void bad_headers_are_refused(void)
 static void unknown_bytes_are_refused(void)
 {
     char path[256];
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vt_source src;
     const char text[] = "this is not an image, whatever the name says\n";
     tmp_path(path, sizeof path, "notes.bin");
     VT_CHECK(write_bytes(path, text, sizeof text - 1));
-    VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VTS_ERR_UNSUPPORTED);
     VT_CHECK_STR_CONTAINS(err.message, path);
     /* named .tga: OpenImageIO's TGA reader takes it and reports what is wrong */
     tmp_path(path, sizeof path, "notes.tga");
     VT_CHECK(write_bytes(path, text, sizeof text - 1));
 #ifdef VT_TEST_HAVE_OIIO
-    VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VT_ERR_BAD_INPUT);
+    VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VTS_ERR_BAD_INPUT);
 #else
-    VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VT_ERR_UNSUPPORTED);
+    VT_CHECK_INT_EQ(vt_image_input_open(path, NULL, &src, &err), VTS_ERR_UNSUPPORTED);
 #endif
     VT_CHECK_STR_CONTAINS(err.message, path);
 }
@@ -667,7 +667,7 @@ static void *thread_read(void *arg)
 {
     struct thread_job *job = arg;
     for (int round = 0; round < 3; round++) {
-        struct vt_error err = {0};
+        struct vts_error err = {0};
         if (open_and_read_all(job->path, NULL, &err, &job->o) != 0)
             job->failures++;
     }

@@ -56,7 +56,7 @@ static void make_layout(struct vt_layout *l)
 static void test_round_trip(void)
 {
     struct vt_layout l, r;
-    struct vt_error err;
+    struct vts_error err;
     make_layout(&l);
     VT_CHECK_INT_EQ(vt_layout_write("layout_rt.json", &l, &err), 0);
     VT_CHECK_INT_EQ(vt_layout_read("layout_rt.json", NULL, &r, &err), 0);
@@ -141,11 +141,11 @@ static void test_resolve_against_directory(void)
 static void expect_invalid(void (*edit)(struct vt_layout *), const char *part)
 {
     struct vt_layout l;
-    struct vt_error err;
+    struct vts_error err;
     make_layout(&l);
     edit(&l);
     int rc = vt_layout_check(&l, "x.json", &err);
-    VT_CHECK_INT_EQ(rc, VT_ERR_BAD_INPUT);
+    VT_CHECK_INT_EQ(rc, VTS_ERR_BAD_INPUT);
     VT_CHECK_STR_CONTAINS(err.message, part);
     vt_layout_release(&l);
 }
@@ -240,7 +240,7 @@ static void test_validation(void)
 static void test_overlap_sweep(void)
 {
     struct vt_layout l;
-    struct vt_error err;
+    struct vts_error err;
     VT_CHECK_INT_EQ(vt_layout_alloc(&l, 1, 64 * 64 + 1, NULL), 0);
     l.width = l.height = 1024, l.tile_content = 256;
     l.layers[0] = (struct vt_layout_layer){xstrdup("diffuse"), xstrdup("map_Kd"), VTS_COLOUR_SRGB};
@@ -259,7 +259,7 @@ static void test_overlap_sweep(void)
     l.entries[4096].x = 1024 - 32, l.entries[4096].y = 1024 - 32;
     l.entries[4096].cell_width = l.entries[4096].cell_height = 32;
     l.entries[4096].alignment = 32;
-    VT_CHECK_INT_EQ(vt_layout_check(&l, "grid", &err), VT_ERR_BAD_INPUT);
+    VT_CHECK_INT_EQ(vt_layout_check(&l, "grid", &err), VTS_ERR_BAD_INPUT);
     VT_CHECK_STR_CONTAINS(err.message, "overlap");
     vt_layout_release(&l);
 }
@@ -269,7 +269,7 @@ static void test_overlap_sweep(void)
 static void test_find_many_aliases(void)
 {
     struct vt_layout l;
-    struct vt_error err;
+    struct vts_error err;
     const uint32_t n = 4096;
     VT_CHECK_INT_EQ(vt_layout_alloc(&l, 1, n, NULL), 0);
     l.width = l.height = 1024, l.tile_content = 256;
@@ -306,7 +306,7 @@ static void test_find_many_aliases(void)
 static void expect_parse_error(const char *text, const char *part)
 {
     struct vt_layout l;
-    struct vt_error err;
+    struct vts_error err;
     int rc = vt_layout_parse_memory(text, strlen(text), "bad.json", NULL, &l, &err);
     VT_CHECK(rc < 0);
     VT_CHECK_STR_CONTAINS(err.message, part);
@@ -344,10 +344,10 @@ static void test_parse_errors(void)
     vt_layout_limits_default(&lim);
     lim.max_entries = 0;
     struct vt_layout l;
-    struct vt_error err;
+    struct vts_error err;
     snprintf(buf, sizeof buf, "%s{}]}", head);
     VT_CHECK_INT_EQ(vt_layout_parse_memory(buf, strlen(buf), "lim.json", &lim, &l, &err),
-                    VT_ERR_LIMIT);
+                    VTS_ERR_LIMIT);
     VT_CHECK_STR_CONTAINS(err.message, "1 entries, more than the limit 0");
     vt_layout_release(&l);
     /* aliases: an array of non-empty strings, counted against the entry limit. */
@@ -366,7 +366,7 @@ static void test_parse_errors(void)
     snprintf(buf, sizeof buf, "%s%s\"aliases\":[\"b\",\"c\"]}]}", head, entry);
     lim.max_entries = 2;
     VT_CHECK_INT_EQ(vt_layout_parse_memory(buf, strlen(buf), "lim.json", &lim, &l, &err),
-                    VT_ERR_LIMIT);
+                    VTS_ERR_LIMIT);
     VT_CHECK_STR_CONTAINS(
         err.message, "'lim.json': 3 material names (entries and aliases), more than the limit 2");
     vt_layout_release(&l);
@@ -378,7 +378,7 @@ static void test_parse_errors(void)
     VT_CHECK_INT_EQ(vt_layout_parse_memory(buf, strlen(buf), "e.json", NULL, &l, &err), 0);
     VT_CHECK(l.entries[0].alias_count == 0 && l.entries[0].aliases == NULL);
     vt_layout_release(&l);
-    VT_CHECK_INT_EQ(vt_layout_read("does/not/exist.json", NULL, &l, &err), VT_ERR_IO);
+    VT_CHECK_INT_EQ(vt_layout_read("does/not/exist.json", NULL, &l, &err), VTS_ERR_IO);
     VT_CHECK_STR_CONTAINS(err.message, "cannot open 'does/not/exist.json'");
 }
 
@@ -452,7 +452,7 @@ static void gutter_outside(struct vt_layout *l)
 static void test_gutter_fields(void)
 {
     struct vt_layout l, r;
-    struct vt_error err;
+    struct vts_error err;
     make_layout(&l);
     add_gutter(&l);
     VT_CHECK_INT_EQ(vt_layout_check(&l, "g.json", &err), 0);

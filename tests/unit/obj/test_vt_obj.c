@@ -44,7 +44,7 @@ struct seen {
 };
 
 static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_face *f,
-                   struct vt_error *err)
+                   struct vts_error *err)
 {
     struct seen *s = user;
     (void)obj, (void)err;
@@ -62,7 +62,7 @@ static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_fac
 }
 
 static int on_mtllib(void *user, const struct vt_obj *obj, const char *path, uint64_t line,
-                     struct vt_error *err)
+                     struct vts_error *err)
 {
     struct seen *s = user;
     (void)obj, (void)line, (void)err;
@@ -72,7 +72,7 @@ static int on_mtllib(void *user, const struct vt_obj *obj, const char *path, uin
 }
 
 static int on_usemtl(void *user, const struct vt_obj *obj, const char *name, uint64_t line,
-                     struct vt_error *err)
+                     struct vts_error *err)
 {
     struct seen *s = user;
     (void)obj, (void)line, (void)err;
@@ -83,12 +83,12 @@ static int on_usemtl(void *user, const struct vt_obj *obj, const char *name, uin
 
 /* Parses text (from memory, named name) with fresh callbacks; returns the status. */
 static int parse_text(const char *text, const char *name, const struct vt_obj_limits *limits,
-                      struct seen *s, struct vt_obj **out, struct vt_error *err)
+                      struct seen *s, struct vt_obj **out, struct vts_error *err)
 {
     memset(s, 0, sizeof *s);
     struct vt_obj_callbacks cb = {on_mtllib, on_usemtl, on_face, s};
     struct vt_obj *obj = vt_obj_create(limits, err);
-    int rc = obj ? vt_obj_parse_memory(obj, text, strlen(text), name, &cb, err) : VT_ERR_NOMEM;
+    int rc = obj ? vt_obj_parse_memory(obj, text, strlen(text), name, &cb, err) : VTS_ERR_NOMEM;
     if (out)
         *out = obj;
     else
@@ -106,7 +106,7 @@ static void check_corner(const struct vt_obj_corner *c, uint32_t v, uint32_t vt,
 static void obj_resolves_negative_indices(void)
 {
     struct seen s;
-    struct vt_error err;
+    struct vts_error err;
     const char *text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvn 0 0 1\n"
                        "f -3/-3/-1 -2/-2/-1 -1/-1/-1\n"
                        "v 0 1 0\nf 1/1/1 -1/-1/-1 3/3/1\n";
@@ -123,7 +123,7 @@ static void obj_resolves_negative_indices(void)
 static void obj_reads_faces_without_texcoords_or_normals(void)
 {
     struct seen s;
-    struct vt_error err;
+    struct vts_error err;
     const char *text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nvn 0 0 1\nvt 0.5 0.5\n"
                        "f 1//1 2//1 3//1\nf 1 2 3\nf 1/1 2/1 3/1\n";
     VT_CHECK_INT_EQ(parse_text(text, "novt.obj", NULL, &s, NULL, &err), 0);
@@ -136,7 +136,7 @@ static void obj_reads_faces_without_texcoords_or_normals(void)
 static void obj_delivers_quads_and_ngons_whole(void)
 {
     struct seen s;
-    struct vt_error err;
+    struct vts_error err;
     const char *text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 1.5 0\n"
                        "f 1 2 3 4\nf 1 2 3 5 4\n";
     VT_CHECK_INT_EQ(parse_text(text, "quads.obj", NULL, &s, NULL, &err), 0);
@@ -150,7 +150,7 @@ static void obj_delivers_quads_and_ngons_whole(void)
 static void obj_keeps_three_component_texcoords_and_exponents(void)
 {
     struct seen s;
-    struct vt_error err;
+    struct vts_error err;
     struct vt_obj *obj;
     const char *text = "vt 0.25 0.75 0.5\nvt 1e-3 2.5E+1\nvt 0.125\nv 1.5e2 -2 3e-2 1.0\n";
     VT_CHECK_INT_EQ(parse_text(text, "vt3.obj", NULL, &s, &obj, &err), 0);
@@ -171,7 +171,7 @@ static void obj_keeps_three_component_texcoords_and_exponents(void)
 static void obj_joins_continuations_and_strips_crlf(void)
 {
     struct seen s;
-    struct vt_error err;
+    struct vts_error err;
     struct vt_obj *obj;
     const char *text = "# comment\r\n\r\nv 0 0 0\r\nv 1 0 0\r\nv \\\r\n 1 1 0\r\n"
                        "g  a\tb \r\nf 1 \\\n2 \\\n 3\r\nf\t1\t2  3 # trailing comment\r\n"
@@ -195,7 +195,7 @@ static void obj_joins_continuations_and_strips_crlf(void)
 static void obj_reports_usemtl_before_mtllib_and_several_libraries(void)
 {
     struct seen s;
-    struct vt_error err;
+    struct vts_error err;
     struct vt_obj *obj;
     const char *text = "usemtl early\nv 0 0 0\nv 1 0 0\nv 1 1 0\no thing\nf 1 2 3\n"
                        "mtllib a.mtl\nmtllib sub/b.mtl  ../c.mtl\nmtllib my scene.mtl\n"
@@ -225,7 +225,7 @@ static void check_error(const char *text, const struct vt_obj_limits *limits, in
                         const char *want)
 {
     struct seen s;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     VT_CHECK_INT_EQ(parse_text(text, "scene.obj", limits, &s, NULL, &err), status);
     VT_CHECK_INT_EQ(err.status, status);
     VT_CHECK_STR_CONTAINS(err.message, want);
@@ -236,24 +236,24 @@ static void obj_errors_name_file_and_line(void)
     const char *tri = "v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\n";
     char text[256];
     snprintf(text, sizeof text, "%sf 1/1 2/1 4/1\n", tri);
-    check_error(text, NULL, VT_ERR_BAD_INPUT,
+    check_error(text, NULL, VTS_ERR_BAD_INPUT,
                 "'scene.obj':5: vertex index 4 in '4/1' out of range");
     snprintf(text, sizeof text, "%sf 1/1 2/1 -4/1\n", tri);
-    check_error(text, NULL, VT_ERR_BAD_INPUT, "'scene.obj':5: vertex index -4");
+    check_error(text, NULL, VTS_ERR_BAD_INPUT, "'scene.obj':5: vertex index -4");
     snprintf(text, sizeof text, "%sf 1/1 2/2 3/1\n", tri);
-    check_error(text, NULL, VT_ERR_BAD_INPUT, "'scene.obj':5: texture index 2 in '2/2' out of");
+    check_error(text, NULL, VTS_ERR_BAD_INPUT, "'scene.obj':5: texture index 2 in '2/2' out of");
     snprintf(text, sizeof text, "%sf 1/1 0/1 3/1\n", tri);
-    check_error(text, NULL, VT_ERR_BAD_INPUT, "'scene.obj':5: vertex index 0");
+    check_error(text, NULL, VTS_ERR_BAD_INPUT, "'scene.obj':5: vertex index 0");
     snprintf(text, sizeof text, "%s\nf 1/1 2/x 3/1\n", tri);
-    check_error(text, NULL, VT_ERR_BAD_INPUT, "'scene.obj':6: bad texture index '2/x'");
+    check_error(text, NULL, VTS_ERR_BAD_INPUT, "'scene.obj':6: bad texture index '2/x'");
     snprintf(text, sizeof text, "%sf 1/1/1 2/1 3/1\n", tri);
-    check_error(text, NULL, VT_ERR_BAD_INPUT, "'scene.obj':5: normal index 1 in '1/1/1' out of");
-    check_error("v 0 0 0\nv 1 0.5x 0\n", NULL, VT_ERR_BAD_INPUT,
+    check_error(text, NULL, VTS_ERR_BAD_INPUT, "'scene.obj':5: normal index 1 in '1/1/1' out of");
+    check_error("v 0 0 0\nv 1 0.5x 0\n", NULL, VTS_ERR_BAD_INPUT,
                 "'scene.obj':2: bad number '0.5x' in 'v'");
-    check_error("vt nan 0\n", NULL, VT_ERR_BAD_INPUT, "'scene.obj':1: bad number 'nan'");
-    check_error("vt 1e999 0\n", NULL, VT_ERR_BAD_INPUT, "bad number '1e999'");
-    check_error("v 1 2\n", NULL, VT_ERR_BAD_INPUT, "'scene.obj':1: 'v' needs 3 to 7 numbers");
-    check_error("v 0 0 0\nf 1 1\n", NULL, VT_ERR_BAD_INPUT, "'scene.obj':2: face with 2 corners");
+    check_error("vt nan 0\n", NULL, VTS_ERR_BAD_INPUT, "'scene.obj':1: bad number 'nan'");
+    check_error("vt 1e999 0\n", NULL, VTS_ERR_BAD_INPUT, "bad number '1e999'");
+    check_error("v 1 2\n", NULL, VTS_ERR_BAD_INPUT, "'scene.obj':1: 'v' needs 3 to 7 numbers");
+    check_error("v 0 0 0\nf 1 1\n", NULL, VTS_ERR_BAD_INPUT, "'scene.obj':2: face with 2 corners");
 }
 
 static void obj_limits_fail_with_limit_status(void)
@@ -261,20 +261,20 @@ static void obj_limits_fail_with_limit_status(void)
     struct vt_obj_limits limits;
     vt_obj_limits_default(&limits);
     limits.max_line_bytes = 16;
-    check_error("v 0 0 0\n# this comment is far too long\n", &limits, VT_ERR_LIMIT,
+    check_error("v 0 0 0\n# this comment is far too long\n", &limits, VTS_ERR_LIMIT,
                 "'scene.obj':2: line longer than the limit of 16 bytes");
-    check_error("v 0 0 0\nv 0.000000000 \\\n 0.000000 0\n", &limits, VT_ERR_LIMIT,
+    check_error("v 0 0 0\nv 0.000000000 \\\n 0.000000 0\n", &limits, VTS_ERR_LIMIT,
                 "'scene.obj':2: line longer");
     vt_obj_limits_default(&limits);
     limits.max_vertices = 2;
-    check_error("vt 0 0\nv 0 0 0\nv 1 0 0\nvt 1 1\nv 2 0 0\n", &limits, VT_ERR_LIMIT,
+    check_error("vt 0 0\nv 0 0 0\nv 1 0 0\nvt 1 1\nv 2 0 0\n", &limits, VTS_ERR_LIMIT,
                 "'scene.obj':5: more than 2 vertices (the limit)");
 }
 
 static void obj_accepts_empty_and_comment_only_files(void)
 {
     struct seen s;
-    struct vt_error err;
+    struct vts_error err;
     struct vt_obj *obj;
     VT_CHECK_INT_EQ(parse_text("", "empty.obj", NULL, &s, &obj, &err), 0);
     VT_CHECK_INT_EQ(vt_obj_position_count(obj), 0);
@@ -289,7 +289,7 @@ static void obj_accepts_empty_and_comment_only_files(void)
 }
 
 static int stop_at_second_face(void *user, const struct vt_obj *obj, const struct vt_obj_face *f,
-                               struct vt_error *err)
+                               struct vts_error *err)
 {
     (void)user, (void)obj, (void)err;
     return f->line == 5 ? 1 : 0;
@@ -298,14 +298,14 @@ static int stop_at_second_face(void *user, const struct vt_obj *obj, const struc
 static void obj_reads_files_and_stops_when_a_callback_asks(void)
 {
     const char *path = write_file("file.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\nf 3 2 1\n");
-    struct vt_error err;
+    struct vts_error err;
     struct vt_obj *obj = vt_obj_create(NULL, &err);
     struct vt_obj_callbacks cb = {NULL, NULL, stop_at_second_face, NULL};
-    VT_CHECK_INT_EQ(vt_obj_read(obj, path, &cb, &err), VT_ERR_CANCELLED);
+    VT_CHECK_INT_EQ(vt_obj_read(obj, path, &cb, &err), VTS_ERR_CANCELLED);
     VT_CHECK_STR_CONTAINS(err.message, "file.obj':5: stopped by the face callback");
     VT_CHECK_INT_EQ(vt_obj_read(obj, path, NULL, &err), 0);
     VT_CHECK_INT_EQ(vt_obj_position_count(obj), 3);
-    VT_CHECK_INT_EQ(vt_obj_read(obj, "/nonexistent/x.obj", NULL, &err), VT_ERR_IO);
+    VT_CHECK_INT_EQ(vt_obj_read(obj, "/nonexistent/x.obj", NULL, &err), VTS_ERR_IO);
     VT_CHECK_STR_CONTAINS(err.message, "cannot open '/nonexistent/x.obj'");
     vt_obj_destroy(obj);
 }
@@ -319,7 +319,7 @@ static void mtl_reads_colours_and_keeps_d_and_tr_raw(void)
                                              "Ks 0.5 0.5 0.5\nd 0.5\nillum 2\nNs 10\n"
                                              "newmtl meshlab\nTr 1.000000\nKd 0.2 0.4 0.6\n");
     struct vt_mtl mtl;
-    struct vt_error err;
+    struct vts_error err;
     VT_CHECK_INT_EQ(vt_mtl_read(path, NULL, &mtl, &err), 0);
     VT_CHECK_INT_EQ(mtl.material_count, 2);
     const struct vt_mtl_material *red = vt_mtl_find(&mtl, "red");
@@ -344,7 +344,7 @@ static void mtl_parses_map_options_and_paths_with_spaces(void)
                        "bump other.png\nmap_d -imfchan m /abs/alpha.png\nnorm  C:\\tex\\n.png\n"
                        "disp -o -1 d.png\nmap_Ka -s 2 1.png\nmap_Ks \\\n spec.png\n";
     struct vt_mtl mtl;
-    struct vt_error err;
+    struct vts_error err;
     VT_CHECK_INT_EQ(vt_mtl_parse_memory(text, strlen(text), "scene/mat/w.mtl", NULL, &mtl, &err),
                     0);
     VT_CHECK_INT_EQ(mtl.material_count, 1);
@@ -385,7 +385,7 @@ static void mtl_backslash_paths_and_bump_options(void)
 {
     const char *text = "newmtl n\nmap_Bump -bm 0.75 normals\\brick n.png\n";
     struct vt_mtl mtl;
-    struct vt_error err;
+    struct vts_error err;
     VT_CHECK_INT_EQ(vt_mtl_parse_memory(text, strlen(text), "w.mtl", NULL, &mtl, &err), 0);
     const struct vt_mtl_map *b =
         mtl.material_count ? &mtl.materials[0].maps[VT_MTL_MAP_BUMP] : NULL;
@@ -397,7 +397,7 @@ static void check_mtl_error(const char *text, const struct vt_obj_limits *limits
                             const char *want)
 {
     struct vt_mtl mtl;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     VT_CHECK_INT_EQ(vt_mtl_parse_memory(text, strlen(text), "x.mtl", limits, &mtl, &err), status);
     VT_CHECK_STR_CONTAINS(err.message, want);
     vt_mtl_release(&mtl);
@@ -405,23 +405,23 @@ static void check_mtl_error(const char *text, const struct vt_obj_limits *limits
 
 static void mtl_errors_name_file_and_line(void)
 {
-    check_mtl_error("newmtl a\nKd 1 x 0\n", NULL, VT_ERR_BAD_INPUT, "'x.mtl':2: bad number 'x'");
-    check_mtl_error("newmtl a\n\nmap_Kd -clamp maybe a.png\n", NULL, VT_ERR_BAD_INPUT,
+    check_mtl_error("newmtl a\nKd 1 x 0\n", NULL, VTS_ERR_BAD_INPUT, "'x.mtl':2: bad number 'x'");
+    check_mtl_error("newmtl a\n\nmap_Kd -clamp maybe a.png\n", NULL, VTS_ERR_BAD_INPUT,
                     "'x.mtl':3: expected on or off after '-clamp'");
-    check_mtl_error("newmtl a\nmap_Kd -zz 1 a.png\n", NULL, VT_ERR_BAD_INPUT,
+    check_mtl_error("newmtl a\nmap_Kd -zz 1 a.png\n", NULL, VTS_ERR_BAD_INPUT,
                     "'x.mtl':2: unknown map option '-zz'");
-    check_mtl_error("newmtl a\nmap_Kd -s 1 2\n", NULL, VT_ERR_BAD_INPUT,
+    check_mtl_error("newmtl a\nmap_Kd -s 1 2\n", NULL, VTS_ERR_BAD_INPUT,
                     "'x.mtl':2: map statement without a file name");
-    check_mtl_error("newmtl a\nmap_Kd -s a.png\n", NULL, VT_ERR_BAD_INPUT,
+    check_mtl_error("newmtl a\nmap_Kd -s a.png\n", NULL, VTS_ERR_BAD_INPUT,
                     "'x.mtl':2: missing number after '-s'");
     struct vt_obj_limits limits;
     vt_obj_limits_default(&limits);
     limits.max_materials = 2;
-    check_mtl_error("newmtl a\nnewmtl b\nnewmtl c\n", &limits, VT_ERR_LIMIT,
+    check_mtl_error("newmtl a\nnewmtl b\nnewmtl c\n", &limits, VTS_ERR_LIMIT,
                     "'x.mtl':3: more than 2 materials");
     struct vt_mtl mtl;
-    struct vt_error err;
-    VT_CHECK_INT_EQ(vt_mtl_read("/nonexistent/x.mtl", NULL, &mtl, &err), VT_ERR_IO);
+    struct vts_error err;
+    VT_CHECK_INT_EQ(vt_mtl_read("/nonexistent/x.mtl", NULL, &mtl, &err), VTS_ERR_IO);
     vt_mtl_release(&mtl);
 }
 

@@ -5,12 +5,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vt_error.h"
 #include "vts.h"
 
 void offset_fixture_layout(struct vt_layout *l, uint32_t width, uint32_t height,
                            const struct spec *specs, uint32_t n)
 {
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     int rc = vt_layout_alloc(l, 1, n, &err);
     if (rc < 0) {
         fprintf(stderr, "layout: %s\n", err.message);
@@ -46,7 +47,7 @@ void offset_fixture_layout(struct vt_layout *l, uint32_t width, uint32_t height,
     }
 }
 
-int offset_fixture_write(void *user, const void *data, size_t size, struct vt_error *err)
+int offset_fixture_write(void *user, const void *data, size_t size, struct vts_error *err)
 {
     struct membuf *m = user;
     (void)err;
@@ -54,7 +55,7 @@ int offset_fixture_write(void *user, const void *data, size_t size, struct vt_er
         size_t cap = (m->len + size + 1) * 2;
         char *p = realloc(m->data, cap);
         if (!p)
-            return VT_ERR_NOMEM;
+            return VTS_ERR_NOMEM;
         m->data = p;
         m->cap = cap;
     }
@@ -66,7 +67,7 @@ int offset_fixture_write(void *user, const void *data, size_t size, struct vt_er
 
 /* Rewrites text onto l; returns the status, the output in *out (free it), stats and err. */
 int offset_fixture_rewrite(const char *text, const struct vt_layout *l, unsigned digits,
-                           struct membuf *out, struct vt_offset_stats *stats, struct vt_error *err)
+                           struct membuf *out, struct vt_offset_stats *stats, struct vts_error *err)
 {
     struct vt_offset_options opt;
     vt_offset_options_default(&opt);
@@ -83,7 +84,7 @@ int offset_fixture_expect_output(const char *text, const struct vt_layout *l, un
                                  const char *want, struct vt_offset_stats *stats)
 {
     struct membuf out;
-    struct vt_error err;
+    struct vts_error err;
     int rc = offset_fixture_rewrite(text, l, digits, &out, stats, &err);
     int ok = rc == 0 && out.data && strcmp(out.data, want) == 0;
     if (!ok)
@@ -97,7 +98,7 @@ int offset_fixture_expect_error(const char *text, const struct vt_layout *l, int
                                 const char *message)
 {
     struct membuf out;
-    struct vt_error err;
+    struct vts_error err;
     struct vt_offset_stats stats;
     int rc = offset_fixture_rewrite(text, l, 0, &out, &stats, &err);
     int ok = rc == status && strcmp(err.message, message) == 0 && out.len == 0;

@@ -24,7 +24,7 @@ struct membuf {
 };
 
 /* A vt_offset_sink write function appending to the struct membuf user. */
-int offset_fixture_write(void *user, const void *data, size_t size, struct vt_error *err);
+int offset_fixture_write(void *user, const void *data, size_t size, struct vts_error *err);
 
 /* The u, v of the i-th (0-based) vt line of text; false when there is none. */
 int offset_fixture_nth_vt(const char *text, int i, double *u, double *v);
@@ -36,7 +36,8 @@ void offset_fixture_layout(struct vt_layout *l, uint32_t width, uint32_t height,
 /* Rewrites text ("s.obj", mtllib out.mtl, digits 0 = automatic) onto l into *out (free out->data);
  * returns the status with stats and err filled. */
 int offset_fixture_rewrite(const char *text, const struct vt_layout *l, unsigned digits,
-                           struct membuf *out, struct vt_offset_stats *stats, struct vt_error *err);
+                           struct membuf *out, struct vt_offset_stats *stats,
+                           struct vts_error *err);
 
 /* True when the rewrite succeeds with exactly want (prints the difference otherwise). */
 int offset_fixture_expect_output(const char *text, const struct vt_layout *l, unsigned digits,

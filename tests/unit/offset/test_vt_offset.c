@@ -153,7 +153,7 @@ static void follows_the_v_axis_convention(void)
     offset_fixture_layout(&l, 64, 64, rect, 1);
     struct membuf out;
     struct vt_offset_stats s;
-    struct vt_error err;
+    struct vts_error err;
     /* texel (3, 0): top row; texel (3, 7): bottom row; the top-left and bottom-right corners */
     int rc = offset_fixture_rewrite("v 0 0 0\n"
                                     "vt 0.21875 0.9375\n"

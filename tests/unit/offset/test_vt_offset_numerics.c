@@ -62,7 +62,7 @@ static void keeps_texel_precision_on_a_2_20_atlas(void)
 
     struct membuf out;
     struct vt_offset_stats s;
-    struct vt_error err;
+    struct vts_error err;
     int rc = offset_fixture_rewrite(text, &l, 0, &out, &s, &err);
     VT_CHECK_INT_EQ(rc, 0);
     VT_CHECK_INT_EQ(s.digits, 10);
@@ -119,7 +119,7 @@ static struct vt_offset_stats stats_at_texel(double t)
     snprintf(text, sizeof text, "v 0 0 0\nvt %.17g 0.5\nusemtl a\nf 1/1 1/1 1/1\n", t / (1u << 23));
     struct membuf out;
     struct vt_offset_stats s;
-    struct vt_error err;
+    struct vts_error err;
     int rc = offset_fixture_rewrite(text, &l, 0, &out, &s, &err);
     VT_CHECK_INT_EQ(rc, 0);
     free(out.data);
@@ -155,65 +155,65 @@ static void rejects_bad_input_before_writing(void)
     struct vt_layout l;
     offset_fixture_layout(&l, 1024, 1024, two_halves, 2);
     VT_CHECK(offset_fixture_expect_error(
-        "v 0 0 0\nvt 0 0\nvt 1 1\nusemtl a\nf 1/1 1/3 1/2\n", &l, VT_ERR_BAD_INPUT,
+        "v 0 0 0\nvt 0 0\nvt 1 1\nusemtl a\nf 1/1 1/3 1/2\n", &l, VTS_ERR_BAD_INPUT,
         "'s.obj':5: texture index 3 in '1/3' out of range (2 texcoords defined)"));
     VT_CHECK(offset_fixture_expect_error(
-        "v 0 0 0\nvt 0 0\nusemtl a\nf 1/1 1/-2 1/1\n", &l, VT_ERR_BAD_INPUT,
+        "v 0 0 0\nvt 0 0\nusemtl a\nf 1/1 1/-2 1/1\n", &l, VTS_ERR_BAD_INPUT,
         "'s.obj':4: texture index -2 in '1/-2' out of range (1 texcoords defined)"));
     VT_CHECK(offset_fixture_expect_error(
-        "v 0 0 0\nvt 0 0\nusemtl a\nf 2/1 1/1 1/1\n", &l, VT_ERR_BAD_INPUT,
+        "v 0 0 0\nvt 0 0\nusemtl a\nf 2/1 1/1 1/1\n", &l, VTS_ERR_BAD_INPUT,
         "'s.obj':4: vertex index 2 in '2/1' out of range (1 vertices defined)"));
     VT_CHECK(offset_fixture_expect_error(
-        "v 0 0 0\nvt 0 0\nusemtl a\nf 1/0 1/1 1/1\n", &l, VT_ERR_BAD_INPUT,
+        "v 0 0 0\nvt 0 0\nusemtl a\nf 1/0 1/1 1/1\n", &l, VTS_ERR_BAD_INPUT,
         "'s.obj':4: texture index 0 in '1/0' (OBJ indices start at 1)"));
     VT_CHECK(offset_fixture_expect_error("v 0 0 0\nvt 0 0\nusemtl a\nf 1/x 1/1 1/1\n", &l,
-                                         VT_ERR_BAD_INPUT, "'s.obj':4: bad texture index '1/x'"));
-    VT_CHECK(offset_fixture_expect_error("v 0 0 0\nvt 0.5 nan\n", &l, VT_ERR_BAD_INPUT,
+                                         VTS_ERR_BAD_INPUT, "'s.obj':4: bad texture index '1/x'"));
+    VT_CHECK(offset_fixture_expect_error("v 0 0 0\nvt 0.5 nan\n", &l, VTS_ERR_BAD_INPUT,
                                          "'s.obj':2: bad number 'nan' in 'vt'"));
-    VT_CHECK(offset_fixture_expect_error("v 0 0 0\nvt 0.5 \\\n inf\n", &l, VT_ERR_BAD_INPUT,
+    VT_CHECK(offset_fixture_expect_error("v 0 0 0\nvt 0.5 \\\n inf\n", &l, VTS_ERR_BAD_INPUT,
                                          "'s.obj':2: bad number 'inf' in 'vt'"));
-    VT_CHECK(offset_fixture_expect_error("vt 1e999 0\n", &l, VT_ERR_BAD_INPUT,
+    VT_CHECK(offset_fixture_expect_error("vt 1e999 0\n", &l, VTS_ERR_BAD_INPUT,
                                          "'s.obj':1: bad number '1e999' in 'vt'"));
-    VT_CHECK(offset_fixture_expect_error("vt 0 0 0 0\n", &l, VT_ERR_BAD_INPUT,
+    VT_CHECK(offset_fixture_expect_error("vt 0 0 0 0\n", &l, VTS_ERR_BAD_INPUT,
                                          "'s.obj':1: 'vt' needs 1 to 3 numbers"));
-    VT_CHECK(offset_fixture_expect_error("vt\n", &l, VT_ERR_BAD_INPUT,
+    VT_CHECK(offset_fixture_expect_error("vt\n", &l, VTS_ERR_BAD_INPUT,
                                          "'s.obj':1: 'vt' needs 1 to 3 numbers"));
     VT_CHECK(offset_fixture_expect_error(
-        "v 0 0 0\nvt 0 0\nusemtl a\nusemtl zz top\nf 1/1 1/1 1/1\n", &l, VT_ERR_BAD_INPUT,
+        "v 0 0 0\nvt 0 0\nusemtl a\nusemtl zz top\nf 1/1 1/1 1/1\n", &l, VTS_ERR_BAD_INPUT,
         "'s.obj':5: material 'zz top' (usemtl on line 4) is not in 'atlas.json'"));
     VT_CHECK(
-        offset_fixture_expect_error("v 0 0 0\nvt 0 0\nf 1/1 1/1 1/1\n", &l, VT_ERR_BAD_INPUT,
+        offset_fixture_expect_error("v 0 0 0\nvt 0 0\nf 1/1 1/1 1/1\n", &l, VTS_ERR_BAD_INPUT,
                                     "'s.obj':3: face with texture coordinates before any usemtl"));
     VT_CHECK(offset_fixture_expect_error(
-        "v 0 0 0\nvt 0 0\nvt 1.5 0.25\nusemtl b\nf 1/1 1/1 1/2\n", &l, VT_ERR_BAD_INPUT,
+        "v 0 0 0\nvt 0 0\nvt 1.5 0.25\nusemtl b\nf 1/1 1/1 1/2\n", &l, VTS_ERR_BAD_INPUT,
         "'s.obj':5: vt 2 (1.5 0.25) is outside the UV range of material 'b' in 'atlas.json' (u 0..1, v 0..1)"));
     VT_CHECK(offset_fixture_expect_error(
-        "v 0 0 0\nvt 0 -0.001\nusemtl a\nf 1/1 1/1 1/1\n", &l, VT_ERR_BAD_INPUT,
+        "v 0 0 0\nvt 0 -0.001\nusemtl a\nf 1/1 1/1 1/1\n", &l, VTS_ERR_BAD_INPUT,
         "'s.obj':4: vt 1 (0 -0.001) is outside the UV range of material 'a' in 'atlas.json' (u 0..1, v 0..1)"));
-    VT_CHECK(offset_fixture_expect_error("v 0 0 0\nf 1 1\n", &l, VT_ERR_BAD_INPUT,
+    VT_CHECK(offset_fixture_expect_error("v 0 0 0\nf 1 1\n", &l, VTS_ERR_BAD_INPUT,
                                          "'s.obj':2: face with 2 corners (needs 3)"));
-    VT_CHECK(offset_fixture_expect_error("v 0 0 0\nmtllib\n", &l, VT_ERR_BAD_INPUT,
+    VT_CHECK(offset_fixture_expect_error("v 0 0 0\nmtllib\n", &l, VTS_ERR_BAD_INPUT,
                                          "'s.obj':2: mtllib without a file name"));
     struct membuf out = {0};
-    struct vt_error err;
+    struct vts_error err;
     struct vt_offset_options opt;
     vt_offset_options_default(&opt);
     struct vt_offset_sink sink = {offset_fixture_write, &out};
     static const char nul_text[] = "v 0 0 0\n# a \\\nb\0c\n";
     int rc = vt_offset_rewrite_memory(nul_text, sizeof nul_text - 1, "n.obj", &l, &opt, &sink, NULL,
                                       &err);
-    VT_CHECK_INT_EQ(rc, VT_ERR_BAD_INPUT);
+    VT_CHECK_INT_EQ(rc, VTS_ERR_BAD_INPUT);
     VT_CHECK(strcmp(err.message, "'n.obj':3: NUL byte in a text line") == 0);
     VT_CHECK_INT_EQ(out.len, 0);
     rc = vt_offset_rewrite("/nonexistent/s.obj", &l, &opt, &sink, NULL, &err);
-    VT_CHECK_INT_EQ(rc, VT_ERR_IO);
+    VT_CHECK_INT_EQ(rc, VTS_ERR_IO);
     VT_CHECK(strcmp(err.message, "cannot open '/nonexistent/s.obj': No such file or directory") ==
              0);
     /* a line over the limit */
     opt.limits.max_line_bytes = 16;
     rc = vt_offset_rewrite_memory("v 0 0 0\nvt 0.5 0.5 # a long comment\n", 38, "l.obj", &l, &opt,
                                   &sink, NULL, &err);
-    VT_CHECK_INT_EQ(rc, VT_ERR_LIMIT);
+    VT_CHECK_INT_EQ(rc, VTS_ERR_LIMIT);
     VT_CHECK(strcmp(err.message, "'l.obj':2: line longer than the limit of 16 bytes") == 0);
     free(out.data);
     vt_layout_release(&l);
@@ -229,7 +229,7 @@ struct face_list {
 };
 
 static int collect_face(void *user, const struct vt_obj *obj, const struct vt_obj_face *face,
-                        struct vt_error *err)
+                        struct vts_error *err)
 {
     struct face_list *f = user;
     (void)obj, (void)err;
@@ -301,7 +301,7 @@ static void random_scenes_agree_with_the_obj_reader(void)
         }
         struct membuf out;
         struct vt_offset_stats s;
-        struct vt_error err;
+        struct vts_error err;
         int rc = offset_fixture_rewrite(text, &l, 12, &out, &s, &err);
         if (rc != 0) {
             fprintf(stderr, "round %d: %s\n", round, err.message);
@@ -378,7 +378,7 @@ static void file_and_memory_agree(void)
     struct membuf a = {0}, b = {0};
     struct vt_offset_sink sa = {offset_fixture_write, &a}, sb = {offset_fixture_write, &b};
     struct vt_offset_stats st_a, st_b;
-    struct vt_error err;
+    struct vts_error err;
     VT_CHECK_INT_EQ(vt_offset_rewrite(path, &l, &opt, &sa, &st_a, &err), 0);
     VT_CHECK_INT_EQ(vt_offset_rewrite_memory(text, len, path, &l, &opt, &sb, &st_b, &err), 0);
     VT_CHECK(a.len == b.len && a.len > len && memcmp(a.data, b.data, a.len) == 0);
@@ -393,7 +393,7 @@ static void file_and_memory_agree(void)
     fclose(f);
     free(a.data);
     a = (struct membuf){0};
-    VT_CHECK_INT_EQ(vt_offset_rewrite(path, &l, &opt, &sa, NULL, &err), VT_ERR_LIMIT);
+    VT_CHECK_INT_EQ(vt_offset_rewrite(path, &l, &opt, &sa, NULL, &err), VTS_ERR_LIMIT);
     char want[256];
     snprintf(want, sizeof want, "'%s':2: line longer than the limit of 1048576 bytes", path);
     VT_CHECK(strcmp(err.message, want) == 0);

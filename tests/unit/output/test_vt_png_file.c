@@ -92,7 +92,7 @@ static unsigned char *read_bytes(const char *path, size_t *len)
  */
 static int write_png(const char *path, uint32_t w, uint32_t h, uint32_t channels, uint32_t depth,
                      const unsigned char *pixels, size_t stride, uint32_t chunk_rows,
-                     struct vt_error *err)
+                     struct vts_error *err)
 {
     struct vt_png_file_writer *wr = vt_png_file_writer_create(path, w, h, channels, depth, err);
     if (!wr)
@@ -131,7 +131,7 @@ static void writer_round_trips_rgba8_in_row_chunks(void)
     unsigned char *pixels = malloc(stride * h);
     rng_state = 1;
     rng_fill(pixels, stride * h);
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     const char *path = test_path("rgba8.png");
     VT_CHECK_INT_EQ(write_png(path, w, h, 4, 8, pixels, stride, 3, &err), 0);
     struct vt_image img;
@@ -150,7 +150,7 @@ static void writer_round_trips_gray16(void)
     rng_state = 2;
     rng_fill(pixels, sizeof *pixels * w * h);
     pixels[0] = 0x0102; /* bytes that differ, so a swap shows */
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     const char *path = test_path("gray16.png");
     VT_CHECK_INT_EQ(write_png(path, w, h, 1, 16, (unsigned char *)pixels, w * 2, 2, &err), 0);
     struct vt_image img;
@@ -173,16 +173,16 @@ static void writer_round_trips_gray16(void)
 static void writer_destroyed_unfinished_leaves_no_file(void)
 {
     unsigned char row[40 * 3] = {0};
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     const char *path = test_path("unfinished.png");
     struct vt_png_file_writer *w = vt_png_file_writer_create(path, 40, 4, 3, 8, &err);
     VT_CHECK(w != NULL);
     VT_CHECK_INT_EQ(vt_png_file_writer_rows(w, row, 1, sizeof row, &err), 0);
     VT_CHECK_INT_EQ(vt_png_file_writer_rows(w, row, 1, 0, &err), 0);
-    VT_CHECK_INT_EQ(vt_png_file_writer_finish(w, &err), VT_ERR_ARG); /* 2 of 4 rows */
+    VT_CHECK_INT_EQ(vt_png_file_writer_finish(w, &err), VTS_ERR_ARG); /* 2 of 4 rows */
     VT_CHECK_STR_CONTAINS(err.message, "2 of 4 rows");
-    VT_CHECK_INT_EQ(vt_png_file_writer_rows(w, row, 3, sizeof row, &err), VT_ERR_ARG);
-    VT_CHECK_INT_EQ(vt_png_file_writer_rows(w, row, 2, sizeof row - 1, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(vt_png_file_writer_rows(w, row, 3, sizeof row, &err), VTS_ERR_ARG);
+    VT_CHECK_INT_EQ(vt_png_file_writer_rows(w, row, 2, sizeof row - 1, &err), VTS_ERR_ARG);
     vt_png_file_writer_destroy(w);
     VT_CHECK(!file_exists(path));
     VT_CHECK_INT_EQ(dir_entry_count(), 0);
@@ -198,7 +198,7 @@ static void writer_keeps_previous_file_until_finish(void)
     const char *path = test_path("previous.png");
     write_bytes(path, "old", 3);
     unsigned char row[2 * 2] = {1, 2, 3, 4};
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vt_png_file_writer *w = vt_png_file_writer_create(path, 2, 1, 2, 8, &err);
     VT_CHECK_INT_EQ(vt_png_file_writer_rows(w, row, 1, 0, &err), 0);
     vt_png_file_writer_destroy(w);
@@ -218,16 +218,16 @@ static void writer_into_missing_directory_fails_with_path(void)
 {
     char path[512];
     snprintf(path, sizeof path, "%s/no-such-dir/out.png", test_dir);
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     VT_CHECK(vt_png_file_writer_create(path, 4, 4, 4, 8, &err) == NULL);
-    VT_CHECK_INT_EQ(err.status, VT_ERR_IO);
+    VT_CHECK_INT_EQ(err.status, VTS_ERR_IO);
     VT_CHECK_STR_CONTAINS(err.message, path);
     VT_CHECK(vt_png_file_writer_create(path, 0, 4, 4, 8, &err) == NULL);
-    VT_CHECK_INT_EQ(err.status, VT_ERR_ARG);
+    VT_CHECK_INT_EQ(err.status, VTS_ERR_ARG);
     VT_CHECK(vt_png_file_writer_create(path, 4, 4, 5, 8, &err) == NULL);
-    VT_CHECK_INT_EQ(err.status, VT_ERR_ARG);
+    VT_CHECK_INT_EQ(err.status, VTS_ERR_ARG);
     VT_CHECK(vt_png_file_writer_create(path, 4, 4, 4, 12, &err) == NULL);
-    VT_CHECK_INT_EQ(err.status, VT_ERR_ARG);
+    VT_CHECK_INT_EQ(err.status, VTS_ERR_ARG);
 }
 
 /* A file size limit makes write() fail (EFBIG) the way a full disk does (ENOSPC). */
@@ -243,12 +243,12 @@ static void writer_reports_write_errors_with_path(void)
     limit.rlim_cur = 256 * 1024;
     void (*old_handler)(int) = signal(SIGXFSZ, SIG_IGN);
     VT_CHECK_INT_EQ(setrlimit(RLIMIT_FSIZE, &limit), 0);
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     const char *path = test_path("too-big.png");
     int rc = write_png(path, w, h, 4, 8, pixels, (size_t)w * 4, 64, &err);
     setrlimit(RLIMIT_FSIZE, &old_limit);
     signal(SIGXFSZ, old_handler);
-    VT_CHECK_INT_EQ(rc, VT_ERR_IO);
+    VT_CHECK_INT_EQ(rc, VTS_ERR_IO);
     VT_CHECK_STR_CONTAINS(err.message, path);
     VT_CHECK(!file_exists(path));
     VT_CHECK_INT_EQ(dir_entry_count(), 0);
@@ -294,7 +294,7 @@ static const unsigned char fixture_huge_header[] = {
 
 /* Writes data to a file and reads it back with vt_png_file_read(). */
 static int read_fixture(const char *name, const unsigned char *data, size_t len,
-                        struct vt_image *img, struct vt_error *err)
+                        struct vt_image *img, struct vts_error *err)
 {
     const char *path = test_path(name);
     write_bytes(path, data, len);
@@ -306,7 +306,7 @@ static int read_fixture(const char *name, const unsigned char *data, size_t len,
 static void reader_keeps_16bit_samples_in_host_order(void)
 {
     struct vt_image img;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     VT_CHECK_INT_EQ(
         read_fixture("g16.png", fixture_gray16_2x1, sizeof fixture_gray16_2x1, &img, &err), 0);
     VT_CHECK(img.width == 2 && img.height == 1 && img.channels == 1 &&
@@ -319,7 +319,7 @@ static void reader_keeps_16bit_samples_in_host_order(void)
 static void reader_expands_palette_transparency_and_low_bit_gray(void)
 {
     struct vt_image img;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     VT_CHECK_INT_EQ(read_fixture("pal.png", fixture_palette_trns_4x1,
                                  sizeof fixture_palette_trns_4x1, &img, &err),
                     0);
@@ -337,20 +337,20 @@ static void reader_expands_palette_transparency_and_low_bit_gray(void)
 static void reader_rejects_missing_and_non_png_files(void)
 {
     struct vt_image img;
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     const char *path = test_path("missing.png");
-    VT_CHECK_INT_EQ(vt_png_file_read(path, &img, &err), VT_ERR_IO);
+    VT_CHECK_INT_EQ(vt_png_file_read(path, &img, &err), VTS_ERR_IO);
     VT_CHECK_STR_CONTAINS(err.message, path);
     VT_CHECK(img.pixels == NULL);
     VT_CHECK_INT_EQ(read_fixture("text.png", (const unsigned char *)"hello, world", 12, &img, &err),
-                    VT_ERR_BAD_INPUT);
+                    VTS_ERR_BAD_INPUT);
     VT_CHECK_STR_CONTAINS(err.message, "text.png': not a PNG file");
     VT_CHECK_INT_EQ(read_fixture("empty.png", (const unsigned char *)"", 0, &img, &err),
-                    VT_ERR_BAD_INPUT);
+                    VTS_ERR_BAD_INPUT);
     VT_CHECK_STR_CONTAINS(err.message, "not a PNG file");
     VT_CHECK_INT_EQ(
         read_fixture("huge.png", fixture_huge_header, sizeof fixture_huge_header, &img, &err),
-        VT_ERR_LIMIT);
+        VTS_ERR_LIMIT);
     VT_CHECK_STR_CONTAINS(err.message, "huge.png");
     VT_CHECK(img.pixels == NULL);
 }
@@ -361,7 +361,7 @@ static void reader_rejects_truncated_files(void)
     unsigned char pixels[37 * 11 * 3];
     rng_state = 4;
     rng_fill(pixels, sizeof pixels);
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     const char *path = test_path("whole.png");
     VT_CHECK_INT_EQ(write_png(path, w, h, 3, 8, pixels, w * 3, 4, &err), 0);
     size_t len = 0;
@@ -371,7 +371,7 @@ static void reader_rejects_truncated_files(void)
     for (size_t cut = 8; file && cut < len; cut += 7) {
         struct vt_image img;
         int rc = read_fixture("cut.png", file, cut, &img, &err);
-        if (rc != VT_ERR_BAD_INPUT || !strstr(err.message, "cut.png") || img.pixels) {
+        if (rc != VTS_ERR_BAD_INPUT || !strstr(err.message, "cut.png") || img.pixels) {
             fprintf(stderr, "  cut %zu of %zu: rc %d '%s'\n", cut, len, rc, err.message);
             failures++;
         }

@@ -36,28 +36,28 @@ static void level_counts_match_halving_with_ceiling(void)
 static void geometry_check_rejects_each_bad_field(void)
 {
     struct vts_geometry good = {1000, 600, 248, 4, 256, 3, 2, 0};
-    struct vt_error err;
+    struct vts_error err;
     VT_CHECK_INT_EQ(vts_geometry_check(&good, &err), 0);
     struct vts_geometry g = good;
     g.tile_payload_px = 255;
-    VT_CHECK_INT_EQ(vts_geometry_check(&g, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(vts_geometry_check(&g, &err), VTS_ERR_ARG);
     VT_CHECK_STR_CONTAINS(err.message, "payload 255");
     g = good;
     g.level_count = 5;
-    VT_CHECK_INT_EQ(vts_geometry_check(&g, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(vts_geometry_check(&g, &err), VTS_ERR_ARG);
     g = good;
     g.width = 0;
-    VT_CHECK_INT_EQ(vts_geometry_check(&g, &err), VT_ERR_LIMIT);
+    VT_CHECK_INT_EQ(vts_geometry_check(&g, &err), VTS_ERR_LIMIT);
     g = good;
     g.layer_count = VTS_MAX_LAYERS + 1;
-    VT_CHECK_INT_EQ(vts_geometry_check(&g, &err), VT_ERR_LIMIT);
+    VT_CHECK_INT_EQ(vts_geometry_check(&g, &err), VTS_ERR_LIMIT);
     g = good;
     g.border_px = 300;
     g.tile_payload_px = 848;
-    VT_CHECK_INT_EQ(vts_geometry_check(&g, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(vts_geometry_check(&g, &err), VTS_ERR_ARG);
     /* 2^30 square with 1 px tiles: far more than 2^32 tiles */
     struct vts_geometry huge = {1u << 30, 1u << 30, 1, 0, 1, 31, 1, 0};
-    VT_CHECK_INT_EQ(vts_geometry_check(&huge, &err), VT_ERR_LIMIT);
+    VT_CHECK_INT_EQ(vts_geometry_check(&huge, &err), VTS_ERR_LIMIT);
 }
 
 static void crc32c_matches_published_check_values(void)

@@ -87,7 +87,7 @@ static void round_trip_keeps_every_header_field_and_tile(void)
     path_in_tmp(path, sizeof path, "rt.vts");
     struct vts_layer layers[2];
     make_layers(layers);
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vts_writer *w = vts_writer_create(path, &geo3x2, layers, &err);
     VT_CHECK(w != NULL);
     VT_CHECK_INT_EQ(write_all(w, &geo3x2), 0);
@@ -132,15 +132,15 @@ static void round_trip_keeps_every_header_field_and_tile(void)
     VT_CHECK_INT_EQ(stored, st.tiles_stored);
     VT_CHECK(st.tiles_shared > 10);
 
-    struct vt_error rerr;
+    struct vts_error rerr;
     size_t len;
     unsigned char small[8];
     VT_CHECK_INT_EQ(vts_store_read(s, 0, 0, 9, 0, small, sizeof small, &len, 0, &rerr),
-                    VT_ERR_RANGE);
+                    VTS_ERR_RANGE);
     VT_CHECK_INT_EQ(vts_store_read(s, 0, 4, 0, 0, small, sizeof small, &len, 0, &rerr),
-                    VT_ERR_RANGE);
+                    VTS_ERR_RANGE);
     VT_CHECK_INT_EQ(vts_store_read(s, 0, 0, 0, 0, small, sizeof small, &len, 0, &rerr),
-                    VT_ERR_LIMIT);
+                    VTS_ERR_LIMIT);
     vts_close(s);
 }
 
@@ -291,22 +291,22 @@ static void writer_rejects_bad_puts(void)
     path_in_tmp(path, sizeof path, "bad.vts");
     struct vts_layer layers[2];
     make_layers(layers);
-    struct vt_error err;
+    struct vts_error err;
     struct vts_writer *w = vts_writer_create(path, &geo3x2, layers, &err);
     VT_CHECK(w != NULL);
     if (!w)
         return;
     unsigned char b[4] = {1, 2, 3, 4};
     VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 0, 0, b, 4, &err), 0);
-    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 0, 0, b, 4, &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 0, 0, b, 4, &err), VTS_ERR_ARG);
     VT_CHECK_STR_CONTAINS(err.message, "put twice");
-    VT_CHECK_INT_EQ(vts_writer_put(w, 2, 0, 0, 0, b, 4, &err), VT_ERR_RANGE);
-    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 4, 0, 0, b, 4, &err), VT_ERR_RANGE);
-    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 9, 0, b, 4, &err), VT_ERR_RANGE);
-    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 0, 5, b, 4, &err), VT_ERR_RANGE);
-    VT_CHECK_INT_EQ(vts_writer_set_meta(w, "bad key", "x", &err), VT_ERR_ARG);
-    VT_CHECK_INT_EQ(vts_writer_set_meta(w, "", "x", &err), VT_ERR_ARG);
-    VT_CHECK_INT_EQ(vts_writer_set_meta(w, "a=b", "x", &err), VT_ERR_ARG);
+    VT_CHECK_INT_EQ(vts_writer_put(w, 2, 0, 0, 0, b, 4, &err), VTS_ERR_RANGE);
+    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 4, 0, 0, b, 4, &err), VTS_ERR_RANGE);
+    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 9, 0, b, 4, &err), VTS_ERR_RANGE);
+    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 0, 5, b, 4, &err), VTS_ERR_RANGE);
+    VT_CHECK_INT_EQ(vts_writer_set_meta(w, "bad key", "x", &err), VTS_ERR_ARG);
+    VT_CHECK_INT_EQ(vts_writer_set_meta(w, "", "x", &err), VTS_ERR_ARG);
+    VT_CHECK_INT_EQ(vts_writer_set_meta(w, "a=b", "x", &err), VTS_ERR_ARG);
     vts_writer_destroy(w); /* no finish: nothing left behind */
     VT_CHECK(access(path, F_OK) != 0);
 
@@ -327,7 +327,7 @@ static void size_limit_stops_the_store(void)
     path_in_tmp(path, sizeof path, "limit.vts");
     struct vts_layer layers[2];
     make_layers(layers);
-    struct vt_error err;
+    struct vts_error err;
     struct vts_writer *w = vts_writer_create(path, &geo3x2, layers, &err);
     VT_CHECK(w != NULL);
     if (!w)
@@ -336,10 +336,10 @@ static void size_limit_stops_the_store(void)
     unsigned char a[6] = {1, 2, 3, 4, 5, 6}, b[6] = {6, 5, 4, 3, 2, 1};
     VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 0, 0, a, 6, &err), 0);
     VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 1, 0, a, 6, &err), 0); /* shared: no new bytes */
-    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 2, 0, b, 6, &err), VT_ERR_LIMIT);
+    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 2, 0, b, 6, &err), VTS_ERR_LIMIT);
     VT_CHECK_STR_CONTAINS(err.message, "limit.vts' would hold more than 10 bytes of tiles");
-    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 0, 1, a, 6, &err), VT_ERR_LIMIT);
-    VT_CHECK_INT_EQ(vts_writer_finish(w, &err), VT_ERR_LIMIT);
+    VT_CHECK_INT_EQ(vts_writer_put(w, 0, 0, 0, 1, a, 6, &err), VTS_ERR_LIMIT);
+    VT_CHECK_INT_EQ(vts_writer_finish(w, &err), VTS_ERR_LIMIT);
     vts_writer_destroy(w);
     VT_CHECK(access(path, F_OK) != 0);
 }
@@ -390,7 +390,7 @@ static void store_without_payloads_opens(void)
     struct vts_writer *w = vts_writer_create(path, &g, &layer, NULL);
     VT_CHECK(w && vts_writer_finish(w, NULL) == 0);
     vts_writer_destroy(w);
-    struct vt_error err = {0};
+    struct vts_error err = {0};
     struct vts_store *s = vts_open(path, &err);
     VT_CHECK(s != NULL);
     if (s) {
@@ -400,6 +400,56 @@ static void store_without_payloads_opens(void)
     } else {
         fprintf(stderr, "%s\n", err.message);
     }
+}
+
+/* The API's one rule for out-of-range arguments (include/vts/vts.h): NULL from pointer accessors,
+ * VTS_ERR_RANGE and a zeroed output from int ones; never a clamp. */
+static void out_of_range_arguments_follow_one_rule(void)
+{
+    char path[300];
+    path_in_tmp(path, sizeof path, "range.vts");
+    struct vts_geometry g = {300, 200, 62, 1, 64, 0, 1, 0};
+    g.level_count = vts_full_level_count(g.width, g.height, g.tile_content_px);
+    struct vts_layer layer = {VTS_CODEC_RAW, 1, VTS_SAMPLE_U8, VTS_COLOUR_DATA, 0, 0, "d"};
+    struct vts_writer *w = vts_writer_create(path, &g, &layer, NULL);
+    VT_CHECK(w && vts_writer_finish(w, NULL) == 0);
+    vts_writer_destroy(w);
+    struct vts_store *s = vts_open(path, NULL);
+    VT_CHECK(s != NULL);
+    if (!s)
+        return;
+    struct vts_level lv;
+    VT_CHECK_INT_EQ(vts_store_level(s, g.level_count - 1, &lv), 0);
+    VT_CHECK_INT_EQ(lv.tiles_x, 1);
+    memset(&lv, 0xff, sizeof lv);
+    VT_CHECK_INT_EQ(vts_store_level(s, g.level_count, &lv), VTS_ERR_RANGE);
+    VT_CHECK_INT_EQ(lv.width, 0);
+    VT_CHECK_INT_EQ(lv.tiles_x, 0);
+    memset(&lv, 0xff, sizeof lv);
+    VT_CHECK_INT_EQ(vts_geometry_level(vts_store_geometry(s), 99, &lv), VTS_ERR_RANGE);
+    VT_CHECK_INT_EQ(lv.height, 0);
+    VT_CHECK(vts_store_layer(s, 0) != NULL);
+    VT_CHECK(vts_store_layer(s, 1) == NULL);
+    VT_CHECK(vts_store_entry(s, vts_store_tile_count(s) - 1) != NULL);
+    VT_CHECK(vts_store_entry(s, vts_store_tile_count(s)) == NULL);
+    VT_CHECK(vts_store_meta_key(s, vts_store_meta_count(s)) == NULL);
+    VT_CHECK(vts_store_meta_value(s, vts_store_meta_count(s)) == NULL);
+    struct vts_tile_entry e;
+    struct vts_error err = {0};
+    VT_CHECK_INT_EQ(vts_store_tile(s, 0, 0, 5, 0, &e, &err), VTS_ERR_RANGE);
+    VT_CHECK_STR_CONTAINS(err.message, "has no tile 5,0");
+    vts_close(s);
+}
+
+static void version_matches_the_header(void)
+{
+    VT_CHECK_INT_EQ(vts_version(), VTS_VERSION_NUMBER);
+    char expect[32];
+    snprintf(expect, sizeof expect, "%d.%d.%d", VTS_VERSION_MAJOR, VTS_VERSION_MINOR,
+             VTS_VERSION_PATCH);
+    VT_CHECK(strcmp(vts_version_string(), expect) == 0);
+    VT_CHECK(strcmp(vts_status_name(VTS_ERR_RANGE), "range") == 0);
+    VT_CHECK(strcmp(vts_status_name(42), "unknown") == 0);
 }
 
 int main(void)
@@ -415,6 +465,8 @@ int main(void)
     VT_RUN(size_limit_stops_the_store);
     VT_RUN(finish_replaces_an_old_file_and_leaves_no_temporaries);
     VT_RUN(store_without_payloads_opens);
+    VT_RUN(out_of_range_arguments_follow_one_rule);
+    VT_RUN(version_matches_the_header);
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
     if (system(cmd) != 0)
