@@ -1,8 +1,8 @@
 /* The const registry of the codecs compiled into this build. */
 #include <string.h>
 
+#include "internal/vt_codec_impl.h"
 #include "vt_codec.h"
-#include "vt_codec_impl.h"
 
 /* Stable order (vt-info and --help list codecs in it). A new codec is one line here. */
 static const struct vt_codec *const vt_codecs[] = {

@@ -31,11 +31,11 @@
 #define STB_DXT_IMPLEMENTATION
 #include <stb/stb_dxt.h>
 
+#include "internal/vt_codec_impl.h"
+#include "internal/vt_squish_shim.h"
 #include "vt_checked.h"
 #include "vt_codec.h"
-#include "vt_codec_impl.h"
 #include "vt_error.h"
-#include "vt_squish_shim.h"
 
 #define BC_BLOCK_PX     4
 #define BC_EFFORT_FAST  0

@@ -25,8 +25,8 @@
 #include <stdlib.h>
 #include <turbojpeg.h>
 
+#include "internal/vt_codec_impl.h"
 #include "vt_codec.h"
-#include "vt_codec_impl.h"
 #include "vt_error.h"
 
 #define JPG_DEFAULT_QUALITY 85

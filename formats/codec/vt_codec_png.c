@@ -14,9 +14,9 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "internal/vt_codec_impl.h"
 #include "vt_checked.h"
 #include "vt_codec.h"
-#include "vt_codec_impl.h"
 #include "vt_error.h"
 
 #define PNG_DEFAULT_LEVEL  2

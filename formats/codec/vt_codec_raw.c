@@ -5,9 +5,9 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "internal/vt_codec_impl.h"
 #include "vt_checked.h"
 #include "vt_codec.h"
-#include "vt_codec_impl.h"
 #include "vt_error.h"
 
 /* Payload bytes of a width x height tile, or false when the shape is invalid or too large. */

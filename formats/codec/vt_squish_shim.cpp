@@ -1,7 +1,7 @@
 // The only C++ on the BC path: libsquish behind an extern "C" API. Exceptions stop here (STYLE 8).
 #include <squish.h>
 
-#include "vt_squish_shim.h"
+#include "internal/vt_squish_shim.h"
 
 static int vt_squish_shim_squish_flags(unsigned flags)
 {

@@ -7,9 +7,9 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "internal/vt_input_impl.h"
 #include "vt_checked.h"
 #include "vt_error.h"
-#include "vt_input_impl.h"
 
 enum input_kind { INPUT_OTHER, INPUT_TIFF, INPUT_PNG, INPUT_JPEG, INPUT_EXR };
 

@@ -19,9 +19,9 @@
 
 #include <OpenEXR/openexr.h>
 
+#include "internal/vt_input_impl.h"
 #include "vt_checked.h"
 #include "vt_error.h"
-#include "vt_input_impl.h"
 
 struct exr_input {
     int fd;

@@ -19,8 +19,8 @@
 #include <jerror.h>
 #include <jpeglib.h>
 
+#include "internal/vt_input_impl.h"
 #include "vt_error.h"
-#include "vt_input_impl.h"
 
 /* Memory a decode may use before it is refused: a progressive JPEG keeps every coefficient of the
  * image (2 bytes per sample), so this admits progressive 4:2:0 images up to ~26k x 26k texels and

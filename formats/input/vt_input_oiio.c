@@ -10,8 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "internal/vt_input_impl.h"
 #include "vt_error.h"
-#include "vt_input_impl.h"
 
 #ifndef VT_HAVE_OIIO
 

@@ -15,9 +15,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "internal/vt_input_impl.h"
 #include "vt_checked.h"
 #include "vt_error.h"
-#include "vt_input_impl.h"
 
 #define PNG_INPUT_MAX_EDGE 0x7fffffffu /* PNG_UINT_31_MAX */
 

@@ -12,9 +12,9 @@
 #include <string.h>
 #include <tiffio.h>
 
+#include "internal/vt_input_impl.h"
 #include "vt_checked.h"
 #include "vt_error.h"
-#include "vt_input_impl.h"
 
 enum tiff_layout { TIFF_TILES, TIFF_STRIPS, TIFF_SCANLINES };
 

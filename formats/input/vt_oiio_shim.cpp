@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "vt_input_impl.h"
+#include "internal/vt_input_impl.h"
 #include "vts.h"
 
 #define VT_OIIO_EXPORT extern "C" __attribute__((visibility("default")))

@@ -14,7 +14,6 @@
 
 #include "vt_atomic_file.h"
 #include "vt_checked.h"
-#include "vt_codec_impl.h"
 #include "vt_error.h"
 
 #define PNG_FILE_MAX_EDGE     0x7fffffffu /* PNG_UINT_31_MAX */

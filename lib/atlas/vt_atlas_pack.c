@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "vt_atlas_skyline.h"
+#include "internal/vt_atlas_skyline.h"
 #include "vt_checked.h"
 #include "vt_error.h"
 

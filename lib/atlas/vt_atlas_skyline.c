@@ -1,6 +1,6 @@
 /* Whole-tile packing for vt-atlas: a bottom-left skyline over tile columns, tried at several
  * atlas widths and two orders (vt_atlas_skyline.h). */
-#include "vt_atlas_skyline.h"
+#include "internal/vt_atlas_skyline.h"
 #include "vt_error.h"
 
 #include <math.h>

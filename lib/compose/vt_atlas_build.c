@@ -5,10 +5,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "vt_atlas_tile.h"
+#include "internal/vt_atlas_tile.h"
+#include "internal/vt_mip_chain.h"
 #include "vt_checked.h"
 #include "vt_error.h"
-#include "vt_mip_chain.h"
 #include "vt_pool.h"
 #include "vts.h"
 

@@ -1,5 +1,5 @@
 /* Texture-chain cache of the atlas compositor (see vt_atlas_cache.h). */
-#include "vt_atlas_cache.h"
+#include "internal/vt_atlas_cache.h"
 #include "vt_error.h"
 
 #include <stdlib.h>

@@ -1,5 +1,5 @@
 /* Mip chain of one atlas entry in one layer (see vt_mip_chain.h). */
-#include "vt_mip_chain.h"
+#include "internal/vt_mip_chain.h"
 
 #include <stdlib.h>
 #include <string.h>

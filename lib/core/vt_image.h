@@ -2,8 +2,10 @@
 #ifndef VT_IMAGE_H
 #define VT_IMAGE_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "vt_error.h"
 #include "vts.h"
@@ -27,6 +29,16 @@ void vt_image_release(struct vt_image *img);
 
 /* Bytes of one texel (channels * sample bytes). */
 size_t vt_image_texel_bytes(const struct vt_image *img);
+
+/* True on a little-endian host (vt_image samples and payload samples are in host order:
+ * little-endian there). */
+static inline bool vt_host_is_little_endian(void)
+{
+    const uint16_t one = 1;
+    unsigned char first;
+    memcpy(&first, &one, 1);
+    return first == 1;
+}
 
 /* Pointer to texel (x, y). */
 static inline void *vt_image_at(const struct vt_image *img, uint32_t x, uint32_t y)

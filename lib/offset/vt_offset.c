@@ -17,11 +17,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "internal/vt_offset_run.h"
+#include "internal/vt_offset_scan.h"
+#include "internal/vt_offset_src.h"
+#include "internal/vt_offset_write.h"
 #include "vt_error.h"
-#include "vt_offset_run.h"
-#include "vt_offset_scan.h"
-#include "vt_offset_src.h"
-#include "vt_offset_write.h"
 #include "vt_uv_text.h"
 
 void vt_offset_options_default(struct vt_offset_options *opt)

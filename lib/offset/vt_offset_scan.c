@@ -1,12 +1,12 @@
 /* Pass 1 of vt-offset (see vt_offset_scan.h). */
-#include "vt_offset_scan.h"
+#include "internal/vt_offset_scan.h"
 
 #include <stdlib.h>
 #include <string.h>
 
+#include "internal/vt_offset_tok.h"
 #include "vt_checked.h"
 #include "vt_error.h"
-#include "vt_offset_tok.h"
 #include "vt_text.h"
 #include "vt_uv_text.h"
 

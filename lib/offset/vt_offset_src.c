@@ -1,5 +1,5 @@
 /* The raw logical line source of vt-offset (see vt_offset_src.h). */
-#include "vt_offset_src.h"
+#include "internal/vt_offset_src.h"
 #include "vt_error.h"
 
 #include <errno.h>

@@ -1,5 +1,5 @@
 /* Tokens of vt-offset's raw lines (see vt_offset_tok.h). */
-#include "vt_offset_tok.h"
+#include "internal/vt_offset_tok.h"
 
 enum vt_offset_keyword vt_offset_tok_keyword(const struct vt_offset_tok *t)
 {

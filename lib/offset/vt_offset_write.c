@@ -1,12 +1,12 @@
 /* Pass 2 of vt-offset (see vt_offset_write.h). */
-#include "vt_offset_write.h"
+#include "internal/vt_offset_write.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "internal/vt_offset_tok.h"
 #include "vt_error.h"
-#include "vt_offset_tok.h"
 #include "vt_text.h"
 #include "vt_uv_text.h"
 

@@ -8,11 +8,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "internal/vts_crc32c.h"
+#include "internal/vts_format.h"
 #include "vt_checked.h"
 #include "vt_error.h"
 #include "vts.h"
-#include "vts_crc32c.h"
-#include "vts_format.h"
 
 #define INDEX_CHUNK_ENTRIES 65536u
 #define MAX_ENTRY_SIZE      4096u /* layer / index entry stride a reader accepts (1.0: 48 / 16) */

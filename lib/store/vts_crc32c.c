@@ -1,4 +1,4 @@
-#include "vts_crc32c.h"
+#include "internal/vts_crc32c.h"
 
 #include <pthread.h>
 #include <stdbool.h>

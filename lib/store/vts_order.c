@@ -1,4 +1,4 @@
-#include "vts_order.h"
+#include "internal/vts_order.h"
 #include "vt_error.h"
 
 #include <stdlib.h>

@@ -13,12 +13,12 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "internal/vts_crc32c.h"
+#include "internal/vts_format.h"
+#include "internal/vts_order.h"
 #include "vt_atomic_file.h"
 #include "vt_checked.h"
 #include "vt_error.h"
-#include "vts_crc32c.h"
-#include "vts_format.h"
-#include "vts_order.h"
 
 #define SLOT_UNSET  0u /* tile never put: stored as empty */
 #define SLOT_EMPTY  1u /* tile put with no payload */

@@ -13,11 +13,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "internal/vts_format.h"
 #include "robust/vts_fixture.h"
 #include "vt_error.h"
 #include "vt_test.h"
 #include "vts.h"
-#include "vts_format.h"
 
 static char tmpdir[256];
 static unsigned char *fixture;

@@ -11,10 +11,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "internal/vts_format.h"
 #include "robust/vts_fixture.h"
 #include "vt_test.h"
 #include "vts.h"
-#include "vts_format.h"
 
 static uint64_t rng_state;
 

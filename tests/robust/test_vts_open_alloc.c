@@ -7,10 +7,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "internal/vts_format.h"
 #include "robust/vts_fixture.h"
 #include "vt_test.h"
 #include "vts.h"
-#include "vts_format.h"
 
 void *__real_malloc(size_t n);
 void *__real_calloc(size_t n, size_t size);

@@ -5,8 +5,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "internal/vts_format.h"
 #include "vt_error.h"
-#include "vts_format.h"
 #include "vts_writer.h"
 
 static const struct vts_geometry geometries[VTS_FIXTURE_COUNT] = {

@@ -1,8 +1,8 @@
 /* CRC re-sealing of .vts images; libc + vts_crc32c only, so that the fuzz target can use it. */
 #include "robust/vts_reseal.h"
 
-#include "vts_crc32c.h"
-#include "vts_format.h"
+#include "internal/vts_crc32c.h"
+#include "internal/vts_format.h"
 
 /* [off, off + len) inside [0, size)? */
 static bool inside(uint64_t off, uint64_t len, size_t size)

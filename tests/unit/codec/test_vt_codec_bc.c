@@ -8,8 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "internal/vt_squish_shim.h"
 #include "vt_codec.h"
-#include "vt_squish_shim.h"
 #include "vt_synth_photo.h"
 #include "vt_test.h"
 #include "vts.h"

@@ -1,10 +1,10 @@
 /* Geometry, CRC-32C and Hilbert order: pure functions with known answers. */
 #include <stdlib.h>
 
+#include "internal/vts_crc32c.h"
+#include "internal/vts_order.h"
 #include "vt_test.h"
 #include "vts.h"
-#include "vts_crc32c.h"
-#include "vts_order.h"
 
 static void level_counts_match_halving_with_ceiling(void)
 {

@@ -1,11 +1,6 @@
-/* Private to formats/: the codec objects the registry in vt_codec.c lists, and small helpers the
- * codec files share. Not installed, not included from outside formats/. */
+/* Private to formats/codec: the codec objects the registry in vt_codec.c lists. */
 #ifndef VT_CODEC_IMPL_H
 #define VT_CODEC_IMPL_H
-
-#include <stdbool.h>
-#include <stdint.h>
-#include <string.h>
 
 #include "vt_codec.h"
 
@@ -15,14 +10,5 @@ extern const struct vt_codec vt_codec_png;  /* vt_codec_png.c: libpng, u8/u16, 1
 extern const struct vt_codec vt_codec_jpeg; /* vt_codec_jpeg.c: TurboJPEG, u8 grey or RGB */
 extern const struct vt_codec vt_codec_bc1;  /* vt_codec_bc.c: BC1/DXT1, u8 RGB(A), 1-bit alpha */
 extern const struct vt_codec vt_codec_bc3;  /* vt_codec_bc.c: BC3/DXT5, u8 RGBA */
-
-/* True on a little-endian host (payload samples and vt_image samples are little-endian there). */
-static inline bool vt_host_is_little_endian(void)
-{
-    const uint16_t one = 1;
-    unsigned char first;
-    memcpy(&first, &one, 1);
-    return first == 1;
-}
 
 #endif
