@@ -19,7 +19,8 @@
 
 #include <OpenEXR/openexr.h>
 
-#include "internal/vt_input_impl.h"
+#include "internal/vt_input_readers.h"
+#include "internal/vt_input_util.h"
 #include "vt_checked.h"
 #include "vt_error.h"
 
@@ -260,8 +261,8 @@ static int exr_input_setup(struct exr_input *t, uint64_t max_pixels, bool *has_a
     return 0;
 }
 
-int vt_input_exr_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                      struct vts_error *err)
+static int exr_open(const char *path, uint64_t max_pixels, struct vt_source *out,
+                    struct vts_error *err)
 {
     struct exr_input *t = calloc(1, sizeof *t);
     if (!t)
@@ -411,3 +412,11 @@ static int exr_input_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_im
     }
     return 0;
 }
+
+static bool exr_sniff(const unsigned char *magic, size_t len)
+{
+    static const unsigned char exr[4] = {0x76, 0x2f, 0x31, 0x01};
+    return len >= 4 && memcmp(magic, exr, 4) == 0;
+}
+
+const struct vt_input_reader vt_input_reader_exr = {"exr", exr_sniff, exr_open};

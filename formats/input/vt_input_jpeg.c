@@ -19,7 +19,8 @@
 #include <jerror.h>
 #include <jpeglib.h>
 
-#include "internal/vt_input_impl.h"
+#include "internal/vt_input_readers.h"
+#include "internal/vt_input_util.h"
 #include "vt_error.h"
 
 /* Memory a decode may use before it is refused: a progressive JPEG keeps every coefficient of the
@@ -202,8 +203,8 @@ static int jpeg_input_check_header(struct jpeg_input *t, uint64_t max_pixels, st
     return 0;
 }
 
-int vt_input_jpeg_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                       struct vts_error *err)
+static int jpeg_open(const char *path, uint64_t max_pixels, struct vt_source *out,
+                     struct vts_error *err)
 {
     struct jpeg_input *t = calloc(1, sizeof *t);
     if (!t)
@@ -289,3 +290,11 @@ static int jpeg_input_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_i
         return jpeg_input_stopped(t, err);
     return 0;
 }
+
+/* SOI followed by the first marker's 0xff. */
+static bool jpeg_sniff(const unsigned char *magic, size_t len)
+{
+    return len >= 3 && magic[0] == 0xff && magic[1] == 0xd8 && magic[2] == 0xff;
+}
+
+const struct vt_input_reader vt_input_reader_jpeg = {"jpeg", jpeg_sniff, jpeg_open};

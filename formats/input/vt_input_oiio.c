@@ -10,13 +10,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal/vt_input_impl.h"
+#include "internal/vt_input_readers.h"
+#include "internal/vt_input_util.h"
+#include "internal/vt_oiio_abi.h"
 #include "vt_error.h"
 
 #ifndef VT_HAVE_OIIO
 
-int vt_input_oiio_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                       struct vts_error *err)
+static int oiio_open(const char *path, uint64_t max_pixels, struct vt_source *out,
+                     struct vts_error *err)
 {
     (void)max_pixels;
     (void)out;
@@ -167,8 +169,8 @@ static int oiio_open_with(struct oiio_input *t, const char *path, uint64_t max_p
     return 0;
 }
 
-int vt_input_oiio_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                       struct vts_error *err)
+static int oiio_open(const char *path, uint64_t max_pixels, struct vt_source *out,
+                     struct vts_error *err)
 {
     struct oiio_input *t = calloc(1, sizeof *t);
     if (!t)
@@ -196,3 +198,5 @@ out_close:
 }
 
 #endif
+
+const struct vt_input_reader vt_input_reader_oiio = {"oiio", NULL, oiio_open};

@@ -15,7 +15,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal/vt_input_impl.h"
+#include "internal/vt_input_readers.h"
+#include "internal/vt_input_util.h"
 #include "vt_checked.h"
 #include "vt_error.h"
 
@@ -181,8 +182,8 @@ static int png_input_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_im
 
 static const struct vt_source_ops png_input_ops = {png_input_read_region, png_input_close};
 
-int vt_input_png_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                      struct vts_error *err)
+static int png_open(const char *path, uint64_t max_pixels, struct vt_source *out,
+                    struct vts_error *err)
 {
     struct png_input *t = calloc(1, sizeof *t);
     if (!t)
@@ -308,3 +309,11 @@ static int png_input_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_im
         return vt_error_set(err, t->error.status, "%s", t->error.message);
     return 0;
 }
+
+static bool png_sniff(const unsigned char *magic, size_t len)
+{
+    static const unsigned char png[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    return len >= 8 && memcmp(magic, png, 8) == 0;
+}
+
+const struct vt_input_reader vt_input_reader_png = {"png", png_sniff, png_open};

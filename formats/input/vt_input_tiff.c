@@ -12,7 +12,8 @@
 #include <string.h>
 #include <tiffio.h>
 
-#include "internal/vt_input_impl.h"
+#include "internal/vt_input_readers.h"
+#include "internal/vt_input_util.h"
 #include "vt_checked.h"
 #include "vt_error.h"
 
@@ -229,8 +230,8 @@ static int tiff_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *
 
 static const struct vt_source_ops tiff_ops = {tiff_read_region, tiff_close};
 
-int vt_input_tiff_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                       struct vts_error *err)
+static int tiff_open(const char *path, uint64_t max_pixels, struct vt_source *out,
+                     struct vts_error *err)
 {
     struct tiff_input *t = calloc(1, sizeof *t);
     if (!t)
@@ -384,3 +385,14 @@ static int tiff_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *
     }
     return 0;
 }
+
+/* "II*\0" / "MM\0*" (classic TIFF) and "II+\0" / "MM\0+" (BigTIFF). */
+static bool tiff_sniff(const unsigned char *magic, size_t len)
+{
+    return len >= 4 && ((magic[0] == 'I' && magic[1] == 'I' && magic[3] == 0 &&
+                         (magic[2] == 42 || magic[2] == 43)) ||
+                        (magic[0] == 'M' && magic[1] == 'M' && magic[2] == 0 &&
+                         (magic[3] == 42 || magic[3] == 43)));
+}
+
+const struct vt_input_reader vt_input_reader_tiff = {"tiff", tiff_sniff, tiff_open};

@@ -1,8 +1,8 @@
 // libvt_oiio.so: the OpenImageIO fallback of formats/input/vt_image_input.c, behind the plain C ABI
-// in vt_input_impl.h. Built as a module and dlopen()ed by vt_input_oiio.c only when a file in a
-// format without a native reader is met, so that the tools never link OpenImageIO. Every exception
-// stops here. Streams with ImageInput (read_scanlines / read_tiles), never ImageBuf, which would
-// decode the whole image. Alpha is left unassociated, as the native readers leave it.
+// in internal/vt_oiio_abi.h. Built as a module and dlopen()ed by vt_input_oiio.c only when a file
+// in a format without a native reader is met, so that the tools never link OpenImageIO. Every
+// exception stops here. Streams with ImageInput (read_scanlines / read_tiles), never ImageBuf,
+// which would decode the whole image. Alpha is left unassociated, as the native readers leave it.
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "internal/vt_input_impl.h"
+#include "internal/vt_oiio_abi.h"
 #include "vts.h"
 
 #define VT_OIIO_EXPORT extern "C" __attribute__((visibility("default")))
