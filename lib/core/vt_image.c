@@ -8,14 +8,14 @@
 
 size_t vt_image_texel_bytes(const struct vt_image *img)
 {
-    return (size_t)img->channels * vts_sample_bytes(img->sample);
+    return (size_t)img->channels * vt_sample_bytes(img->sample);
 }
 
 int vt_image_alloc(struct vt_image *img, uint32_t width, uint32_t height, uint32_t channels,
                    uint32_t sample, struct vts_error *err)
 {
     memset(img, 0, sizeof *img);
-    unsigned sb = vts_sample_bytes(sample);
+    unsigned sb = vt_sample_bytes(sample);
     if (width == 0 || height == 0 || channels < 1 || channels > 4 || sb == 0)
         return vt_error_set(err, VTS_ERR_ARG, "invalid image shape %ux%u, %u channels, sample %u",
                             width, height, channels, sample);

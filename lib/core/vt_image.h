@@ -10,6 +10,23 @@
 #include "vt_error.h"
 #include "vts.h"
 
+/* Bytes per sample of an enum vts_sample, 0 if unknown (what libvts's vts_sample_bytes() returns;
+ * here so that core needs nothing of the store). */
+static inline unsigned vt_sample_bytes(uint32_t sample)
+{
+    switch (sample) {
+    case VTS_SAMPLE_U8:
+        return 1;
+    case VTS_SAMPLE_U16:
+    case VTS_SAMPLE_F16:
+        return 2;
+    case VTS_SAMPLE_F32:
+        return 4;
+    default:
+        return 0;
+    }
+}
+
 /* Interleaved channels; samples in host order (little-endian on every supported machine). */
 struct vt_image {
     uint32_t width, height; /* texels */

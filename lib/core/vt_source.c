@@ -32,7 +32,7 @@ void vt_source_close(struct vt_source *src)
 
 static bool band_opaque(const struct vt_image *b)
 {
-    size_t sb = vts_sample_bytes(b->sample), tb = vt_image_texel_bytes(b);
+    size_t sb = vt_sample_bytes(b->sample), tb = vt_image_texel_bytes(b);
     for (uint32_t y = 0; y < b->height; y++) {
         const unsigned char *row = vt_image_at(b, 0, y);
         for (uint32_t x = 0; x < b->width; x++) {

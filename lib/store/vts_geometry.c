@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "vt_checked.h"
+#include "vt_image.h"
 #include "vt_error.h"
 #include "vts.h"
 
@@ -87,17 +88,7 @@ int vts_geometry_check(const struct vts_geometry *g, struct vts_error *err)
 
 unsigned vts_sample_bytes(uint32_t sample)
 {
-    switch (sample) {
-    case VTS_SAMPLE_U8:
-        return 1;
-    case VTS_SAMPLE_U16:
-    case VTS_SAMPLE_F16:
-        return 2;
-    case VTS_SAMPLE_F32:
-        return 4;
-    default:
-        return 0;
-    }
+    return vt_sample_bytes(sample);
 }
 
 size_t vts_layer_tile_bytes(const struct vts_geometry *g, const struct vts_layer *layer)
