@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal/vt_atlas_tile.h"
+#include "internal/vt_atlas_build_impl.h"
 #include "internal/vt_mip_chain.h"
 #include "vt_checked.h"
 #include "vt_error.h"

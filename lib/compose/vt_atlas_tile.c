@@ -1,5 +1,5 @@
 /* Per-tile compositing of an atlas (see vt_atlas_tile.h and docs/atlas-build.md). */
-#include "internal/vt_atlas_tile.h"
+#include "internal/vt_atlas_build_impl.h"
 #include "vt_error.h"
 
 #include <assert.h>

@@ -17,10 +17,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal/vt_offset_run.h"
-#include "internal/vt_offset_scan.h"
+#include "internal/vt_offset_impl.h"
 #include "internal/vt_offset_src.h"
-#include "internal/vt_offset_write.h"
 #include "vt_error.h"
 #include "vt_uv_text.h"
 

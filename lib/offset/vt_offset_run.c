@@ -1,5 +1,5 @@
 /* The state shared by vt-offset's two passes and its buffered output (see vt_offset_run.h). */
-#include "internal/vt_offset_run.h"
+#include "internal/vt_offset_impl.h"
 
 #include <stdlib.h>
 #include <string.h>

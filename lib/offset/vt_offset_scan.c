@@ -1,5 +1,5 @@
 /* Pass 1 of vt-offset (see vt_offset_scan.h). */
-#include "internal/vt_offset_scan.h"
+#include "internal/vt_offset_impl.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -1,5 +1,5 @@
 /* Pass 2 of vt-offset (see vt_offset_write.h). */
-#include "internal/vt_offset_write.h"
+#include "internal/vt_offset_impl.h"
 
 #include <math.h>
 #include <stdlib.h>

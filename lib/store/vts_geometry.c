@@ -3,8 +3,8 @@
 #include <string.h>
 
 #include "vt_checked.h"
-#include "vt_image.h"
 #include "vt_error.h"
+#include "vt_image.h"
 #include "vts.h"
 
 /* Upper bound on index entries: keeps every product below 2^64 and the index within reason

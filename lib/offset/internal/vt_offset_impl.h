@@ -1,7 +1,8 @@
-/* The state of one vt-offset rewrite, shared by pass 1 (vt_offset_scan.c) and pass 2
- * (vt_offset_write.c), and its buffered output (internal to lib/vt_offset*.c). */
-#ifndef VT_OFFSET_RUN_H
-#define VT_OFFSET_RUN_H
+/* Private state header of module vt_offset: the state of one rewrite, shared by its parts: the
+ * driver (vt_offset.c), pass 1 (vt_offset_scan.c), pass 2 (vt_offset_write.c) and the buffered
+ * output (vt_offset_run.c). */
+#ifndef VT_OFFSET_IMPL_H
+#define VT_OFFSET_IMPL_H
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -81,5 +82,25 @@ bool vt_offset_run_constant_entry(const struct vt_layout *l, const struct vt_lay
 
 /* VTS_ERR_IO: the file changed between the passes (at the current line). */
 int vt_offset_run_changed_error(struct vt_offset_run *r, struct vts_error *err);
+
+/* ---- pass 1 (vt_offset_scan.c): counts v and vn, parses every vt and face, checks each index,
+ * the material of each face with texture coordinates (it must be in the layout) and that each
+ * coordinate lies in the UV range its material covers, and records for every vt the materials of
+ * the faces that use it. ---- */
+
+/* Scans one raw logical line (r->src.line is its number). Returns 0 or a negative status. */
+int vt_offset_scan_line(struct vt_offset_run *r, const unsigned char *line, size_t n,
+                        struct vts_error *err);
+
+/* After pass 1: gives each vt its output index (r->new_index). */
+int vt_offset_scan_number_outputs(struct vt_offset_run *r, struct vts_error *err);
+
+/* ---- pass 2 (vt_offset_write.c): copies the OBJ text line by line to the output, replacing used
+ * vt by their atlas coordinates (one more vt line per extra material), renumbering the texture
+ * indices of f and l lines and renaming usemtl and mtllib (see vt_offset.h). ---- */
+
+/* Writes the rewrite of one raw logical line. Returns 0 or a negative status. */
+int vt_offset_write_line(struct vt_offset_run *r, const unsigned char *line, size_t n,
+                         struct vts_error *err);
 
 #endif

@@ -1,8 +1,9 @@
-/* Per-tile compositing of an atlas (private to lib/, used by vt_atlas_build.c): which entry owns
- * each texel of a level (the owner rule), the coverage-weighted average of texels that several
- * cells or empty space share (mixed texels), and the payload of one tile with its borders. */
-#ifndef VT_ATLAS_TILE_H
-#define VT_ATLAS_TILE_H
+/* Private state header of module vt_atlas_build: per-tile compositing (vt_atlas_tile.c, the part
+ * of the build that makes one tile): which entry owns each texel of a level (the owner rule), the
+ * coverage-weighted average of texels that several cells or empty space share (mixed texels), and
+ * the payload of one tile with its borders. */
+#ifndef VT_ATLAS_BUILD_IMPL_H
+#define VT_ATLAS_BUILD_IMPL_H
 
 #include <stdbool.h>
 #include <stdint.h>
