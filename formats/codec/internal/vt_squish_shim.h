@@ -1,4 +1,4 @@
-/* Private to formats/: the extern "C" face of libsquish (C++, namespace squish), used by
+/* Private to formats/codec: the extern "C" face of libsquish (C++, namespace squish), used by
  * vt_codec_bc.c. One 4x4 block per call: squish::Compress/Decompress on a block never start OpenMP
  * threads (in Debian's build only squish::CompressImage/DecompressImage have an OpenMP loop), so a
  * worker pool keeps its one thread per job. Every function is thread-safe and never throws. */

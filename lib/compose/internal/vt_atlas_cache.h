@@ -1,4 +1,4 @@
-/* Shared cache of decoded texture mip chains for the atlas compositor (private to lib/).
+/* Shared cache of decoded texture mip chains for the atlas compositor (private to lib/compose).
  * Chains are keyed by a dense index (entry * slots + slot), built on first use by a callback,
  * shared between workers with reference counts, and freed least recently used first while the
  * cache holds more than its byte budget. A chain being built by one worker is waited for by the

@@ -1,4 +1,4 @@
-/* The raw logical line source of vt-offset (internal to lib/vt_offset*.c). It reads an OBJ file
+/* The raw logical line source of vt-offset (private to lib/offset). It reads an OBJ file
  * (in 1 MiB chunks) or a memory buffer and hands out each logical line as raw bytes: terminators,
  * '\r' and '\' continuations included, so that lines can be copied unchanged. Lines longer than
  * max_line counted bytes and lines with a NUL byte are refused with a message naming the line. */

@@ -1,4 +1,4 @@
-/* Tokens of vt-offset's raw lines (internal to lib/vt_offset*.c), with vt_obj's rules: whitespace
+/* Tokens of vt-offset's raw lines (private to lib/offset), with vt_obj's rules: whitespace
  * is space, tab, '\r', '\v', '\f', a '\n' inside a continued line and a '\' that continues the
  * line; a token starting with '#' ends the statement. The per-byte functions are inline (hot). */
 #ifndef VT_OFFSET_TOK_H
