@@ -236,6 +236,7 @@ static int mtl_map(struct mtl_parse *p, struct vt_mtl_material *m, int kind, cha
     if (!*rest)
         return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s':%llu: map statement without a file name",
                             p->src->name, (unsigned long long)p->src->start_line);
+    map.line = p->src->start_line;
     map.file = vt_obj_resolve_path("", rest);
     map.path = vt_obj_resolve_path(p->src->name, rest);
     if (!map.file || !map.path) {
@@ -295,7 +296,7 @@ int vt_mtl_read(const char *path, const struct vt_obj_limits *limits, struct vt_
     }
     memset(mtl, 0, sizeof *mtl);
     struct vt_text_src src;
-    int rc = vt_text_open(&src, path, limits, err);
+    int rc = vt_text_open(&src, path, limits->max_line_bytes, err);
     if (rc < 0)
         return rc;
     rc = mtl_parse(&src, limits, mtl, err);
@@ -314,7 +315,7 @@ int vt_mtl_parse_memory(const void *data, size_t size, const char *name,
     }
     memset(mtl, 0, sizeof *mtl);
     struct vt_text_src src;
-    vt_text_memory(&src, data, size, name, limits);
+    vt_text_memory(&src, data, size, name, limits->max_line_bytes);
     int rc = mtl_parse(&src, limits, mtl, err);
     vt_text_close(&src);
     return rc;

@@ -407,7 +407,7 @@ int vt_obj_read(struct vt_obj *obj, const char *path, const struct vt_obj_callba
 {
     struct vt_text_src src;
     obj_clear(obj);
-    int rc = vt_text_open(&src, path, &obj->limits, err);
+    int rc = vt_text_open(&src, path, obj->limits.max_line_bytes, err);
     if (rc < 0)
         return rc;
     rc = obj_parse(obj, &src, cb, err);
@@ -420,7 +420,7 @@ int vt_obj_parse_memory(struct vt_obj *obj, const void *data, size_t size, const
 {
     struct vt_text_src src;
     obj_clear(obj);
-    vt_text_memory(&src, data, size, name, &obj->limits);
+    vt_text_memory(&src, data, size, name, obj->limits.max_line_bytes);
     int rc = obj_parse(obj, &src, cb, err);
     vt_text_close(&src);
     return rc;

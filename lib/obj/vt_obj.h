@@ -141,6 +141,7 @@ enum vt_mtl_map_options {
 struct vt_mtl_map {
     char *file;       /* as written (rest of the line after the options), '\' -> '/'; NULL: none */
     char *path;       /* file resolved against the MTL file's directory (absolute kept) */
+    uint64_t line;    /* 1-based line of the statement (of the last one when repeated); 0: none */
     unsigned options; /* enum vt_mtl_map_options: which were given */
     double s[3];      /* -s scale (1 1 1) */
     double o[3];      /* -o offset (0 0 0) */

@@ -107,12 +107,12 @@ int vt_text_next_line(struct vt_text_src *s, struct vts_error *err)
     return 1;
 }
 
-int vt_text_open(struct vt_text_src *s, const char *path, const struct vt_obj_limits *limits,
+int vt_text_open(struct vt_text_src *s, const char *path, size_t max_line_bytes,
                  struct vts_error *err)
 {
     memset(s, 0, sizeof *s);
     s->name = path;
-    s->max_line = limits->max_line_bytes < SIZE_MAX / 4 ? limits->max_line_bytes : SIZE_MAX / 4;
+    s->max_line = max_line_bytes < SIZE_MAX / 4 ? max_line_bytes : SIZE_MAX / 4;
     s->buf = malloc(READ_CHUNK);
     if (!s->buf)
         return vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", path);
@@ -128,11 +128,11 @@ int vt_text_open(struct vt_text_src *s, const char *path, const struct vt_obj_li
 }
 
 void vt_text_memory(struct vt_text_src *s, const void *data, size_t size, const char *name,
-                    const struct vt_obj_limits *limits)
+                    size_t max_line_bytes)
 {
     memset(s, 0, sizeof *s);
     s->name = name;
-    s->max_line = limits->max_line_bytes < SIZE_MAX / 4 ? limits->max_line_bytes : SIZE_MAX / 4;
+    s->max_line = max_line_bytes < SIZE_MAX / 4 ? max_line_bytes : SIZE_MAX / 4;
     s->data = data;
     s->len = size;
 }

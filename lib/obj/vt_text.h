@@ -1,5 +1,6 @@
-/* Private: the line source shared by the OBJ and MTL readers (a file or memory, '\' continuations
- * joined, CRLF stripped, line numbers kept) and their token and number helpers. */
+/* The line source of the OBJ and MTL readers (a file or memory, '\' continuations joined, CRLF
+ * stripped, line numbers kept) and their token and number helpers, which lib/offset shares so that
+ * it accepts exactly what the reader accepts. Not part of the reader's API (vt_obj.h). */
 #ifndef VT_TEXT_H
 #define VT_TEXT_H
 
@@ -9,7 +10,6 @@
 #include <stdio.h>
 
 #include "vt_error.h"
-#include "vt_obj.h"
 
 struct vt_text_src {
     const char *name;
@@ -23,13 +23,14 @@ struct vt_text_src {
     uint64_t start_line; /* where the current logical line starts */
 };
 
-/* Opens path for reading lines within limits->max_line_bytes. 0, VTS_ERR_IO or VTS_ERR_NOMEM. */
-int vt_text_open(struct vt_text_src *s, const char *path, const struct vt_obj_limits *limits,
+/* Opens path for reading logical lines of at most max_line_bytes (longer ones fail with
+ * VTS_ERR_LIMIT). 0, VTS_ERR_IO or VTS_ERR_NOMEM. */
+int vt_text_open(struct vt_text_src *s, const char *path, size_t max_line_bytes,
                  struct vts_error *err);
 
 /* Reads lines from caller memory (which must outlive the source); name is used in messages. */
 void vt_text_memory(struct vt_text_src *s, const void *data, size_t size, const char *name,
-                    const struct vt_obj_limits *limits);
+                    size_t max_line_bytes);
 
 /* Closes the file and frees the line buffer. */
 void vt_text_close(struct vt_text_src *s);

@@ -393,6 +393,70 @@ static void mtl_backslash_paths_and_bump_options(void)
     vt_mtl_release(&mtl);
 }
 
+/* Each map keeps the line its statement starts on: the last of a repeated kind (map_Bump, bump
+ * and MAP_BUMP are one kind), the first physical line of a continued statement, per material. */
+static void mtl_maps_keep_the_line_of_their_statement(void)
+{
+    const char *text = "# two materials\n"           /* 1 */
+                       "newmtl a\n"                  /* 2 */
+                       "map_Kd first.png\n"          /* 3 */
+                       "Kd 1 1 1\n"                  /* 4 */
+                       "map_Kd \\\n"                 /* 5 */
+                       "  second.png\n"              /* 6 */
+                       "map_Bump -bm 2 b1.png\n"     /* 7 */
+                       "\n"                          /* 8 */
+                       "MAP_BUMP b2.png\n"           /* 9 */
+                       "newmtl b\n"                  /* 10 */
+                       "bump b3.png\n"               /* 11 */
+                       "  norm  n with space.png\n"; /* 12 */
+    struct vt_mtl mtl;
+    struct vts_error err = {0};
+    VT_CHECK_INT_EQ(vt_mtl_parse_memory(text, strlen(text), "l.mtl", NULL, &mtl, &err), 0);
+    VT_CHECK_INT_EQ(mtl.material_count, 2);
+    if (mtl.material_count != 2) {
+        vt_mtl_release(&mtl);
+        return;
+    }
+    const struct vt_mtl_material *a = &mtl.materials[0], *b = &mtl.materials[1];
+    VT_CHECK_INT_EQ(a->line, 2);
+    VT_CHECK_INT_EQ(a->maps[VT_MTL_MAP_KD].line, 5);
+    VT_CHECK(a->maps[VT_MTL_MAP_KD].path && strcmp(a->maps[VT_MTL_MAP_KD].path, "second.png") == 0);
+    VT_CHECK_INT_EQ(a->maps[VT_MTL_MAP_BUMP].line, 9);
+    VT_CHECK(a->maps[VT_MTL_MAP_BUMP].bm == 1); /* the later statement replaced -bm 2 */
+    VT_CHECK_INT_EQ(a->maps[VT_MTL_MAP_KS].line, 0);
+    VT_CHECK_INT_EQ(a->maps[VT_MTL_MAP_NORM].line, 0);
+    VT_CHECK_INT_EQ(b->line, 10);
+    VT_CHECK_INT_EQ(b->maps[VT_MTL_MAP_BUMP].line, 11);
+    VT_CHECK_INT_EQ(b->maps[VT_MTL_MAP_NORM].line, 12);
+    VT_CHECK(b->maps[VT_MTL_MAP_NORM].path &&
+             strcmp(b->maps[VT_MTL_MAP_NORM].path, "n with space.png") == 0);
+    VT_CHECK_INT_EQ(b->maps[VT_MTL_MAP_KD].line, 0);
+    vt_mtl_release(&mtl);
+}
+
+/* The same lines from a file, CRLF line ends included (the reader vt-atlas uses). */
+static void mtl_file_maps_keep_their_line(void)
+{
+    char path[600];
+    snprintf(path, sizeof path, "%s/lines.mtl", tmp_dir);
+    FILE *f = fopen(path, "wb");
+    VT_CHECK(f != NULL);
+    if (!f)
+        return;
+    fputs("newmtl m\r\nKd 0.5 0.5 0.5\r\n\r\nmap_Ks s.png\r\nmap_d a.png\r\n", f);
+    fclose(f);
+    struct vt_mtl mtl;
+    struct vts_error err = {0};
+    VT_CHECK_INT_EQ(vt_mtl_read(path, NULL, &mtl, &err), 0);
+    const struct vt_mtl_material *m = vt_mtl_find(&mtl, "m");
+    VT_CHECK(m != NULL);
+    if (m) {
+        VT_CHECK_INT_EQ(m->maps[VT_MTL_MAP_KS].line, 4);
+        VT_CHECK_INT_EQ(m->maps[VT_MTL_MAP_D].line, 5);
+    }
+    vt_mtl_release(&mtl);
+}
+
 static void check_mtl_error(const char *text, const struct vt_obj_limits *limits, int status,
                             const char *want)
 {
@@ -446,6 +510,8 @@ int main(void)
     VT_RUN(mtl_parses_map_options_and_paths_with_spaces);
     VT_RUN(mtl_backslash_paths_and_bump_options);
     VT_RUN(mtl_errors_name_file_and_line);
+    VT_RUN(mtl_maps_keep_the_line_of_their_statement);
+    VT_RUN(mtl_file_maps_keep_their_line);
     char cmd[128];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp_dir);
     if (system(cmd) != 0)

@@ -1,4 +1,5 @@
-/* vt-atlas placement: sizes, copies and scales per entry, then vt_atlas_pack(), then the layout. */
+/* The placement: sizes, copies and scales per entry, sharing, then vt_atlas_pack(), then the
+ * layout (vt_atlas_place.h). */
 #include "vt_atlas_place.h"
 
 #include <math.h>
@@ -7,8 +8,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "vt_checked.h"
 #include "vt_error.h"
-#include "vt_version.h"
 
 #define UV_EPS        1e-6
 #define CONSTANT_CELL 4 /* texels of an entry without any texture */
@@ -31,16 +32,22 @@ static size_t push_components(char *path, char **parts, size_t n)
     return n;
 }
 
-char *vt_atlas_relative_path(const char *output, const char *path)
+char *vt_atlas_place_relative_path(const char *output, const char *path)
 {
     if (path[0] == '/')
         return strdup(path);
     char cwd[4096];
     if (!getcwd(cwd, sizeof cwd))
         return NULL;
-    size_t max = strlen(cwd) + strlen(output) + strlen(path) + 4;
-    char *a = malloc(max), *b = malloc(max), *out = malloc(3 * max);
-    char **pa = malloc(max * sizeof *pa), **pb = malloc(max * sizeof *pb);
+    /* Each joined path fits in max bytes and has fewer than max components; the result climbs
+     * at most max / 2 directories ("../" each) before b's components. */
+    size_t max, out_bytes, parts_bytes;
+    if (!vt_size_add(strlen(cwd) + 4, strlen(output), &max) ||
+        !vt_size_add(max, strlen(path), &max) || !vt_size_mul(max, 3, &out_bytes) ||
+        !vt_size_mul(max, sizeof(char *), &parts_bytes))
+        return NULL;
+    char *a = malloc(max), *b = malloc(max), *out = malloc(out_bytes);
+    char **pa = malloc(parts_bytes), **pb = malloc(parts_bytes);
     char *result = NULL;
     if (!a || !b || !out || !pa || !pb)
         goto done;
@@ -339,7 +346,7 @@ static int fill_texture(struct vt_layout_texture *t, const struct vt_atlas_scene
         return 0;
     }
     const struct vt_atlas_texture *tx = &scene->textures[ti];
-    t->path = vt_atlas_relative_path(output, tx->path);
+    t->path = vt_atlas_place_relative_path(output, tx->path);
     t->width = tx->width;
     t->height = tx->height;
     return t->path ? 0 : VTS_ERR_NOMEM;
@@ -373,8 +380,8 @@ static int fill_layout(const struct vt_atlas_scene *scene, const struct vt_atlas
         return rc;
     l->tile_content = o->tile_content;
     l->border = o->border;
-    l->generator = strdup("vt-atlas " VT_VERSION_STRING);
-    bool nomem = !l->generator;
+    l->generator = o->generator ? strdup(o->generator) : NULL;
+    bool nomem = o->generator && !l->generator;
     for (uint32_t k = 0; k < layer_count; k++) {
         l->layers[k].name = strdup(vt_atlas_kind_name(kinds[k]));
         l->layers[k].map = strdup(vt_atlas_kind_map(kinds[k]));

@@ -11,14 +11,17 @@
 #include "vt_atlas_scene.h"
 #include "vt_atomic_file.h"
 #include "vt_error.h"
+#include "vt_image_input.h"
 #include "vt_layout.h"
+#include "vt_version.h"
 
 struct options {
     const char *output, *textures, *deps;
     char **inputs;
     uint32_t input_count;
     struct vt_atlas_place_options place;
-    struct vt_atlas_scan_options scan;
+    struct vt_atlas_scene_options scan;
+    struct vt_input_limits input; /* --max-pixels, for the scan's open_texture() */
 };
 
 static void usage(FILE *f)
@@ -95,9 +98,16 @@ static int parse_choice(const char *s, const char *a, const char *b, bool *is_b)
     return 0;
 }
 
-static void warn(const char *message)
+static void warn(void *user, const char *message)
 {
+    (void)user;
     vt_log(VT_LOG_WARN, "%s", message);
+}
+
+/* The scan's image opener: formats/input, within --max-pixels (user: struct vt_input_limits). */
+static int open_texture(void *user, const char *path, struct vt_source *out, struct vts_error *err)
+{
+    return vt_image_input_open(path, user, out, err);
 }
 
 /* Parses one option; returns -1 to go on or an exit status. */
@@ -167,7 +177,7 @@ static int parse_option(int c, struct options *o)
         unsigned long long p = strtoull(optarg, &end, 10);
         if (!*optarg || *end || *optarg == '-' || p == 0)
             return vt_usage_error("--max-pixels must be a positive number, not '%s'", optarg);
-        o->scan.max_pixels = p;
+        o->input.max_pixels = p;
         break;
     }
     case 'L':
@@ -196,9 +206,10 @@ static int parse_options(int argc, char **argv, struct options *o)
                                     .max_scale = 4,
                                     .max_repeat = 16},
                           .scan = {.max_textures = 1u << 20,
-                                   .max_pixels = 1ull << 31,
                                    .max_line_bytes = 1u << 20,
-                                   .warn = warn}};
+                                   .open = open_texture,
+                                   .warn = warn},
+                          .input = {.max_pixels = 1ull << 31}};
     int c;
     opterr = 0;
     while ((c = vt_getopt_long(argc, argv, ":o:qvh", long_options)) != -1) {
@@ -238,6 +249,8 @@ static int parse_options(int argc, char **argv, struct options *o)
     if (grid)
         o->scan.missing_skip = false; /* a grid needs every piece */
     o->place.output = o->output;
+    o->place.generator = "vt-atlas " VT_VERSION_STRING;
+    o->scan.open_user = &o->input;
     return -1;
 }
 
@@ -311,11 +324,11 @@ static void print_summary(const struct options *o, const struct vt_layout *l,
 static int scan(const struct options *o, struct vt_atlas_scene *scene, struct vts_error *err)
 {
     if (o->textures)
-        return vt_atlas_scan_list(scene, o->textures, &o->scan, err);
+        return vt_atlas_scene_scan_list(scene, o->textures, &o->scan, err);
     if (o->place.grid_rows)
-        return vt_atlas_scan_files(scene, o->inputs, o->input_count, &o->scan, err);
+        return vt_atlas_scene_scan_files(scene, o->inputs, o->input_count, &o->scan, err);
     for (uint32_t i = 0; i < o->input_count; i++) {
-        int rc = vt_atlas_scan_obj(scene, o->inputs[i], &o->scan, err);
+        int rc = vt_atlas_scene_scan_obj(scene, o->inputs[i], &o->scan, err);
         if (rc)
             return rc;
     }

@@ -1,5 +1,6 @@
-/* vt-atlas placement: from a scanned scene to a packed struct vt_layout (layers, wrap
- * replication, texel-density scales, --grid groups, paths relative to the output). */
+/* The placement of vt-atlas: from a scanned scene (vt_atlas_scene.h) to a packed struct vt_layout
+ * (layers, wrap replication, texel-density scales, shared entries, grid groups, paths relative to
+ * the output), packed by vt_atlas_pack(). Pure computation apart from the working directory. */
 #ifndef VT_ATLAS_PLACE_H
 #define VT_ATLAS_PLACE_H
 
@@ -21,6 +22,7 @@ struct vt_atlas_place_options {
     uint32_t max_repeat;
     uint32_t grid_rows, grid_cols; /* both non-zero: --grid (materials are the pieces) */
     const char *output;            /* atlas.json path: texture paths are made relative to it */
+    const char *generator;         /* the layout's "generator" ("vt-atlas 0.1.0"), or NULL */
 };
 
 struct vt_atlas_place_report {
@@ -46,8 +48,9 @@ int vt_atlas_place(const struct vt_atlas_scene *scene, const struct vt_atlas_pla
                    struct vts_error *err);
 
 /* path as seen from the directory of output: absolute paths are kept, relative ones (to the
- * working directory) are rewritten relative to output's directory. malloc'ed; NULL when out of
- * memory or the working directory is unknown. */
-char *vt_atlas_relative_path(const char *output, const char *path);
+ * working directory) are rewritten relative to output's directory ("a/atlas.json" and "tex/b.png"
+ * give "../tex/b.png"). Returns a malloc'ed string (free() it); NULL when out of memory or the
+ * working directory is unknown. */
+char *vt_atlas_place_relative_path(const char *output, const char *path);
 
 #endif

@@ -1,0 +1,255 @@
+/* Unit tests of the placement (lib/atlas/vt_atlas_place.c) on scenes built in memory: layers,
+ * shared entries, wrap copies, density scales, grids, messages, and relative texture paths. Every
+ * layout produced is checked by vt_layout_index() (cells inside the atlas, no overlaps...). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vt_atlas_place.h"
+#include "vt_test.h"
+
+#define CHECK_STR_EQ(a, b)                                                                         \
+    do {                                                                                           \
+        const char *s_a_ = (a), *s_b_ = (b);                                                       \
+        vt_test_checks++;                                                                          \
+        if (!s_a_ || strcmp(s_a_, s_b_) != 0) {                                                    \
+            vt_test_failures++;                                                                    \
+            fprintf(stderr, "%s:%d: %s is '%s', not '%s'\n", __FILE__, __LINE__, #a,               \
+                    s_a_ ? s_a_ : "(null)", s_b_);                                                 \
+        }                                                                                          \
+    } while (0)
+
+static char tex_a[] = "tex/a.png", tex_n[] = "tex/n.png", tex_c[] = "tex/c.png";
+static char id_a[] = "1:1", id_n[] = "1:2", id_c[] = "1:3";
+
+/* A material named name with the given diffuse and normal textures (-1: none), UVs in
+ * [u0,u1] x [v0,v1] and the fills of an MTL without constants. */
+static struct vt_atlas_material material(char *name, int32_t diffuse, int32_t normal, double u0,
+                                         double u1, double v0, double v1)
+{
+    struct vt_atlas_material m = {.name = name,
+                                  .obj = "scene.obj",
+                                  .defined = true,
+                                  .has_uv = true,
+                                  .umin = u0,
+                                  .umax = u1,
+                                  .vmin = v0,
+                                  .vmax = v1,
+                                  .uv_area = 1,
+                                  .world_area = 1};
+    for (unsigned k = 0; k < VT_ATLAS_KIND_COUNT; k++) {
+        m.texture[k] = -1;
+        m.fill[k][0] = m.fill[k][1] = m.fill[k][2] = 0;
+        m.fill[k][3] = 1;
+    }
+    m.fill[VT_ATLAS_NORMAL][0] = m.fill[VT_ATLAS_NORMAL][1] = 0.5;
+    m.fill[VT_ATLAS_NORMAL][2] = 1;
+    m.texture[VT_ATLAS_DIFFUSE] = diffuse;
+    m.texture[VT_ATLAS_NORMAL] = normal;
+    return m;
+}
+
+static struct vt_atlas_place_options place_options(void)
+{
+    return (struct vt_atlas_place_options){.tile_content = 256,
+                                           .border = 4,
+                                           .max_edge = 1u << 20,
+                                           .gutter = 4,
+                                           .max_scale = 4,
+                                           .max_repeat = 16,
+                                           .output = "out/atlas.json",
+                                           .generator = "test 1.0"};
+}
+
+static void check_valid(struct vt_layout *l)
+{
+    struct vts_error err = {0};
+    VT_CHECK_INT_EQ(vt_layout_index(l, &err), 0);
+    CHECK_STR_EQ(err.message, "");
+}
+
+/* red and alias: one file, no other layer -> one entry; blue wraps; plain is a constant. */
+static void place_shares_entries_and_copies_wrapped_uvs(void)
+{
+    struct vt_atlas_texture textures[] = {{tex_a, id_a, 128, 64, 3}, {tex_n, id_n, 256, 256, 3}};
+    char red[] = "red", alias[] = "alias", blue[] = "blue", plain[] = "plain";
+    struct vt_atlas_material materials[] = {
+        material(red, 0, -1, 0, 1, 0, 1), material(blue, 0, 1, -1, 1, 0, 3),
+        material(plain, -1, -1, 0, 1, 0, 1), material(alias, 0, -1, 0.25, 0.75, 0, 1)};
+    materials[2].fill[VT_ATLAS_DIFFUSE][0] = 0.2;
+    struct vt_atlas_scene scene = {
+        .materials = materials, .material_count = 4, .textures = textures, .texture_count = 2};
+    struct vt_atlas_place_options o = place_options();
+    struct vt_layout l;
+    struct vt_atlas_place_report r;
+    struct vts_error err = {0};
+
+    VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), VTS_ERR_BAD_INPUT);
+    CHECK_STR_EQ(err.message, "'scene.obj': material 'blue' uses u -1..1, v 0..3 outside [0,1]: "
+                              "use --wrap replicate");
+    vt_layout_release(&l);
+
+    o.wrap_replicate = true;
+    o.max_repeat = 2;
+    VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), VTS_ERR_LIMIT);
+    CHECK_STR_EQ(err.message,
+                 "'scene.obj': material 'blue' uses u -1..1, v 0..3: more than --max-repeat 2 "
+                 "copies");
+    vt_layout_release(&l);
+
+    o.max_repeat = 16;
+    err = (struct vts_error){0};
+    VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), 0);
+    CHECK_STR_EQ(err.message, "");
+    VT_CHECK_INT_EQ(l.layer_count, 2);
+    VT_CHECK_INT_EQ(l.entry_count, 3);
+    VT_CHECK_INT_EQ(r.materials, 4);
+    VT_CHECK_INT_EQ(r.shared, 2);
+    VT_CHECK_INT_EQ(r.shared_cells, 1);
+    VT_CHECK_INT_EQ(r.constant, 1);
+    VT_CHECK_INT_EQ(r.replicated, 1);
+    VT_CHECK_INT_EQ(r.scaled, 0);
+    VT_CHECK_INT_EQ(l.width, r.pack.width);
+    VT_CHECK_INT_EQ(l.height, r.pack.height);
+    VT_CHECK_INT_EQ(l.tile_content, 256);
+    VT_CHECK_INT_EQ(l.border, 4);
+    CHECK_STR_EQ(l.generator, "test 1.0");
+    if (l.layer_count == 2 && l.entry_count == 3) {
+        CHECK_STR_EQ(l.layers[0].name, "diffuse");
+        CHECK_STR_EQ(l.layers[1].map, "norm");
+        const struct vt_layout_entry *e0 = &l.entries[0], *e1 = &l.entries[1], *e2 = &l.entries[2];
+        CHECK_STR_EQ(e0->name, "red");
+        VT_CHECK_INT_EQ(e0->alias_count, 1);
+        CHECK_STR_EQ(e0->alias_count ? e0->aliases[0] : NULL, "alias");
+        VT_CHECK_INT_EQ(e0->width, 128);
+        VT_CHECK_INT_EQ(e0->height, 64);
+        CHECK_STR_EQ(e0->textures[0].path, "../tex/a.png"); /* relative to out/ */
+        VT_CHECK(e0->textures[1].path == NULL && e0->textures[1].fill[2] == 1);
+        CHECK_STR_EQ(e1->name, "blue");
+        VT_CHECK_INT_EQ(e1->width, 256); /* its largest texture */
+        VT_CHECK_INT_EQ(e1->repeat_u, 2);
+        VT_CHECK_INT_EQ(e1->repeat_v, 3);
+        VT_CHECK_INT_EQ(e1->origin_u, -1);
+        VT_CHECK_INT_EQ(e1->origin_v, 0);
+        CHECK_STR_EQ(e1->textures[1].path, "../tex/n.png");
+        VT_CHECK_INT_EQ(e1->textures[1].width, 256);
+        CHECK_STR_EQ(e2->name, "plain");
+        VT_CHECK_INT_EQ(e2->width, 4);
+        VT_CHECK(e2->textures[0].path == NULL && e2->textures[0].fill[0] == 0.2);
+        check_valid(&l);
+    }
+    vt_layout_release(&l);
+}
+
+/* Densities 65536, 4096, 4096 texels per unit^2: the median 4096; the dense one is scaled 1/4. */
+static void place_evens_out_texel_density(void)
+{
+    struct vt_atlas_texture textures[] = {
+        {tex_a, id_a, 256, 256, 3}, {tex_n, id_n, 256, 256, 3}, {tex_c, id_c, 64, 64, 3}};
+    char a[] = "a", b[] = "b", c[] = "c";
+    struct vt_atlas_material materials[] = {material(a, 0, -1, 0, 1, 0, 1),
+                                            material(b, 1, -1, 0, 1, 0, 1),
+                                            material(c, 2, -1, 0, 1, 0, 1)};
+    materials[1].world_area = 16;
+    struct vt_atlas_scene scene = {
+        .materials = materials, .material_count = 3, .textures = textures, .texture_count = 3};
+    struct vt_atlas_place_options o = place_options();
+    o.density = true;
+    struct vt_layout l;
+    struct vt_atlas_place_report r;
+    struct vts_error err = {0};
+    VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), 0);
+    VT_CHECK(r.target_density == 4096);
+    VT_CHECK_INT_EQ(r.scaled, 1);
+    VT_CHECK_INT_EQ(l.entry_count, 3);
+    if (l.entry_count == 3) {
+        VT_CHECK(l.entries[0].scale == 0.25);
+        VT_CHECK_INT_EQ(l.entries[0].width, 64);
+        VT_CHECK(l.entries[1].scale == 1 && l.entries[2].scale == 1);
+        VT_CHECK_INT_EQ(l.entries[1].width, 256);
+        VT_CHECK_INT_EQ(l.entries[2].width, 64);
+        check_valid(&l);
+    }
+    vt_layout_release(&l);
+
+    o.max_scale = 2; /* 1/4 clamped to 1/2 */
+    VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), 0);
+    VT_CHECK(l.entry_count == 3 && l.entries[0].scale == 0.5 && l.entries[0].width == 128);
+    vt_layout_release(&l);
+}
+
+/* A 2x2 grid of 100x50 pieces laid edge to edge in one group; pieces must have one size. */
+static void place_lays_grid_pieces_edge_to_edge(void)
+{
+    struct vt_atlas_texture textures[] = {{tex_a, id_a, 100, 50, 3},
+                                          {tex_n, id_n, 100, 50, 3},
+                                          {tex_c, id_c, 100, 50, 3},
+                                          {tex_a, id_c, 100, 50, 3}};
+    char n0[] = "p0", n1[] = "p1", n2[] = "p2", n3[] = "p3";
+    struct vt_atlas_material materials[] = {
+        material(n0, 0, -1, 0, 1, 0, 1), material(n1, 1, -1, 0, 1, 0, 1),
+        material(n2, 2, -1, 0, 1, 0, 1), material(n3, 3, -1, 0, 1, 0, 1)};
+    struct vt_atlas_scene scene = {
+        .materials = materials, .material_count = 4, .textures = textures, .texture_count = 4};
+    struct vt_atlas_place_options o = place_options();
+    o.grid_rows = o.grid_cols = 2;
+    struct vt_layout l;
+    struct vt_atlas_place_report r;
+    struct vts_error err = {0};
+    VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), 0);
+    VT_CHECK_INT_EQ(l.entry_count, 4);
+    if (l.entry_count == 4) {
+        const struct vt_layout_entry *e = l.entries;
+        VT_CHECK_INT_EQ(e[1].x - e[0].x, 100);
+        VT_CHECK_INT_EQ(e[1].y, e[0].y);
+        VT_CHECK_INT_EQ(e[2].y - e[0].y, 50);
+        VT_CHECK_INT_EQ(e[3].x, e[1].x);
+        VT_CHECK(e[0].group == 1 && e[3].group == 1);
+        VT_CHECK_INT_EQ(e[0].alias_count, 0);
+        check_valid(&l);
+    }
+    vt_layout_release(&l);
+
+    textures[2].height = 60;
+    VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), VTS_ERR_BAD_INPUT);
+    CHECK_STR_EQ(err.message,
+                 "'tex/c.png' is 100x60, not 100x50 like 'tex/a.png': --grid pieces must have one "
+                 "size");
+    vt_layout_release(&l);
+
+    o.grid_cols = 3;
+    VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), VTS_ERR_ARG);
+    CHECK_STR_EQ(err.message, "--grid 2x3 needs 6 files, not 4");
+    vt_layout_release(&l);
+
+    scene.material_count = 0;
+    VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), VTS_ERR_BAD_INPUT);
+    CHECK_STR_EQ(err.message, "nothing to place: no face uses a material and no texture is listed");
+    vt_layout_release(&l);
+}
+
+static void check_relative(const char *output, const char *path, const char *want)
+{
+    char *got = vt_atlas_place_relative_path(output, path);
+    CHECK_STR_EQ(got, want);
+    free(got);
+}
+
+static void place_makes_paths_relative_to_the_output(void)
+{
+    check_relative("atlas.json", "tex/a.png", "tex/a.png");
+    check_relative("out/atlas.json", "tex/a.png", "../tex/a.png");
+    check_relative("a/b/atlas.json", "a/c/../t.png", "../t.png");
+    check_relative("./a/./atlas.json", "a/x/y.png", "x/y.png");
+    check_relative("out/atlas.json", "/abs/t.png", "/abs/t.png");
+}
+
+int main(void)
+{
+    VT_RUN(place_shares_entries_and_copies_wrapped_uvs);
+    VT_RUN(place_evens_out_texel_density);
+    VT_RUN(place_lays_grid_pieces_edge_to_edge);
+    VT_RUN(place_makes_paths_relative_to_the_output);
+    return vt_test_main_result();
+}
