@@ -89,15 +89,7 @@ static int emit_coarse_tile(void *user, unsigned worker, uint32_t level, uint32_
                             const struct vt_image *payload, struct vts_error *err)
 {
     struct merge *m = user;
-    size_t len = 0;
-    if (payload) {
-        struct vts_error cerr = {0};
-        int rc = m->codec->encode(payload, &m->params, m->enc[worker], m->enc_cap, &len, &cerr);
-        if (rc)
-            return vt_error_set(err, rc, "cannot encode tile %u,%u of level %u: %s", tx, ty, level,
-                                cerr.message);
-    }
-    return vts_writer_put(m->out, 0, level, tx, ty, m->enc[worker], len, err);
+    return vt_tile_sink_put(m->sink, worker, 0, level, tx, ty, payload, err);
 }
 
 static int coarse_progress(void *user, uint64_t done, uint64_t total)
@@ -168,11 +160,15 @@ int vt_merge_build_coarse(struct merge *m, struct vts_error *err)
             err, VTS_ERR_BAD_INPUT,
             "'%s': not a well-formed vt-tiles shard (layer table, %s or filter metadata)",
             m->o->inputs[0], VT_SHARD_BUILD_KEY);
-    if (!(m->codec = vt_codec_by_fourcc(L->codec)))
+    /* the shards recorded the effort their codec was given */
+    struct vt_tile_sink_layer sink_layer = {
+        vt_codec_by_fourcc(L->codec),
+        {L->codec == VTS_CODEC_JPEG ? (int)L->codec_param : 0, (int)sb.effort, (int)sb.subsampling},
+        L->channels,
+        L->sample};
+    if (!sink_layer.codec)
         return vt_error_set(err, VTS_ERR_UNSUPPORTED, "'%s': codec of layer 0 is not available",
                             m->o->inputs[0]);
-    m->params = (struct vt_codec_params){L->codec == VTS_CODEC_JPEG ? (int)L->codec_param : 0,
-                                         (int)sb.effort, (int)sb.subsampling};
     struct vt_source_info input = {.width = g->width,
                                    .height = g->height,
                                    .channels = sb.channels,
@@ -209,13 +205,10 @@ int vt_merge_build_coarse(struct merge *m, struct vts_error *err)
     struct vt_source src = {0};
     struct vt_source *ptrs[256];
     float *row = malloc((size_t)g->tile_content_px * sb.channels * sizeof *row);
-    m->enc_cap =
-        m->codec->encoded_bound(g->tile_payload_px, g->tile_payload_px, L->channels, L->sample);
-    m->enc = calloc(po.threads, sizeof *m->enc);
-    int rc = row && m->enc ? 0 : vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
-    for (unsigned i = 0; rc == 0 && i < po.threads; i++)
-        if (!(m->enc[i] = malloc(m->enc_cap)))
-            rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory for encode buffers");
+    int rc = row ? 0 : vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
+    if (rc == 0 && !(m->sink = vt_tile_sink_create(m->out, g->tile_payload_px, &sink_layer, 1,
+                                                   po.threads, 0, err)))
+        rc = err->status;
     struct vt_float_file *f = rc ? NULL
                                  : vt_float_file_create(po.temp_dir, plan.carry_width,
                                                         plan.carry_height, sb.channels, err);
@@ -237,10 +230,8 @@ int vt_merge_build_coarse(struct merge *m, struct vts_error *err)
     }
     vt_source_close(&src);
     vt_float_file_destroy(f);
-    for (unsigned i = 0; m->enc && i < po.threads; i++)
-        free(m->enc[i]);
-    free(m->enc);
-    m->enc = NULL;
+    vt_tile_sink_destroy(m->sink);
+    m->sink = NULL;
     free(row);
     return rc;
 }

@@ -10,6 +10,7 @@
 #include "tool_common.h"
 #include "vt_codec.h"
 #include "vt_shard.h"
+#include "vt_tile_sink.h"
 #include "vts.h"
 #include "vts_writer.h"
 
@@ -34,11 +35,7 @@ struct merge {
     struct vt_progress progress;
     bool shard_build;     /* shards of vt-tiles --shard: they carry a float layer (vt_shard.h) */
     uint32_t copy_layers; /* shards mode: layers copied (the float layer is not) */
-    /* coarse levels of a shard build */
-    const struct vt_codec *codec;
-    struct vt_codec_params params;
-    unsigned char **enc;
-    size_t enc_cap;
+    struct vt_tile_sink *sink; /* coarse levels of a shard build */
 };
 
 /* Reads the payload of a tile of input k into m->buf[b]; *len 0 for an empty tile. */
