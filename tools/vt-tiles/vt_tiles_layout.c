@@ -5,23 +5,21 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <tiffio.h>
-#include <unistd.h>
 
 #include "tool_common.h"
 #include "vt_atlas_build.h"
-#include "vt_atomic_file.h"
 #include "vt_codec.h"
 #include "vt_error.h"
 #include "vt_image_input.h"
 #include "vt_layout.h"
 #include "vt_png_file.h"
+#include "vt_tiff_file.h"
 #include "vt_tile_sink.h"
 #include "vt_version.h"
 #include "vts_writer.h"
 
 #define EXPORT_MAX_TEXELS (1ull << 28)
-#define EXPORT_BAND_ROWS  64u
+#define EXPORT_BAND_ROWS  VT_TIFF_FILE_ROWS_PER_STRIP /* one TIFF strip per band */
 
 struct layout_run {
     const struct vt_tiles_layout_options *o;
@@ -210,47 +208,13 @@ static bool ends_with(const char *s, const char *suffix)
     return n >= m && strcasecmp(s + n - m, suffix) == 0;
 }
 
-struct tiff_out {
-    struct vt_atomic_file file;
-    TIFF *tif;
-};
-
-static int tiff_start(struct tiff_out *t, const char *path, uint32_t w, uint32_t h, uint32_t ch,
-                      struct vts_error *err)
-{
-    int rc = vt_atomic_file_create(&t->file, path, "tmp", err);
-    if (rc)
-        return rc;
-    int fd = dup(t->file.fd);
-    if (fd < 0 ||
-        !(t->tif = TIFFFdOpen(fd, path, w * (uint64_t)h * ch > (1ull << 31) ? "w8" : "w"))) {
-        if (fd >= 0)
-            close(fd);
-        return vt_error_set(err, VTS_ERR_IO, "cannot write '%s'", path);
-    }
-    uint16_t extra = ch == 2 || ch == 4 ? EXTRASAMPLE_UNASSALPHA : 0;
-    TIFFSetField(t->tif, TIFFTAG_IMAGEWIDTH, w);
-    TIFFSetField(t->tif, TIFFTAG_IMAGELENGTH, h);
-    TIFFSetField(t->tif, TIFFTAG_SAMPLESPERPIXEL, (uint16_t)ch);
-    TIFFSetField(t->tif, TIFFTAG_BITSPERSAMPLE, (uint16_t)8);
-    TIFFSetField(t->tif, TIFFTAG_PHOTOMETRIC, ch >= 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK);
-    TIFFSetField(t->tif, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
-    TIFFSetField(t->tif, TIFFTAG_COMPRESSION, COMPRESSION_ADOBE_DEFLATE);
-    TIFFSetField(t->tif, TIFFTAG_ROWSPERSTRIP, EXPORT_BAND_ROWS);
-    if (extra)
-        TIFFSetField(t->tif, TIFFTAG_EXTRASAMPLES, (uint16_t)1, &extra);
-    return 0;
-}
-
-static int export_band(struct vt_png_file_writer *png, struct tiff_out *t, const char *path,
-                       const struct vt_image *band, uint32_t y0, struct vts_error *err)
+/* One band of rows into whichever writer is open. */
+static int export_band(struct vt_png_file_writer *png, struct vt_tiff_file_writer *tiff,
+                       const struct vt_image *band, struct vts_error *err)
 {
     if (png)
         return vt_png_file_writer_rows(png, band->pixels, band->height, band->stride, err);
-    for (uint32_t j = 0; j < band->height; j++)
-        if (TIFFWriteScanline(t->tif, vt_image_at(band, 0, j), y0 + j, 0) < 0)
-            return vt_error_set(err, VTS_ERR_IO, "cannot write '%s'", path);
-    return 0;
+    return vt_tiff_file_writer_rows(tiff, band->pixels, band->height, band->stride, err);
 }
 
 static int export_atlas(struct layout_run *r, struct vts_error *err)
@@ -268,7 +232,7 @@ static int export_atlas(struct layout_run *r, struct vts_error *err)
     struct vt_atlas_layer_format f;
     vt_atlas_build_format(r->build, 0, &f);
     struct vt_png_file_writer *png = NULL;
-    struct tiff_out t = {.file.fd = -1};
+    struct vt_tiff_file_writer *tiff = NULL;
     struct vt_image band = {0};
     int rc = vt_image_alloc(&band, w, h < EXPORT_BAND_ROWS ? h : EXPORT_BAND_ROWS, f.channels,
                             VTS_SAMPLE_U8, err);
@@ -277,25 +241,20 @@ static int export_atlas(struct layout_run *r, struct vts_error *err)
     if (is_png)
         rc = (png = vt_png_file_writer_create(path, w, h, f.channels, 8, err)) ? 0 : err->status;
     else
-        rc = tiff_start(&t, path, w, h, f.channels, err);
+        rc = (tiff = vt_tiff_file_writer_create(path, w, h, f.channels, err)) ? 0 : err->status;
     for (uint32_t y = 0; rc == 0 && y < h; y += band.height) {
         struct vt_image v = band;
         v.height = h - y < band.height ? h - y : band.height;
         rc = vt_atlas_build_render(r->build, 0, 0, 0, y, &v, err);
         if (rc == 0)
-            rc = export_band(png, &t, path, &v, y, err);
+            rc = export_band(png, tiff, &v, err);
     }
-    if (png) {
-        if (rc == 0)
-            rc = vt_png_file_writer_finish(png, err);
-        vt_png_file_writer_destroy(png);
-    } else if (t.tif) {
-        TIFFClose(t.tif);
-        if (rc == 0)
-            rc = vt_atomic_file_commit(&t.file, err);
-    }
-    if (!is_png)
-        vt_atomic_file_abort(&t.file);
+    if (rc == 0 && png)
+        rc = vt_png_file_writer_finish(png, err);
+    if (rc == 0 && tiff)
+        rc = vt_tiff_file_writer_finish(tiff, err);
+    vt_png_file_writer_destroy(png);
+    vt_tiff_file_writer_destroy(tiff);
     vt_image_release(&band);
     if (rc == 0)
         vt_log(VT_LOG_INFO, "wrote '%s': %ux%u, layer '%s'", path, w, h,
