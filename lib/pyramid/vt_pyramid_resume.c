@@ -4,9 +4,9 @@
 
 #include <stdlib.h>
 
+#include "internal/vt_float_file.h"
 #include "vt_checked.h"
 #include "vt_error.h"
-#include "vt_float_file.h"
 
 struct vt_pyramid_resume {
     const struct vt_pyramid_options *o;
