@@ -151,15 +151,15 @@ static void writer_round_trips_every_channel_count(void)
 
 static void writer_destroyed_unfinished_leaves_no_file(void)
 {
-    unsigned char row[40 * 3] = {0};
+    unsigned char rows[4][40 * 3] = {{0}};
     struct vts_error err = {0};
     const char *path = test_path("unfinished.tif");
     struct vt_tiff_file_writer *w = vt_tiff_file_writer_create(path, 40, 4, 3, &err);
     VT_CHECK(w != NULL);
     if (!w)
         return;
-    VT_CHECK_INT_EQ(vt_tiff_file_writer_rows(w, row, 2, sizeof row, &err), 0);
-    VT_CHECK_INT_EQ(vt_tiff_file_writer_rows(w, row, 3, sizeof row, &err), VTS_ERR_ARG);
+    VT_CHECK_INT_EQ(vt_tiff_file_writer_rows(w, rows, 2, sizeof rows[0], &err), 0);
+    VT_CHECK_INT_EQ(vt_tiff_file_writer_rows(w, rows, 3, sizeof rows[0], &err), VTS_ERR_ARG);
     VT_CHECK_INT_EQ(vt_tiff_file_writer_finish(w, &err), VTS_ERR_ARG); /* 2 of 4 rows */
     VT_CHECK_STR_CONTAINS(err.message, "2 of 4 rows");
     vt_tiff_file_writer_destroy(w);
