@@ -8,6 +8,7 @@
 #include "vt_codec.h"
 #include "vt_error.h"
 #include "vt_pool.h"
+#include "vt_tile_sink.h"
 #include "vts.h"
 #include "vts_writer.h"
 
@@ -429,8 +430,7 @@ static int run(const struct options *o, const struct vt_codec *codec)
 {
     struct vts_error err = {0};
     struct run r = {.o = o, .codec = codec};
-    r.params = (struct vt_codec_params){(int)o->quality,
-                                        o->best ? (codec->fourcc == VTS_CODEC_PNG ? 9 : 1) : 0,
+    r.params = (struct vt_codec_params){(int)o->quality, vt_tile_sink_effort(codec, o->best),
                                         (int)o->subsampling};
     if (!(r.in = vts_open(o->in_path, &err))) {
         vt_log(VT_LOG_ERROR, "%s", err.message);

@@ -1,4 +1,4 @@
-#include "vt_float_file.h"
+#include "internal/vt_float_file.h"
 
 #include <errno.h>
 #include <fcntl.h>

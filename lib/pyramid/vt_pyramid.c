@@ -1,20 +1,21 @@
 /* The mip pyramid driver: plans, shard parts, option checks and the pass loop (see vt_pyramid.h;
- * a pass runs in vt_pyramid_pass.c, its blocks in vt_pyramid_block.c). */
+ * a pass runs in vt_pyramid_pass.c, its blocks in vt_pyramid_block.c: internal/vt_pyramid_impl.h).
+ */
 #include "vt_pyramid.h"
 
 #include <stdlib.h>
 
+#include "internal/vt_float_file.h"
+#include "internal/vt_pyramid_impl.h"
+#include "internal/vt_pyramid_pass.h"
+#include "internal/vt_tile_cache.h"
 #include "vt_error.h"
-#include "vt_float_file.h"
-#include "vt_pyramid_pass.h"
-#include "vt_pyramid_read.h"
-#include "vt_tile_cache.h"
 
 #define INPUT_CACHE_BYTES (48u << 20) /* decoded input tiles shared by the workers */
 
 void vt_pyramid_plan(const struct vt_pyramid_options *o, struct vt_pyramid_plan *out)
 {
-    uint32_t k = vt_pyramid_pass_resolved_k(o);
+    uint32_t k = vt_pyramid_resolved_k(o);
     uint64_t block = (uint64_t)o->tile_content_px << k;
     *out = (struct vt_pyramid_plan){.levels_per_pass = k,
                                     .has_next = o->level_count > k + 1,
@@ -22,8 +23,8 @@ void vt_pyramid_plan(const struct vt_pyramid_options *o, struct vt_pyramid_plan 
                                     .blocks_x = (uint32_t)((o->width + block - 1) / block),
                                     .blocks_y = (uint32_t)((o->height + block - 1) / block)};
     if (out->has_next) {
-        out->carry_width = vt_pyramid_pass_level_extent(o->width, k);
-        out->carry_height = vt_pyramid_pass_level_extent(o->height, k);
+        out->carry_width = vt_pyramid_level_extent(o->width, k);
+        out->carry_height = vt_pyramid_level_extent(o->height, k);
     }
 }
 
@@ -51,7 +52,7 @@ bool vt_pyramid_part(const struct vt_pyramid_plan *plan, uint32_t index, uint32_
 static uint64_t part_tiles(uint32_t size, uint32_t r, uint64_t block, uint32_t c, uint32_t b0,
                            uint32_t b1)
 {
-    uint64_t s = block >> r, extent = vt_pyramid_pass_level_extent(size, r);
+    uint64_t s = block >> r, extent = vt_pyramid_level_extent(size, r);
     uint64_t tiles_end = (extent + c - 1) / c * c, c0 = (uint64_t)b0 * s, c1 = (uint64_t)b1 * s;
     c1 = c1 < tiles_end ? c1 : tiles_end;
     return c0 < c1 ? (c1 - c0 + c - 1) / c : 0;
@@ -64,10 +65,10 @@ uint64_t vt_pyramid_tile_count(const struct vt_pyramid_options *o)
     uint32_t k = plan.levels_per_pass, first = o->resume_input ? k + 1 : 0;
     uint64_t n = 0;
     for (uint32_t l = first; l < o->level_count; l++) {
-        uint64_t tx = (vt_pyramid_pass_level_extent(o->width, l) + o->tile_content_px - 1) /
-                      o->tile_content_px;
-        uint64_t ty = (vt_pyramid_pass_level_extent(o->height, l) + o->tile_content_px - 1) /
-                      o->tile_content_px;
+        uint64_t tx =
+            (vt_pyramid_level_extent(o->width, l) + o->tile_content_px - 1) / o->tile_content_px;
+        uint64_t ty =
+            (vt_pyramid_level_extent(o->height, l) + o->tile_content_px - 1) / o->tile_content_px;
         if (o->part) {
             if (l > k)
                 break;
@@ -89,7 +90,7 @@ static int check_options(struct vt_source *const *sources, const struct vt_pyram
         (!o->resume_input && (in->width != o->width || in->height != o->height)) ||
         vts_sample_bytes(o->out_sample) == 0 || in->channels < 1 || in->channels > 4 ||
         (o->part && o->resume_input) ||
-        (o->part && o->level_count > vt_pyramid_pass_resolved_k(o) + 1 && !o->carry))
+        (o->part && o->level_count > vt_pyramid_resolved_k(o) + 1 && !o->carry))
         return vt_error_set(err, VTS_ERR_ARG, "invalid pyramid options");
     if (o->resume_input) {
         struct vt_pyramid_plan plan;
@@ -119,6 +120,36 @@ static int check_options(struct vt_source *const *sources, const struct vt_pyram
     return 0;
 }
 
+/* The first pass's description: from the input, or as after the first pass when resuming (its
+ * last level, in working space, is the source). */
+static void first_pass(const struct vt_pyramid_options *o, const struct vt_source_info *in,
+                       uint64_t *done, struct vt_pyramid_pass *p)
+{
+    uint32_t k = vt_pyramid_resolved_k(o);
+    *p = (struct vt_pyramid_pass){.o = o,
+                                  .emit_base = true,
+                                  .w = o->width,
+                                  .h = o->height,
+                                  .channels = in->channels,
+                                  .sample = in->sample,
+                                  .block = (uint64_t)o->tile_content_px << k,
+                                  .done = done};
+    /* premultiply while filtering, unless the input already is (then it is filtered and stored
+     * premultiplied, and the layer says so) */
+    p->mode =
+        (struct vt_pixel_mode){in->channels, o->colour,
+                               in->has_alpha && !in->premultiplied && o->colour != VTS_COLOUR_DATA};
+    vt_kernel_init(&p->kernel, o->filter);
+    if (o->resume_input) {
+        p->source_is_working = true;
+        p->emit_base = false;
+        p->base = k;
+        p->w = vt_pyramid_level_extent(o->width, k);
+        p->h = vt_pyramid_level_extent(o->height, k);
+        p->sample = VTS_SAMPLE_F32;
+    }
+}
+
 int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_options *o,
                      struct vts_error *err)
 {
@@ -126,37 +157,12 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
     if (rc)
         return rc;
     const struct vt_source_info *in = o->resume_input ? o->resume_input : &sources[0]->info;
-    uint32_t k = vt_pyramid_pass_resolved_k(o);
-    uint64_t done = 0;
-    struct vt_pyramid_pass p = {.o = o,
-                                .sources = sources,
-                                .sequential = in->sequential,
-                                .emit_base = true,
-                                .k = k,
-                                .w = o->width,
-                                .h = o->height,
-                                .channels = in->channels,
-                                .sample = in->sample,
-                                .block = (uint64_t)o->tile_content_px << k,
-                                .threads = o->threads,
-                                .done = &done,
-                                .total = vt_pyramid_tile_count(o)};
-    /* premultiply while filtering, unless the input already is (then it is filtered and stored
-     * premultiplied, and the layer says so) */
-    p.mode =
-        (struct vt_pixel_mode){in->channels, o->colour,
-                               in->has_alpha && !in->premultiplied && o->colour != VTS_COLOUR_DATA};
-    vt_kernel_init(&p.kernel, o->filter);
-    if (o->resume_input) { /* as after the first pass: read its last level, in working space */
-        p.sequential = false;
-        p.source_is_working = true;
-        p.emit_base = false;
-        p.base = k;
-        p.w = vt_pyramid_pass_level_extent(o->width, k);
-        p.h = vt_pyramid_pass_level_extent(o->height, k);
-        p.sample = VTS_SAMPLE_F32;
-    }
-    vt_pyramid_read_band_init(&p, in, sources[0]->name);
+    uint32_t k = vt_pyramid_resolved_k(o);
+    uint64_t done = 0, total = vt_pyramid_tile_count(o);
+    struct vt_pyramid_pass p;
+    first_pass(o, in, &done, &p);
+    bool sequential = in->sequential && !o->resume_input;
+    struct vt_source *const *pass_sources = sources;
     struct vt_float_file *prev = NULL;
     struct vt_source temp_source = {0};
     struct vt_source **temp_sources = NULL;
@@ -169,7 +175,7 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
             return err ? err->status : VTS_ERR_NOMEM;
         for (unsigned i = 0; i < o->threads; i++)
             cached_ptrs[i] = &cached[i];
-        p.sources = cached_ptrs;
+        pass_sources = cached_ptrs;
     }
     for (;;) {
         uint32_t left = o->level_count - 1 - p.base;
@@ -177,15 +183,14 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
         p.next = NULL;
         p.carry = o->part && p.depth < left;
         if (p.depth < left && !o->part) {
-            p.next =
-                vt_float_file_create(o->temp_dir, vt_pyramid_pass_level_extent(p.w, p.depth),
-                                     vt_pyramid_pass_level_extent(p.h, p.depth), p.channels, err);
+            p.next = vt_float_file_create(o->temp_dir, vt_pyramid_level_extent(p.w, p.depth),
+                                          vt_pyramid_level_extent(p.h, p.depth), p.channels, err);
             if (!p.next) {
                 rc = err ? err->status : VTS_ERR_IO;
                 break;
             }
         }
-        rc = vt_pyramid_pass_run(&p, err);
+        rc = vt_pyramid_pass_run(&p, pass_sources, sequential, o->threads, total, err);
         vt_tile_cache_destroy(cache); /* only pass 0 reads the input */
         cache = NULL;
         vt_source_close(&temp_source);
@@ -203,13 +208,13 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
         vt_float_file_source(p.next, o->colour, in->has_alpha, &temp_source, err);
         for (unsigned i = 0; i < o->threads; i++)
             temp_sources[i] = &temp_source;
-        p.sources = temp_sources;
-        p.sequential = false;
+        pass_sources = temp_sources;
+        sequential = false;
         p.source_is_working = true;
         p.emit_base = false;
         p.base += p.depth;
-        p.w = vt_pyramid_pass_level_extent(p.w, p.depth);
-        p.h = vt_pyramid_pass_level_extent(p.h, p.depth);
+        p.w = vt_pyramid_level_extent(p.w, p.depth);
+        p.h = vt_pyramid_level_extent(p.h, p.depth);
         p.sample = VTS_SAMPLE_F32;
     }
     vt_tile_cache_destroy(cache);

@@ -1,11 +1,82 @@
-/* Blocks of a mip pyramid pass: tiles, reduction, next-pass store (see vt_pyramid_block.h). */
-#include "vt_pyramid_block.h"
+/* Blocks of a mip pyramid pass: scratch, tiles, reduction, next-pass store (see
+ * internal/vt_pyramid_block.h). */
+#include "internal/vt_pyramid_block.h"
 
+#include <stdlib.h>
 #include <string.h>
 
+#include "internal/vt_float_file.h"
+#include "internal/vt_pyramid_read.h"
+#include "vt_checked.h"
 #include "vt_error.h"
-#include "vt_float_file.h"
-#include "vt_pyramid_read.h"
+
+/* ---- scratch ---- */
+
+/* Largest region of relative level r over all blocks: a full block plus margins. */
+static void max_region(const struct vt_pyramid_pass *p, uint32_t r, struct vt_fregion *out)
+{
+    uint32_t m = p->margin[r];
+    uint64_t s = p->block >> r;
+    out->x0 = out->y0 = 0;
+    out->width = out->height = (uint32_t)s + 2 * m;
+    out->channels = p->channels;
+}
+
+int vt_pyramid_block_scratch_alloc(const struct vt_pyramid_pass *p,
+                                   struct vt_pyramid_block_scratch *s, struct vts_error *err)
+{
+    const struct vt_pyramid_options *o = p->o;
+    uint32_t pp = o->tile_content_px + 2 * o->border_px;
+    struct vt_fregion big;
+    max_region(p, 0, &big);
+    int rc = vt_image_alloc(&s->in, big.width, big.height, p->channels, p->sample, err);
+    if (rc == 0)
+        rc = vt_image_alloc(&s->tile_full, pp, pp, p->channels, o->out_sample, err);
+    if (rc == 0)
+        rc = vt_image_alloc(&s->tile, pp, pp, o->out_channels, o->out_sample, err);
+    if (rc)
+        return rc;
+    bool ok = vt_pyramid_read_scratch_alloc(&s->read, big.width) == 0;
+    size_t floats = 0;
+    for (uint32_t r = 0; ok && r <= p->depth; r++) {
+        struct vt_fregion reg;
+        max_region(p, r, &reg);
+        if (r == 0 && !p->source_is_working) /* a band of rows, see reduce_from_native */
+            reg.height = s->band_rows = 2 * VT_PYRAMID_BAND_ROWS + (uint32_t)p->kernel.count;
+        if (r > 0 || !p->source_is_working) {
+            size_t n;
+            ok = vt_size_mul3(reg.width, reg.height, p->channels, &n) &&
+                 (s->w[r].px = malloc(n * sizeof(float))) != NULL;
+        }
+        if (r > 0) {
+            struct vt_fregion fine;
+            max_region(p, r - 1, &fine);
+            size_t need = vt_filter_reduce_scratch(&p->kernel, &fine, &reg);
+            floats = need > floats ? need : floats;
+        }
+    }
+    s->reduce_floats = floats;
+    if (ok && floats)
+        ok = (s->reduce_scratch = malloc(floats * sizeof(float))) != NULL;
+    if (!ok)
+        return vt_error_set(err, VTS_ERR_NOMEM,
+                            "out of memory for the working blocks of %ux%u texels", big.width,
+                            big.height);
+    return 0;
+}
+
+void vt_pyramid_block_scratch_release(const struct vt_pyramid_pass *p,
+                                      struct vt_pyramid_block_scratch *s)
+{
+    vt_image_release(&s->in);
+    /* with a working-space source, w[0] is a view of in (vt_pyramid_block_run) */
+    for (uint32_t r = p->source_is_working ? 1 : 0; r <= VT_PYRAMID_MAX_LEVELS; r++)
+        free(s->w[r].px);
+    free(s->reduce_scratch);
+    vt_image_release(&s->tile_full);
+    vt_image_release(&s->tile);
+    vt_pyramid_read_scratch_release(&s->read);
+}
 
 /* ---- tiles ---- */
 
@@ -41,8 +112,9 @@ static void copy_channels(const struct vt_image *src, struct vt_image *dst)
     }
 }
 
-static int emit_tile(struct vt_pyramid_pass *p, unsigned worker, struct vt_pyramid_pass_scratch *s,
-                     uint32_t level, uint32_t tx, uint32_t ty, struct vts_error *err)
+static int emit_tile(const struct vt_pyramid_pass *p, unsigned worker,
+                     struct vt_pyramid_block_scratch *s, uint32_t level, uint32_t tx, uint32_t ty,
+                     struct vts_error *err)
 {
     const struct vt_pyramid_options *o = p->o;
     struct vt_image *t = o->out_channels == p->channels ? &s->tile_full : &s->tile;
@@ -53,15 +125,15 @@ static int emit_tile(struct vt_pyramid_pass *p, unsigned worker, struct vt_pyram
 }
 
 /* Payload of tile (tx, ty) of the pass's base level, straight from the source texels. */
-static int emit_base_tile(struct vt_pyramid_pass *p, unsigned worker,
-                          struct vt_pyramid_pass_scratch *s, int64_t rx0, int64_t ry0, uint32_t tx,
+static int emit_base_tile(const struct vt_pyramid_pass *p, unsigned worker,
+                          struct vt_pyramid_block_scratch *s, int64_t rx0, int64_t ry0, uint32_t tx,
                           uint32_t ty, struct vts_error *err)
 {
     const struct vt_pyramid_options *o = p->o;
     uint32_t pp = o->tile_content_px + 2 * o->border_px;
     int64_t x = (int64_t)tx * o->tile_content_px - o->border_px - rx0;
     int64_t y = (int64_t)ty * o->tile_content_px - o->border_px - ry0;
-    struct vt_image v = vt_pyramid_pass_view(&s->block, x, y, pp, pp);
+    struct vt_image v = vt_pyramid_view(&s->block, x, y, pp, pp);
     if (o->out_sample == p->sample) {
         copy_channels(&v, &s->tile_full);
     } else {
@@ -80,8 +152,8 @@ static int emit_base_tile(struct vt_pyramid_pass *p, unsigned worker,
 }
 
 /* Payload of tile (tx, ty) of a reduced level from its working region. */
-static int emit_working_tile(struct vt_pyramid_pass *p, unsigned worker,
-                             struct vt_pyramid_pass_scratch *s, const struct vt_fregion *w,
+static int emit_working_tile(const struct vt_pyramid_pass *p, unsigned worker,
+                             struct vt_pyramid_block_scratch *s, const struct vt_fregion *w,
                              uint32_t level, uint32_t tx, uint32_t ty, struct vts_error *err)
 {
     const struct vt_pyramid_options *o = p->o;
@@ -109,15 +181,15 @@ static struct span block_span(const struct vt_pyramid_pass *p, uint32_t b, uint3
                               uint32_t size)
 {
     uint64_t s = p->block >> r, c = p->o->tile_content_px;
-    uint64_t extent = vt_pyramid_pass_level_extent(size, r), tiles_end = (extent + c - 1) / c * c;
+    uint64_t extent = vt_pyramid_level_extent(size, r), tiles_end = (extent + c - 1) / c * c;
     uint64_t end = (uint64_t)(b + 1) * s;
     return (struct span){(int64_t)((uint64_t)b * s), (int64_t)(end < tiles_end ? end : tiles_end),
                          (int64_t)(end < extent ? end : extent)};
 }
 
-static int emit_level_tiles(struct vt_pyramid_pass *p, unsigned worker,
-                            struct vt_pyramid_pass_scratch *s, uint32_t r, uint32_t bx, uint32_t by,
-                            int64_t rx0, int64_t ry0, struct vts_error *err)
+static int emit_level_tiles(const struct vt_pyramid_pass *p, unsigned worker,
+                            struct vt_pyramid_block_scratch *s, uint32_t r, uint32_t bx,
+                            uint32_t by, int64_t rx0, int64_t ry0, struct vts_error *err)
 {
     uint32_t c = p->o->tile_content_px, level = p->base + r;
     struct span sx = block_span(p, bx, r, p->w), sy = block_span(p, by, r, p->h);
@@ -129,8 +201,8 @@ static int emit_level_tiles(struct vt_pyramid_pass *p, unsigned worker,
     return rc;
 }
 
-static int store_next_pass(struct vt_pyramid_pass *p, unsigned worker,
-                           struct vt_pyramid_pass_scratch *s, uint32_t bx, uint32_t by,
+static int store_next_pass(const struct vt_pyramid_pass *p, unsigned worker,
+                           struct vt_pyramid_block_scratch *s, uint32_t bx, uint32_t by,
                            struct vts_error *err)
 {
     const struct vt_fregion *w = &s->w[p->depth];
@@ -185,19 +257,19 @@ static int64_t clamp_to(int64_t v, int64_t size, bool wrap)
 }
 
 /* Reduces the native block `in` (region r0 of the base level) into s->w[1], converting to the
- * working space only the rows each band of VT_PYRAMID_PASS_BAND_ROWS coarser rows reads. Gives the
+ * working space only the rows each band of VT_PYRAMID_BAND_ROWS coarser rows reads. Gives the
  * same bits as converting the whole block first (the reduction does not depend on how it is split),
  * with a working buffer of a few rows instead of the whole block. */
-static int reduce_from_native(struct vt_pyramid_pass *p, struct vt_pyramid_pass_scratch *s,
+static int reduce_from_native(const struct vt_pyramid_pass *p, struct vt_pyramid_block_scratch *s,
                               const struct vt_image *in, const struct vt_fregion *r0,
                               const struct vt_edges *edges, struct vts_error *err)
 {
     const struct vt_kernel *k = &p->kernel;
     struct vt_fregion *dst = &s->w[1];
-    int64_t coarse_h = vt_pyramid_pass_level_extent(p->h, 1);
-    for (uint32_t row = 0; row < dst->height; row += VT_PYRAMID_PASS_BAND_ROWS) {
-        uint32_t rows = dst->height - row < VT_PYRAMID_PASS_BAND_ROWS ? dst->height - row
-                                                                      : VT_PYRAMID_PASS_BAND_ROWS;
+    int64_t coarse_h = vt_pyramid_level_extent(p->h, 1);
+    for (uint32_t row = 0; row < dst->height; row += VT_PYRAMID_BAND_ROWS) {
+        uint32_t rows =
+            dst->height - row < VT_PYRAMID_BAND_ROWS ? dst->height - row : VT_PYRAMID_BAND_ROWS;
         int64_t a = dst->y0 + row, b = a + rows; /* coarser rows [a, b) */
         int64_t lo = clamp_to(2 * clamp_to(a, coarse_h, edges->wrap_y) + k->first, edges->level_h,
                               edges->wrap_y);
@@ -222,10 +294,10 @@ static int reduce_from_native(struct vt_pyramid_pass *p, struct vt_pyramid_pass_
     return 0;
 }
 
-int vt_pyramid_block_run(struct vt_pyramid_pass *p, unsigned worker, uint32_t bx, uint32_t by,
+int vt_pyramid_block_run(const struct vt_pyramid_pass *p, struct vt_pyramid_block_scratch *s,
+                         struct vt_source *src, unsigned worker, uint32_t bx, uint32_t by,
                          struct vts_error *err)
 {
-    struct vt_pyramid_pass_scratch *s = &p->scratch[worker];
     struct vt_fregion r0;
     vt_pyramid_block_region(p, bx, by, 0, &r0);
     struct vt_image *in = &s->block;
@@ -233,8 +305,7 @@ int vt_pyramid_block_run(struct vt_pyramid_pass *p, unsigned worker, uint32_t bx
     in->width = r0.width;
     in->height = r0.height;
     in->stride = r0.width * vt_image_texel_bytes(in); /* tight: it may double as working region */
-    struct vt_source *src = p->sequential ? &p->band_source : p->sources[worker];
-    int rc = vt_pyramid_read_region(p, s, src, r0.x0, r0.y0, in, err);
+    int rc = vt_pyramid_read_region(src, p->w, p->h, p->o->wrap, &s->read, r0.x0, r0.y0, in, err);
     if (rc == 0 && p->emit_base)
         rc = emit_level_tiles(p, worker, s, 0, bx, by, r0.x0, r0.y0, err);
     if (rc || (p->depth == 0 && !p->next && !p->carry))
@@ -245,8 +316,8 @@ int vt_pyramid_block_run(struct vt_pyramid_pass *p, unsigned worker, uint32_t bx
         float *px = s->w[r].px;
         vt_pyramid_block_region(p, bx, by, r, &s->w[r]);
         s->w[r].px = px;
-        struct vt_edges edges = {vt_pyramid_pass_level_extent(p->w, r - 1),
-                                 vt_pyramid_pass_level_extent(p->h, r - 1), p->o->wrap, p->o->wrap};
+        struct vt_edges edges = {vt_pyramid_level_extent(p->w, r - 1),
+                                 vt_pyramid_level_extent(p->h, r - 1), p->o->wrap, p->o->wrap};
         if (r == 1 && !p->source_is_working)
             rc = reduce_from_native(p, s, in, &r0, &edges, err);
         else

@@ -1,117 +1,88 @@
-/* Running one pass of the mip pyramid (see vt_pyramid_pass.h). */
-#include "vt_pyramid_pass.h"
+/* Running one pass of the mip pyramid (see internal/vt_pyramid_pass.h). */
+#include "internal/vt_pyramid_pass.h"
 
 #include <stdlib.h>
 
-#include "vt_checked.h"
+#include "internal/vt_pyramid_block.h"
+#include "internal/vt_pyramid_read.h"
 #include "vt_error.h"
 #include "vt_pool.h"
-#include "vt_pyramid_block.h"
-#include "vt_pyramid_read.h"
 
-static void scratch_free(struct vt_pyramid_pass *p)
+/* What running the pass takes beyond its description: the pool's jobs and the workers' memory. */
+struct pass_run {
+    const struct vt_pyramid_pass *p;
+    struct vt_source *const *sources;
+    bool sequential;
+    struct vt_pyramid_read_band band; /* sequential sources: the rows the current block row reads */
+    struct vt_pyramid_block_scratch *scratch; /* one per worker */
+    unsigned threads;
+    uint64_t total;
+    uint32_t row, next_bx, bx0, bx1; /* the block row running, the next block, the blocks run */
+};
+
+static void scratch_free(struct pass_run *run)
 {
-    for (unsigned i = 0; p->scratch && i < p->threads; i++) {
-        struct vt_pyramid_pass_scratch *s = &p->scratch[i];
-        vt_image_release(&s->in);
-        for (uint32_t r = p->source_is_working ? 1 : 0; r <= VT_PYRAMID_PASS_MAX_LEVELS; r++)
-            free(s->w[r].px);
-        free(s->reduce_scratch);
-        vt_image_release(&s->tile_full);
-        vt_image_release(&s->tile);
-        free(s->xs);
-        free(s->ys);
-    }
-    free(p->scratch);
-    p->scratch = NULL;
+    for (unsigned i = 0; run->scratch && i < run->threads; i++)
+        vt_pyramid_block_scratch_release(run->p, &run->scratch[i]);
+    free(run->scratch);
+    run->scratch = NULL;
 }
 
-/* Largest region of relative level r over all blocks: a full block plus margins. */
-static void max_region(const struct vt_pyramid_pass *p, uint32_t r, struct vt_fregion *out)
+static int scratch_alloc(struct pass_run *run, struct vts_error *err)
 {
-    uint32_t m = p->margin[r];
-    uint64_t s = p->block >> r;
-    out->x0 = out->y0 = 0;
-    out->width = out->height = (uint32_t)s + 2 * m;
-    out->channels = p->channels;
-}
-
-static int scratch_alloc(struct vt_pyramid_pass *p, struct vts_error *err)
-{
-    const struct vt_pyramid_options *o = p->o;
-    uint32_t pp = o->tile_content_px + 2 * o->border_px;
-    p->scratch = calloc(p->threads, sizeof *p->scratch);
-    if (!p->scratch)
-        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for %u workers", p->threads);
-    struct vt_fregion big;
-    max_region(p, 0, &big);
-    for (unsigned i = 0; i < p->threads; i++) {
-        struct vt_pyramid_pass_scratch *s = &p->scratch[i];
-        int rc = vt_image_alloc(&s->in, big.width, big.height, p->channels, p->sample, err);
-        if (rc == 0)
-            rc = vt_image_alloc(&s->tile_full, pp, pp, p->channels, o->out_sample, err);
-        if (rc == 0)
-            rc = vt_image_alloc(&s->tile, pp, pp, o->out_channels, o->out_sample, err);
+    run->scratch = calloc(run->threads, sizeof *run->scratch);
+    if (!run->scratch)
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for %u workers", run->threads);
+    for (unsigned i = 0; i < run->threads; i++) {
+        int rc = vt_pyramid_block_scratch_alloc(run->p, &run->scratch[i], err);
         if (rc)
             return rc;
-        s->seg_cap = (size_t)big.width + 4;
-        s->xs = calloc(s->seg_cap, sizeof *s->xs);
-        s->ys = calloc(s->seg_cap, sizeof *s->ys);
-        bool ok = s->xs && s->ys;
-        size_t floats = 0;
-        for (uint32_t r = 0; ok && r <= p->depth; r++) {
-            struct vt_fregion reg;
-            max_region(p, r, &reg);
-            if (r == 0 && !p->source_is_working) /* a band of rows, see reduce_from_native */
-                reg.height = s->band_rows =
-                    2 * VT_PYRAMID_PASS_BAND_ROWS + (uint32_t)p->kernel.count;
-            if (r > 0 || !p->source_is_working) {
-                size_t n;
-                ok = vt_size_mul3(reg.width, reg.height, p->channels, &n) &&
-                     (s->w[r].px = malloc(n * sizeof(float))) != NULL;
-            }
-            if (r > 0) {
-                struct vt_fregion fine;
-                max_region(p, r - 1, &fine);
-                size_t need = vt_filter_reduce_scratch(&p->kernel, &fine, &reg);
-                floats = need > floats ? need : floats;
-            }
-        }
-        s->reduce_floats = floats;
-        if (ok && floats)
-            ok = (s->reduce_scratch = malloc(floats * sizeof(float))) != NULL;
-        if (!ok)
-            return vt_error_set(err, VTS_ERR_NOMEM,
-                                "out of memory for the working blocks of %ux%u texels", big.width,
-                                big.height);
     }
     return 0;
 }
 
 static bool next_block(void *ctx, uint64_t *job)
 {
-    struct vt_pyramid_pass *p = ctx;
-    if (p->next_bx >= p->bx1)
+    struct pass_run *run = ctx;
+    if (run->next_bx >= run->bx1)
         return false;
-    *job = p->next_bx++;
+    *job = run->next_bx++;
     return true;
 }
 
 static int run_block(void *ctx, unsigned worker, uint64_t job, struct vts_error *err)
 {
-    struct vt_pyramid_pass *p = ctx;
-    return vt_pyramid_block_run(p, worker, (uint32_t)job, p->row, err);
+    struct pass_run *run = ctx;
+    struct vt_source *src = run->sequential ? &run->band.source : run->sources[worker];
+    return vt_pyramid_block_run(run->p, &run->scratch[worker], src, worker, (uint32_t)job, run->row,
+                                err);
 }
 
 static int report_progress(void *ctx)
 {
-    struct vt_pyramid_pass *p = ctx;
-    if (!p->o->progress)
+    struct pass_run *run = ctx;
+    const struct vt_pyramid_options *o = run->p->o;
+    if (!o->progress)
         return 0;
-    return p->o->progress(p->o->user, __atomic_load_n(p->done, __ATOMIC_RELAXED), p->total);
+    return o->progress(o->user, __atomic_load_n(run->p->done, __ATOMIC_RELAXED), run->total);
 }
 
-int vt_pyramid_pass_run(struct vt_pyramid_pass *p, struct vts_error *err)
+/* Moves the band down to the rows block row `by` reads (all of them with wrap at an edge). */
+static int move_band(struct pass_run *run, uint32_t by, struct vts_error *err)
+{
+    const struct vt_pyramid_pass *p = run->p;
+    struct vt_fregion r0;
+    vt_pyramid_block_region(p, 0, by, 0, &r0);
+    int64_t a = r0.y0, b = r0.y0 + r0.height;
+    if (p->o->wrap && (a < 0 || b > p->h))
+        a = 0, b = p->h; /* wrapped rows come from both ends: hold the whole image */
+    a = a < 0 ? 0 : a;
+    b = b > p->h ? p->h : b;
+    return vt_pyramid_read_band_move(&run->band, run->sources[0], a, b, err);
+}
+
+int vt_pyramid_pass_run(struct vt_pyramid_pass *p, struct vt_source *const *sources,
+                        bool sequential, unsigned threads, uint64_t total, struct vts_error *err)
 {
     const struct vt_pyramid_options *o = p->o;
     uint32_t km = vt_kernel_margin(&p->kernel);
@@ -120,35 +91,34 @@ int vt_pyramid_pass_run(struct vt_pyramid_pass *p, struct vts_error *err)
         uint32_t m = 2 * p->margin[r + 1] + km;
         p->margin[r] = m > o->border_px ? m : o->border_px;
     }
-    p->blocks_x = (uint32_t)((p->w + p->block - 1) / p->block);
-    p->blocks_y = (uint32_t)((p->h + p->block - 1) / p->block);
+    uint32_t blocks_x = (uint32_t)((p->w + p->block - 1) / p->block);
+    uint32_t blocks_y = (uint32_t)((p->h + p->block - 1) / p->block);
     bool part = o->part && p->base == 0 && !o->resume_input;
-    p->bx0 = part ? o->part_x0 : 0;
-    p->bx1 = part ? (o->part_x1 < p->blocks_x ? o->part_x1 : p->blocks_x) : p->blocks_x;
-    p->by0 = part ? o->part_y0 : 0;
-    p->by1 = part ? (o->part_y1 < p->blocks_y ? o->part_y1 : p->blocks_y) : p->blocks_y;
-    if (p->bx0 >= p->bx1 || p->by0 >= p->by1) /* an empty part */
+    struct pass_run run = {.p = p,
+                           .sources = sources,
+                           .sequential = sequential,
+                           .threads = threads,
+                           .total = total,
+                           .bx0 = part ? o->part_x0 : 0,
+                           .bx1 =
+                               part ? (o->part_x1 < blocks_x ? o->part_x1 : blocks_x) : blocks_x};
+    uint32_t by0 = part ? o->part_y0 : 0;
+    uint32_t by1 = part ? (o->part_y1 < blocks_y ? o->part_y1 : blocks_y) : blocks_y;
+    if (run.bx0 >= run.bx1 || by0 >= by1) /* an empty part */
         return 0;
-    int rc = scratch_alloc(p, err);
+    if (sequential)
+        vt_pyramid_read_band_init(&run.band, sources[0]);
+    int rc = scratch_alloc(&run, err);
     static const struct vt_pool_fns fns = {next_block, run_block, report_progress};
-    for (uint32_t by = p->by0; rc == 0 && by < p->by1; by++) {
-        if (p->sequential) {
-            struct vt_fregion r0;
-            vt_pyramid_block_region(p, 0, by, 0, &r0);
-            int64_t a = r0.y0, b = r0.y0 + r0.height;
-            if (o->wrap && (a < 0 || b > p->h))
-                a = 0, b = p->h; /* wrapped rows come from both ends: hold the whole image */
-            a = a < 0 ? 0 : a;
-            b = b > p->h ? p->h : b;
-            rc = vt_pyramid_read_band_move(p, a, b, err);
-        }
-        p->row = by;
-        p->next_bx = p->bx0;
+    for (uint32_t by = by0; rc == 0 && by < by1; by++) {
+        if (sequential)
+            rc = move_band(&run, by, err);
+        run.row = by;
+        run.next_bx = run.bx0;
         if (rc == 0)
-            rc = vt_pool_run(p->threads, &fns, p, err);
+            rc = vt_pool_run(threads, &fns, &run, err);
     }
-    scratch_free(p);
-    vt_image_release(&p->band.img);
-    p->band.valid = false;
+    scratch_free(&run);
+    vt_pyramid_read_band_release(&run.band);
     return rc;
 }

@@ -1,4 +1,4 @@
-#include "vt_tile_cache.h"
+#include "internal/vt_tile_cache.h"
 #include "vt_error.h"
 
 #include <pthread.h>

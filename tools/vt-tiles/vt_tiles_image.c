@@ -13,6 +13,7 @@
 #include "vt_pool.h"
 #include "vt_pyramid.h"
 #include "vt_shard.h"
+#include "vt_tile_sink.h"
 #include "vt_version.h"
 #include "vts_writer.h"
 
@@ -21,8 +22,7 @@ struct run {
     const struct vt_codec *codec;
     struct vt_codec_params params;
     struct vts_writer *writer;
-    unsigned char **bufs; /* one encode buffer per worker */
-    size_t cap;
+    struct vt_tile_sink *sink; /* layer 0; its scratch buffers also pack the carried texels */
     uint32_t carry_level, payload_px, border, content; /* shards: the carried level's tiles */
     struct vt_progress progress;
 };
@@ -31,15 +31,7 @@ static int emit_tile(void *user, unsigned worker, uint32_t level, uint32_t tx, u
                      const struct vt_image *payload, struct vts_error *err)
 {
     struct run *r = user;
-    size_t len = 0;
-    if (payload) {
-        struct vts_error cerr = {0};
-        int rc = r->codec->encode(payload, &r->params, r->bufs[worker], r->cap, &len, &cerr);
-        if (rc)
-            return vt_error_set(err, rc, "cannot encode tile %u,%u of level %u: %s", tx, ty, level,
-                                cerr.message);
-    }
-    return vts_writer_put(r->writer, 0, level, tx, ty, r->bufs[worker], len, err);
+    return vt_tile_sink_put(r->sink, worker, 0, level, tx, ty, payload, err);
 }
 
 /* A shard's carried texels: one tile of the extra layer (vt_shard.h) per first-pass block. */
@@ -48,11 +40,11 @@ static int carry_tile(void *user, unsigned worker, uint32_t x, uint32_t y, uint3
                       struct vts_error *err)
 {
     struct run *r = user;
-    vt_shard_pack(r->bufs[worker], r->payload_px, r->border, texels, width, height, channels,
-                  stride);
+    unsigned char *buf = vt_tile_sink_scratch(r->sink, worker, NULL);
+    vt_shard_pack(buf, r->payload_px, r->border, texels, width, height, channels, stride);
     size_t len = (size_t)r->payload_px * r->payload_px * channels * 4;
-    return vts_writer_put(r->writer, 1, r->carry_level, x / r->content, y / r->content,
-                          r->bufs[worker], len, err);
+    return vts_writer_put(r->writer, 1, r->carry_level, x / r->content, y / r->content, buf, len,
+                          err);
 }
 
 /* Shard metadata (after the single build's): shard=I/N, what the merge needs, the input's id. */
@@ -86,14 +78,9 @@ static const struct vt_codec *choose_codec(const struct vt_tiles_image_options *
                                            const struct vt_source_info *in, uint32_t colour,
                                            bool keep_alpha, uint32_t *out_sample)
 {
-    const char *name = o->codec_name;
+    /* auto: the input's own sample type decides (16-bit and float inputs keep their depth) */
+    const char *name = vt_tile_sink_codec_name(o->codec_name, in->sample, keep_alpha, colour);
     bool is_float = in->sample == VTS_SAMPLE_F16 || in->sample == VTS_SAMPLE_F32;
-    if (strcmp(name, "auto") == 0)
-        name = is_float ? "raw"
-               : in->sample == VTS_SAMPLE_U16 || keep_alpha || colour == VTS_COLOUR_NORMAL ||
-                       colour == VTS_COLOUR_DATA
-                   ? "png"
-                   : "jpeg";
     const struct vt_codec *codec = vt_codec_find(name);
     if (!codec) {
         vt_usage_error("codec '%s' is not available (raw, png, jpeg, bc1, bc3, auto)", name);
@@ -229,28 +216,23 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
     if (keep_alpha && in->premultiplied)
         layer.flags |= VTS_LAYER_PREMULTIPLIED;
     snprintf(layer.name, sizeof layer.name, "%s", o->name);
-    r.params = (struct vt_codec_params){(int)o->quality,
-                                        o->best ? (r.codec->fourcc == VTS_CODEC_PNG ? 9 : 1) : 0,
+    r.params = (struct vt_codec_params){(int)o->quality, vt_tile_sink_effort(r.codec, o->best),
                                         (int)o->subsampling};
-    r.cap = r.codec->encoded_bound(g.tile_payload_px, g.tile_payload_px, channels, out_sample);
+    struct vt_tile_sink_layer sink_layers[2] = {{r.codec, r.params, channels, out_sample}, {0}};
+    size_t carry = 0;
     struct vts_layer layers[2] = {layer,
                                   {VTS_CODEC_RAW, (uint8_t)in->channels, VTS_SAMPLE_F32,
                                    (uint8_t)colour, 0, 0, VT_SHARD_LAYER_NAME}};
     if (o->shard) { /* + the carried texels: payload_px^2 floats, beside the layer (vt_shard.h) */
         g.layer_count = 2;
-        size_t carry = (size_t)g.tile_payload_px * g.tile_payload_px * in->channels * 4;
-        r.cap = carry > r.cap ? carry : r.cap;
+        carry = (size_t)g.tile_payload_px * g.tile_payload_px * in->channels * 4;
         r.payload_px = g.tile_payload_px;
         r.border = g.border_px;
         r.content = g.tile_content_px;
     }
-    r.bufs = calloc(o->threads, sizeof *r.bufs);
-    for (unsigned i = 0; r.bufs && i < o->threads; i++)
-        if (!(r.bufs[i] = malloc(r.cap))) {
-            rc = vt_error_set(&err, VTS_ERR_NOMEM, "out of memory for encode buffers");
-            goto out;
-        }
-    if (!(r.writer = vts_writer_create(o->output, &g, layers, &err))) {
+    if (!(r.writer = vts_writer_create(o->output, &g, layers, &err)) ||
+        !(r.sink = vt_tile_sink_create(r.writer, g.tile_payload_px, sink_layers, g.layer_count,
+                                       o->threads, carry, &err))) {
         rc = err.status;
         goto out;
     }
@@ -313,10 +295,8 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
 out:
     if (rc)
         vt_log(VT_LOG_ERROR, "%s", err.message);
+    vt_tile_sink_destroy(r.sink);
     vts_writer_destroy(r.writer);
-    for (unsigned i = 0; r.bufs && i < o->threads; i++)
-        free(r.bufs[i]);
-    free(r.bufs);
     for (unsigned i = 0; i < o->threads; i++)
         vt_source_close(&src[i]);
     return status;

@@ -5,33 +5,30 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <tiffio.h>
-#include <unistd.h>
 
 #include "tool_common.h"
 #include "vt_atlas_build.h"
-#include "vt_atomic_file.h"
 #include "vt_codec.h"
 #include "vt_error.h"
 #include "vt_image_input.h"
 #include "vt_layout.h"
 #include "vt_png_file.h"
+#include "vt_tiff_file.h"
+#include "vt_tile_sink.h"
 #include "vt_version.h"
 #include "vts_writer.h"
 
 #define EXPORT_MAX_TEXELS (1ull << 28)
-#define EXPORT_BAND_ROWS  64u
+#define EXPORT_BAND_ROWS  VT_TIFF_FILE_ROWS_PER_STRIP /* one TIFF strip per band */
 
 struct layout_run {
     const struct vt_tiles_layout_options *o;
     struct vt_layout lay;
     uint32_t layers[VT_LAYOUT_MAX_LAYERS], nslots;
     struct vt_atlas_build *build;
-    const struct vt_codec *codecs[VT_LAYOUT_MAX_LAYERS];
-    struct vt_codec_params params[VT_LAYOUT_MAX_LAYERS];
+    struct vt_tile_sink_layer sink_layers[VT_LAYOUT_MAX_LAYERS];
     struct vts_writer *writer;
-    unsigned char **bufs; /* one encode buffer per worker */
-    size_t cap;
+    struct vt_tile_sink *sink;
     struct vt_progress progress;
     struct vt_input_limits limits;
 };
@@ -54,16 +51,7 @@ static int emit_tile(void *user, unsigned worker, uint32_t slot, uint32_t level,
                      uint32_t ty, const struct vt_image *payload, struct vts_error *err)
 {
     struct layout_run *r = user;
-    size_t len = 0;
-    if (payload) {
-        struct vts_error cerr = {0};
-        int rc = r->codecs[slot]->encode(payload, &r->params[slot], r->bufs[worker], r->cap, &len,
-                                         &cerr);
-        if (rc)
-            return vt_error_set(err, rc, "cannot encode tile %u,%u of level %u: %s", tx, ty, level,
-                                cerr.message);
-    }
-    return vts_writer_put(r->writer, slot, level, tx, ty, r->bufs[worker], len, err);
+    return vt_tile_sink_put(r->sink, worker, slot, level, tx, ty, payload, err);
 }
 
 /* The layout fixes tile content and border; an explicit option must agree. */
@@ -101,17 +89,16 @@ static int pick_layers(struct layout_run *r)
     return 0;
 }
 
-/* Codec of one layer (like vt-tiles: png for alpha, normals and data, else jpeg). */
+/* Codec of one layer (auto: the single-image rule for 8-bit texels, png for alpha, normals and
+ * data, else jpeg; textures of other depths are converted to 8 bits first). */
 static int pick_codec(struct layout_run *r, uint32_t slot, struct vts_layer *layer,
                       struct vts_error *err)
 {
     const struct vt_tiles_layout_options *o = r->o;
     struct vt_atlas_layer_format f;
     vt_atlas_build_format(r->build, slot, &f);
-    const char *name = o->codec_name ? o->codec_name : "auto";
-    if (strcmp(name, "auto") == 0)
-        name = f.alpha || f.colour == VTS_COLOUR_NORMAL || f.colour == VTS_COLOUR_DATA ? "png"
-                                                                                       : "jpeg";
+    const char *name = vt_tile_sink_codec_name(o->codec_name ? o->codec_name : VT_TILE_SINK_AUTO,
+                                               VTS_SAMPLE_U8, f.alpha, f.colour);
     const struct vt_codec *codec = vt_codec_find(name);
     if (!codec)
         return vt_usage_error("codec '%s' is not available (raw, png, jpeg, bc1, bc3, auto)", name);
@@ -124,12 +111,11 @@ static int pick_codec(struct layout_run *r, uint32_t slot, struct vts_layer *lay
         codec->fourcc, (uint8_t)f.channels, VTS_SAMPLE_U8, (uint8_t)f.colour, 0, 0, {0}};
     layer->codec_param = codec->fourcc == VTS_CODEC_JPEG ? o->quality : 0;
     snprintf(layer->name, sizeof layer->name, "%s", ll->name);
-    r->codecs[slot] = codec;
-    r->params[slot] = (struct vt_codec_params){
-        (int)o->quality, o->best ? (codec->fourcc == VTS_CODEC_PNG ? 9 : 1) : 0,
-        (int)o->subsampling};
-    size_t cap = codec->encoded_bound(pp, pp, f.channels, VTS_SAMPLE_U8);
-    r->cap = cap > r->cap ? cap : r->cap;
+    r->sink_layers[slot] = (struct vt_tile_sink_layer){
+        codec,
+        {(int)o->quality, vt_tile_sink_effort(codec, o->best), (int)o->subsampling},
+        f.channels,
+        VTS_SAMPLE_U8};
     if (f.converted)
         vt_log(VT_LOG_WARN, "layer '%s': %u textures are not 8-bit; stored as 8-bit", ll->name,
                f.converted);
@@ -147,7 +133,8 @@ static int set_metadata(struct layout_run *r, struct vts_error *err)
         size_t n = strlen(names), c = strlen(codecs);
         snprintf(names + n, sizeof names - n, "%s%s", s ? "," : "",
                  r->lay.layers[r->layers[s]].name);
-        snprintf(codecs + c, sizeof codecs - c, "%s%s", s ? "," : "", r->codecs[s]->name);
+        snprintf(codecs + c, sizeof codecs - c, "%s%s", s ? "," : "",
+                 r->sink_layers[s].codec->name);
     }
     snprintf(quality, sizeof quality, "%u", o->quality);
     const char *pairs[][2] = {{"tool", "vt-tiles"},
@@ -176,15 +163,6 @@ static int write_store(struct layout_run *r, struct vts_error *err)
         if (status)
             return status;
     }
-    unsigned threads = r->o->threads;
-    r->bufs = calloc(threads, sizeof *r->bufs);
-    for (unsigned i = 0; r->bufs && i < threads; i++)
-        if (!(r->bufs[i] = malloc(r->cap)))
-            break;
-    if (!r->bufs || !r->bufs[threads - 1]) {
-        vt_error_set(err, VTS_ERR_NOMEM, "out of memory for encode buffers");
-        return VT_EXIT_BAD_INPUT;
-    }
     uint32_t c = r->lay.tile_content, b = r->lay.border;
     struct vts_geometry g = {r->lay.width,
                              r->lay.height,
@@ -196,7 +174,8 @@ static int write_store(struct layout_run *r, struct vts_error *err)
                              0};
     if ((r->writer = vts_writer_create(r->o->output, &g, layers, err)))
         vts_writer_set_max_bytes(r->writer, r->o->max_store);
-    if (!r->writer)
+    if (!r->writer || !(r->sink = vt_tile_sink_create(r->writer, g.tile_payload_px, r->sink_layers,
+                                                      r->nslots, r->o->threads, 0, err)))
         return VT_EXIT_BAD_INPUT;
     vt_progress_start(&r->progress, "tiling", "tiles", vt_atlas_build_tile_count(r->build));
     int rc = vt_atlas_build_tiles(r->build, emit_tile, r, err);
@@ -229,47 +208,13 @@ static bool ends_with(const char *s, const char *suffix)
     return n >= m && strcasecmp(s + n - m, suffix) == 0;
 }
 
-struct tiff_out {
-    struct vt_atomic_file file;
-    TIFF *tif;
-};
-
-static int tiff_start(struct tiff_out *t, const char *path, uint32_t w, uint32_t h, uint32_t ch,
-                      struct vts_error *err)
-{
-    int rc = vt_atomic_file_create(&t->file, path, "tmp", err);
-    if (rc)
-        return rc;
-    int fd = dup(t->file.fd);
-    if (fd < 0 ||
-        !(t->tif = TIFFFdOpen(fd, path, w * (uint64_t)h * ch > (1ull << 31) ? "w8" : "w"))) {
-        if (fd >= 0)
-            close(fd);
-        return vt_error_set(err, VTS_ERR_IO, "cannot write '%s'", path);
-    }
-    uint16_t extra = ch == 2 || ch == 4 ? EXTRASAMPLE_UNASSALPHA : 0;
-    TIFFSetField(t->tif, TIFFTAG_IMAGEWIDTH, w);
-    TIFFSetField(t->tif, TIFFTAG_IMAGELENGTH, h);
-    TIFFSetField(t->tif, TIFFTAG_SAMPLESPERPIXEL, (uint16_t)ch);
-    TIFFSetField(t->tif, TIFFTAG_BITSPERSAMPLE, (uint16_t)8);
-    TIFFSetField(t->tif, TIFFTAG_PHOTOMETRIC, ch >= 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK);
-    TIFFSetField(t->tif, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
-    TIFFSetField(t->tif, TIFFTAG_COMPRESSION, COMPRESSION_ADOBE_DEFLATE);
-    TIFFSetField(t->tif, TIFFTAG_ROWSPERSTRIP, EXPORT_BAND_ROWS);
-    if (extra)
-        TIFFSetField(t->tif, TIFFTAG_EXTRASAMPLES, (uint16_t)1, &extra);
-    return 0;
-}
-
-static int export_band(struct vt_png_file_writer *png, struct tiff_out *t, const char *path,
-                       const struct vt_image *band, uint32_t y0, struct vts_error *err)
+/* One band of rows into whichever writer is open. */
+static int export_band(struct vt_png_file_writer *png, struct vt_tiff_file_writer *tiff,
+                       const struct vt_image *band, struct vts_error *err)
 {
     if (png)
         return vt_png_file_writer_rows(png, band->pixels, band->height, band->stride, err);
-    for (uint32_t j = 0; j < band->height; j++)
-        if (TIFFWriteScanline(t->tif, vt_image_at(band, 0, j), y0 + j, 0) < 0)
-            return vt_error_set(err, VTS_ERR_IO, "cannot write '%s'", path);
-    return 0;
+    return vt_tiff_file_writer_rows(tiff, band->pixels, band->height, band->stride, err);
 }
 
 static int export_atlas(struct layout_run *r, struct vts_error *err)
@@ -287,7 +232,7 @@ static int export_atlas(struct layout_run *r, struct vts_error *err)
     struct vt_atlas_layer_format f;
     vt_atlas_build_format(r->build, 0, &f);
     struct vt_png_file_writer *png = NULL;
-    struct tiff_out t = {.file.fd = -1};
+    struct vt_tiff_file_writer *tiff = NULL;
     struct vt_image band = {0};
     int rc = vt_image_alloc(&band, w, h < EXPORT_BAND_ROWS ? h : EXPORT_BAND_ROWS, f.channels,
                             VTS_SAMPLE_U8, err);
@@ -296,25 +241,20 @@ static int export_atlas(struct layout_run *r, struct vts_error *err)
     if (is_png)
         rc = (png = vt_png_file_writer_create(path, w, h, f.channels, 8, err)) ? 0 : err->status;
     else
-        rc = tiff_start(&t, path, w, h, f.channels, err);
+        rc = (tiff = vt_tiff_file_writer_create(path, w, h, f.channels, err)) ? 0 : err->status;
     for (uint32_t y = 0; rc == 0 && y < h; y += band.height) {
         struct vt_image v = band;
         v.height = h - y < band.height ? h - y : band.height;
         rc = vt_atlas_build_render(r->build, 0, 0, 0, y, &v, err);
         if (rc == 0)
-            rc = export_band(png, &t, path, &v, y, err);
+            rc = export_band(png, tiff, &v, err);
     }
-    if (png) {
-        if (rc == 0)
-            rc = vt_png_file_writer_finish(png, err);
-        vt_png_file_writer_destroy(png);
-    } else if (t.tif) {
-        TIFFClose(t.tif);
-        if (rc == 0)
-            rc = vt_atomic_file_commit(&t.file, err);
-    }
-    if (!is_png)
-        vt_atomic_file_abort(&t.file);
+    if (rc == 0 && png)
+        rc = vt_png_file_writer_finish(png, err);
+    if (rc == 0 && tiff)
+        rc = vt_tiff_file_writer_finish(tiff, err);
+    vt_png_file_writer_destroy(png);
+    vt_tiff_file_writer_destroy(tiff);
     vt_image_release(&band);
     if (rc == 0)
         vt_log(VT_LOG_INFO, "wrote '%s': %ux%u, layer '%s'", path, w, h,
@@ -374,10 +314,8 @@ int vt_tiles_layout_run(const struct vt_tiles_layout_options *options)
 out:
     if (status == VT_EXIT_BAD_INPUT && err.status)
         vt_log(VT_LOG_ERROR, "%s", err.message);
+    vt_tile_sink_destroy(r.sink);
     vts_writer_destroy(r.writer);
-    for (unsigned i = 0; r.bufs && i < o->threads; i++)
-        free(r.bufs[i]);
-    free(r.bufs);
     vt_atlas_build_destroy(r.build);
     vt_layout_release(&r.lay);
     return status;

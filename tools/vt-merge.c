@@ -6,10 +6,37 @@
 
 #include "tool_common.h"
 #include "vt_atomic_file.h"
+#include "vt_codec.h"
 #include "vt_error.h"
-#include "vt_merge.h"
 #include "vt_pool.h"
+#include "vt_pyramid.h"
+#include "vt_pyramid_resume.h"
 #include "vt_shard.h"
+#include "vt_shard_merge.h"
+#include "vt_tile_sink.h"
+#include "vts.h"
+#include "vts_writer.h"
+
+struct vt_merge_options {
+    char **inputs;
+    int input_count;
+    const char *out_path, *temp_dir;
+    uint32_t threads;
+    uint64_t max_store;
+};
+
+struct merge {
+    const struct vt_merge_options *o;
+    struct vts_store **in;
+    struct vt_shard_merge set; /* the inputs, for lib/pyramid's shard checks and coarse levels */
+    struct vts_writer *out;
+    unsigned char *buf[2]; /* payload of the owner of a tile; another input's copy */
+    size_t buf_cap;
+    struct vt_progress progress;
+    bool shard_build;     /* shards of vt-tiles --shard: they carry a float layer (vt_shard.h) */
+    uint32_t copy_layers; /* shards mode: layers copied (the float layer is not) */
+    struct vt_tile_sink *sink; /* the coarse levels of a shard build */
+};
 
 enum { OPT_VERSION = 256, OPT_TEMP_DIR, OPT_MAX_STORE };
 
@@ -188,61 +215,14 @@ static int check_layer_names(const struct merge *m, struct vts_error *err)
     return 0;
 }
 
-/* True for the keys a complete shard set drops: shard, and shard.* of vt-tiles --shard. */
-static bool is_shard_key(const char *key, bool shard_build)
-{
-    return strcmp(key, SHARD_KEY) == 0 ||
-           (shard_build && strncmp(key, SHARD_KEY ".", sizeof SHARD_KEY) == 0);
-}
-
-/* Index of the first metadata entry at or after i that is not the shard key. */
-static uint32_t skip_shard_key(const struct vts_store *s, uint32_t i)
-{
-    while (i < vts_store_meta_count(s) && strcmp(vts_store_meta_key(s, i), SHARD_KEY) == 0)
-        i++;
-    return i;
-}
-
-/* True when a and b have the same metadata, in the same order, apart from the shard key. */
-static bool same_metadata_but_shard(const struct vts_store *a, const struct vts_store *b)
-{
-    uint32_t i = skip_shard_key(a, 0), j = skip_shard_key(b, 0);
-    for (; i < vts_store_meta_count(a) && j < vts_store_meta_count(b);
-         i = skip_shard_key(a, i + 1), j = skip_shard_key(b, j + 1))
-        if (strcmp(vts_store_meta_key(a, i), vts_store_meta_key(b, j)) != 0 ||
-            strcmp(vts_store_meta_value(a, i), vts_store_meta_value(b, j)) != 0)
-            return false;
-    return i >= vts_store_meta_count(a) && j >= vts_store_meta_count(b);
-}
-
-/* True when the inputs are shards I/N of one build: I = 1..N once each, N = the input count, the
- * same metadata apart from the shard key. */
-static bool complete_shard_set(const struct merge *m)
-{
-    int n = m->o->input_count;
-    bool *seen = calloc((size_t)n, sizeof *seen);
-    bool ok = seen != NULL;
-    for (int k = 0; ok && k < n; k++) {
-        const char *v = vts_store_meta_find(m->in[k], SHARD_KEY);
-        char tail[2];
-        uint32_t i = 0, count = 0;
-        ok = v && sscanf(v, "%u/%u%1s", &i, &count, tail) == 2 && count == (uint32_t)n && i >= 1 &&
-             i <= count && !seen[i - 1] && same_metadata_but_shard(m->in[0], m->in[k]);
-        if (ok)
-            seen[i - 1] = true;
-    }
-    free(seen);
-    return ok;
-}
-
 static int set_metadata(struct merge *m, bool shards, struct vts_error *err)
 {
-    bool single_build = shards && complete_shard_set(m);
+    bool single_build = shards && vt_shard_merge_is_single_build(&m->set);
     size_t len = 0, cap = 1;
     int rc = 0;
     for (uint32_t i = 0; rc == 0 && i < vts_store_meta_count(m->in[0]); i++) {
         const char *key = vts_store_meta_key(m->in[0], i);
-        if (!single_build || !is_shard_key(key, m->shard_build))
+        if (!single_build || !vt_shard_merge_drops_key(key, m->shard_build))
             rc = vts_writer_set_meta(m->out, key, vts_store_meta_value(m->in[0], i), err);
     }
     if (rc != 0 || single_build) {
@@ -265,57 +245,15 @@ static int set_metadata(struct merge *m, bool shards, struct vts_error *err)
 
 /* ---- copying tiles ---- */
 
-int vt_merge_read_tile(struct merge *m, int k, int b, uint32_t layer, uint32_t level, uint32_t tx,
-                       uint32_t ty, size_t *len, struct vts_error *err)
-{
-    struct vts_error why = {0};
-    int rc = vts_store_read(m->in[k], layer, level, tx, ty, m->buf[b], m->buf_cap, len, 0, &why);
-    if (rc == 0)
-        return 0;
-    return vt_error_set(err, rc, "'%s': layer %u level %u tile %u,%u: %s", m->o->inputs[k], layer,
-                        level, tx, ty,
-                        rc == VTS_ERR_CHECKSUM ? "payload checksum mismatch" : why.message);
-}
-
-/* Shards mode, one tile: the payload of the first input that stores it; any other input that
- * stores it must hold the same bytes. */
-static int merge_shard_tile(struct merge *m, uint64_t index, uint32_t layer, uint32_t level,
-                            uint32_t tx, uint32_t ty, struct vts_error *err)
-{
-    int owner = -1, rc = 0;
-    size_t len = 0, other_len = 0;
-    for (int k = 0; k < m->o->input_count && rc == 0; k++) {
-        const struct vts_tile_entry *e = vts_store_entry(m->in[k], index);
-        other_len = 0;
-        if (e->length == 0)
-            continue;
-        if (owner < 0) {
-            owner = k;
-            rc = vt_merge_read_tile(m, k, 0, layer, level, tx, ty, &len, err);
-            continue;
-        }
-        if (e->length == len && e->crc32c == vts_store_entry(m->in[owner], index)->crc32c)
-            rc = vt_merge_read_tile(m, k, 1, layer, level, tx, ty, &other_len, err);
-        if (rc == 0 && (other_len != len || memcmp(m->buf[0], m->buf[1], len) != 0))
-            rc = vt_error_set(
-                err, VTS_ERR_BAD_INPUT,
-                "tile %u,%u of level %u, layer %u, is stored in both '%s' and '%s' with different bytes",
-                tx, ty, level, layer, m->o->inputs[owner], m->o->inputs[k]);
-    }
-    /* empty (len 0) when no input stores it; a shard build's coarse levels come later */
-    if (rc == 0 && !(m->shard_build && owner < 0))
-        rc = vts_writer_put(m->out, layer, level, tx, ty, m->buf[0], len, err);
-    return rc;
-}
-
-/* Visits every tile of the first input's geometry: shards mode merges it across the inputs,
- * layers mode copies it from input k to output layer base + layer. */
+/* Visits every tile of the first input's geometry: shards mode (k < 0) takes the payload of the
+ * first input that stores it (any other input that stores it must hold the same bytes; none:
+ * empty, unless the coarse levels of a shard build come later), layers mode copies it from input
+ * k to output layer base + layer. */
 static int copy_tiles(struct merge *m, int k, uint32_t base, uint64_t *done, struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(m->in[k < 0 ? 0 : k]);
     uint64_t index = 0;
-    size_t len = 0;
-    int rc = 0;
+    int rc = 0, owner = k;
     uint32_t layers = k < 0 ? m->copy_layers : g->layer_count;
     for (uint32_t layer = 0; layer < layers && rc == 0; layer++)
         for (uint32_t level = 0; level < g->level_count && rc == 0; level++) {
@@ -323,12 +261,14 @@ static int copy_tiles(struct merge *m, int k, uint32_t base, uint64_t *done, str
             vts_store_level(m->in[k < 0 ? 0 : k], level, &L);
             for (uint32_t ty = 0; ty < L.tiles_y && rc == 0; ty++)
                 for (uint32_t tx = 0; tx < L.tiles_x && rc == 0; tx++, index++) {
-                    len = 0;
+                    size_t len = 0;
                     if (k < 0)
-                        rc = merge_shard_tile(m, index, layer, level, tx, ty, err);
+                        rc = vt_shard_merge_tile(&m->set, index, layer, level, tx, ty, m->buf,
+                                                 m->buf_cap, &owner, &len, err);
                     else if (vts_store_entry(m->in[k], index)->length > 0)
-                        rc = vt_merge_read_tile(m, k, 0, layer, level, tx, ty, &len, err);
-                    if (k >= 0 && rc == 0)
+                        rc = vt_shard_merge_read(&m->set, k, layer, level, tx, ty, m->buf[0],
+                                                 m->buf_cap, &len, err);
+                    if (rc == 0 && !(m->shard_build && owner < 0))
                         rc = vts_writer_put(m->out, base + layer, level, tx, ty, m->buf[0], len,
                                             err);
                     vt_progress_update(&m->progress, ++*done);
@@ -352,6 +292,72 @@ static int create_writer(struct merge *m, bool shards, struct vts_error *err)
     return m->out ? 0 : err->status;
 }
 
+/* ---- the coarse levels of a vt-tiles --shard set ---- */
+
+static int emit_coarse_tile(void *user, unsigned worker, uint32_t level, uint32_t tx, uint32_t ty,
+                            const struct vt_image *payload, struct vts_error *err)
+{
+    struct merge *m = user;
+    return vt_tile_sink_put(m->sink, worker, 0, level, tx, ty, payload, err);
+}
+
+static int coarse_progress(void *user, uint64_t done, uint64_t total)
+{
+    struct merge *m = user;
+    (void)total;
+    vt_progress_update(&m->progress, done);
+    return 0;
+}
+
+/* Builds the levels above the shards' first pass from their carried texels, with the options
+ * the shards recorded (lib/pyramid: vt_shard_merge, vt_pyramid_resume): the same bytes as the
+ * single build's passes, encoded with the codec and effort the shards recorded. */
+static int build_coarse(struct merge *m, struct vts_error *err)
+{
+    const struct vts_layer *L = vts_store_layer(m->in[0], 0);
+    struct vt_pyramid_options po;
+    struct vt_source_info input;
+    struct vt_shard_build sb;
+    int rc = vt_shard_merge_options(&m->set, &po, &input, &sb, err);
+    if (rc)
+        return rc;
+    struct vt_tile_sink_layer sink_layer = {
+        vt_codec_by_fourcc(L->codec),
+        {L->codec == VTS_CODEC_JPEG ? (int)L->codec_param : 0, (int)sb.effort, (int)sb.subsampling},
+        L->channels,
+        L->sample};
+    if (!sink_layer.codec)
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED, "'%s': codec of layer 0 is not available",
+                            m->o->inputs[0]);
+    char dir[4096];
+    const char *slash = strrchr(m->o->out_path, '/');
+    snprintf(dir, sizeof dir, "%.*s",
+             slash ? (int)(slash - m->o->out_path) + (slash == m->o->out_path) : 1,
+             slash ? m->o->out_path : ".");
+    po.threads = m->o->threads;
+    po.temp_dir = m->o->temp_dir ? m->o->temp_dir : dir;
+    po.emit = emit_coarse_tile;
+    po.progress = coarse_progress;
+    po.user = m;
+    struct vt_pyramid_plan plan;
+    vt_pyramid_plan(&po, &plan);
+    if (!plan.has_next) /* the shards' first pass made every level */
+        return 0;
+    struct vt_pyramid_resume *resume = NULL;
+    if (!(m->sink = vt_tile_sink_create(m->out, vts_store_geometry(m->in[0])->tile_payload_px,
+                                        &sink_layer, 1, po.threads, 0, err)) ||
+        !(resume = vt_shard_merge_assemble(&m->set, &po, err)))
+        return err->status;
+    vt_log(VT_LOG_INFO, "building levels %u..%u from the shards' level %u (%ux%u)",
+           plan.levels_per_pass + 1, po.level_count - 1, plan.levels_per_pass, plan.carry_width,
+           plan.carry_height);
+    vt_progress_start(&m->progress, "coarse levels", "tiles", vt_pyramid_tile_count(&po));
+    rc = vt_pyramid_resume_run(resume, err);
+    vt_progress_end(&m->progress);
+    vt_pyramid_resume_destroy(resume);
+    return rc;
+}
+
 static int merge(struct merge *m, struct vts_error *err)
 {
     bool shards = true;
@@ -362,8 +368,9 @@ static int merge(struct merge *m, struct vts_error *err)
             return err->status;
         m->shard_build = m->shard_build || vts_store_meta_find(m->in[k], VT_SHARD_BUILD_KEY);
     }
+    m->set = (struct vt_shard_merge){m->in, (const char *const *)m->o->inputs, m->o->input_count};
     if (m->shard_build) /* vt-tiles --shard: all the shards of one build, or nothing */
-        rc = vt_merge_check_shard_build(m, err);
+        rc = vt_shard_merge_check(&m->set, err);
     for (int k = 0; k < m->o->input_count && rc == 0; k++) {
         rc = check_geometry(m, k, err);
         shards = shards && same_layer_table(m->in[0], m->in[k]);
@@ -400,7 +407,7 @@ static int merge(struct merge *m, struct vts_error *err)
     }
     vt_progress_end(&m->progress);
     if (rc == 0 && m->shard_build)
-        rc = vt_merge_build_coarse(m, err);
+        rc = build_coarse(m, err);
     if (rc == 0)
         rc = set_metadata(m, shards, err);
     return rc == 0 ? vts_writer_finish(m->out, err) : rc;
@@ -422,6 +429,7 @@ static int run(const struct vt_merge_options *o)
     } else {
         vt_log(VT_LOG_ERROR, "%s", err.message);
     }
+    vt_tile_sink_destroy(m.sink);
     vts_writer_destroy(m.out);
     for (int k = 0; m.in && k < o->input_count; k++)
         vts_close(m.in[k]);
