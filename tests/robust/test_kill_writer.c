@@ -66,6 +66,8 @@ static void fill_tile(uint32_t t, unsigned char *buf)
 enum child_mode {
     RUN_THROUGH,        /* write, finish, exit */
     WAIT_BEFORE_FINISH, /* after the last put, block until killed */
+    WAIT_AT_CREATED,    /* right after the writer is created, block until killed */
+    WAIT_AT_HALF,       /* after half of the tiles are put, block until killed */
 };
 
 /* Phases a child reports on its pipe (control bytes: they never occur in a message). */
@@ -91,22 +93,28 @@ static void child(const char *path, int report_fd, int wait_fd, enum child_mode 
     struct vts_writer *w = vts_writer_create(path, &big_geo, &big_layer, &err);
     if (!w)
         _exit(10 - VTS_ERR_IO);
+    char c;
     if (write(report_fd, (char[]){CREATED}, 1) != 1)
         _exit(98);
+    if (mode == WAIT_AT_CREATED && read(wait_fd, &c, 1) < 0)
+        _exit(97);
     unsigned char *buf = malloc(TILE_BYTES);
     int rc = 0;
     for (uint32_t t = 0; t < TILES_X * TILES_Y && rc == 0; t++) {
         fill_tile(t, buf);
         rc = vts_writer_put(w, 0, 0, t % TILES_X, t / TILES_X, buf, TILE_BYTES, &err);
-        if (t == TILES_X * TILES_Y / 2 && write(report_fd, (char[]){HALF}, 1) != 1)
-            _exit(98);
+        if (t == TILES_X * TILES_Y / 2) {
+            if (write(report_fd, (char[]){HALF}, 1) != 1)
+                _exit(98);
+            if (mode == WAIT_AT_HALF && read(wait_fd, &c, 1) < 0)
+                _exit(97);
+        }
     }
     if (rc == 0)
         rc = vts_writer_set_meta(w, "writer", "test_kill_writer", &err);
     if (rc == 0) {
         if (write(report_fd, (char[]){PUT}, 1) != 1)
             _exit(98);
-        char c;
         if (mode == WAIT_BEFORE_FINISH && read(wait_fd, &c, 1) < 0)
             _exit(97);
         if (write(report_fd, (char[]){FINISH}, 1) != 1)
@@ -328,13 +336,15 @@ static void kills_at_random_moments_leave_the_old_store(void)
 }
 
 /* Deterministic points while spooling: as soon as the writer exists (spool created, empty) and
- * when half of the tiles are put. */
+ * when half of the tiles are put; the child waits there to be killed, so that the kill cannot land
+ * later however slowly the parent runs. */
 static void kills_while_spooling_leave_the_old_store_and_nothing_else(void)
 {
     const char points[] = {CREATED, HALF};
+    const enum child_mode modes[] = {WAIT_AT_CREATED, WAIT_AT_HALF};
     for (int i = 0; i < 2; i++) {
         struct run r;
-        start(&r, final_path, RUN_THROUGH, 0);
+        start(&r, final_path, modes[i], 0);
         VT_CHECK(wait_for(&r, points[i]));
         finish_run(&r, true);
         VT_CHECK(WIFSIGNALED(r.wait_status) && WTERMSIG(r.wait_status) == SIGKILL);

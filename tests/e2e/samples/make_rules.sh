@@ -7,6 +7,9 @@
 #   3b. edit the OBJ: the OBJ is rewritten again, the store is not (same layout)
 #   4. SIGINT to the whole make (as Ctrl-C does) while vt-tiles writes the store: no temporary
 #      file is left, and the next make rebuilds a store that verifies
+# No step waits a fixed time for something to happen: the SIGINT goes once vt-tiles is seen writing
+# the store, and a source is changed only once the clock has moved past the outputs' dates, so a
+# slow or loaded machine only makes the test slower.
 #   5. a clean make -j4: the same store, byte for byte
 #   6. deliveries (VT_DELIVERY): one codec for every layer, and one codec per layer; verified,
 #      the first named by the rewritten MTL
@@ -85,6 +88,22 @@ verify_store() {
 step() {
     echo "== $*"
 }
+# The newest file under o/.
+newest() {
+    find "$work/o" -type f -printf '%T@ %p\n' | sort -n | tail -n 1 | cut -d ' ' -f 2-
+}
+# Waits until a file changed now gets a later date than every output (dates come from a coarse
+# clock: a change in the same tick as the last output would look no newer to make).
+wait_past_outputs() {
+    local ref
+    ref=$(newest)
+    for _ in $(seq 1 600); do
+        touch "$work/clock"
+        [ "$work/clock" -nt "$ref" ] && return 0
+        sleep 0.01
+    done
+    fail "the clock did not move past $ref"
+}
 
 step "1. full build"
 t0=$(date +%s.%N)
@@ -104,7 +123,7 @@ cp "$out/scene.vts" "$work/first.vts"
 
 step "2. make again: nothing to do"
 before=$(dates)
-sleep 1
+wait_past_outputs # a file rewritten now would get another date
 again=$(m 2>&1) || fail "second make: $again"
 [ -z "$again" ] || fail "second make printed: $again"
 m -q || fail "make -q: not up to date"
@@ -114,6 +133,7 @@ step "3. touch one texture"
 atlas_date=$(date_of "$out/scene.atlas.json")
 store_date=$(date_of "$out/scene.vts")
 obj_date=$(date_of "$out/scene.vt.obj")
+wait_past_outputs
 touch "$srcdir/textures/t07.png"
 log=$(m 2>&1) || fail "make after touch: $log"
 echo "$log"
@@ -133,7 +153,7 @@ again=$(m 2>&1) || fail "make: $again"
 step "3b. edit the OBJ (not its materials)"
 store_date=$(date_of "$out/scene.vts")
 obj_date=$(date_of "$out/scene.vt.obj")
-sleep 1
+wait_past_outputs
 echo "# edited" >>"$srcdir/scene.obj"
 log=$(m 2>&1) || fail "make after the OBJ edit: $log"
 [ "$(date_of "$out/scene.vt.obj")" != "$obj_date" ] || fail "scene.vt.obj not rebuilt"
@@ -145,10 +165,33 @@ again=$(m 2>&1) || fail "make: $again"
 
 step "4. SIGINT while the store is written"
 export FAKE_TILES_SLEEP=5
-# Try with shorter and shorter delays after vt-tiles starts, in case the real one is fast.
-rc=0
-for delay in 0.3 0.1 0; do
-    sleep 1
+out_phys=$(cd "$out" && pwd -P) # as /proc/PID/fd shows it
+# The vt-tiles processes of make's process group $1.
+tiles_pids() {
+    ps -eo pid=,pgid=,args= | awk -v g="$1" '$2 == g && /--layout/ { print $1 }'
+}
+# True once vt-tiles writes the store: a hidden temporary of it exists (the stand-in writes one
+# after setting its SIGINT trap), or a vt-tiles holds an unnamed spool (O_TMPFILE) or a hidden
+# temporary of it open (the real one, whose handlers are set before it creates any).
+store_writing() {
+    local pid
+    compgen -G "$out/.scene.vts.*" >/dev/null && return 0
+    for pid in $(tiles_pids "$1"); do
+        [ -n "$(find /proc/"$pid"/fd -maxdepth 1 \( -lname "$out_phys/#*" -o \
+            -lname "$out_phys/.scene.vts.*" \) -print -quit 2>/dev/null)" ] && return 0
+    done
+    return 1
+}
+# Running (not exited, not a zombie).
+running() {
+    local _pid _comm state
+    read -r _pid _comm state _ 2>/dev/null </proc/"$1"/stat && [ "$state" != Z ]
+}
+# Polls until the store is being written (SIGINT to the whole make then) or make exits; a real
+# vt-tiles can be done before it is seen, then the build is made again (up to 10 times).
+caught=
+for attempt in $(seq 1 10); do
+    wait_past_outputs
     touch "$srcdir/textures/t07.png"
     # Job control on: the background make gets its own process group and SIGINT is not ignored
     # (without it, bash starts background commands with SIGINT ignored, and make keeps it so).
@@ -157,25 +200,35 @@ for delay in 0.3 0.1 0; do
         O="$work/o" SAMPLE_FLAGS="$flags" >"$work/interrupted.log" 2>&1 &
     pid=$!
     set +m
-    caught=
-    for _ in $(seq 1 600); do
-        if ps -eo pgid=,args= | awk -v g="$pid" '$1 == g && /--layout/ { found = 1 } END { exit !found }'; then
+    deadline=$((SECONDS + 300)) # far beyond any build: only stops a hung one
+    while running "$pid" && [ $SECONDS -lt $deadline ]; do
+        if store_writing "$pid"; then
             caught=1
+            kill -INT -- "-$pid" 2>/dev/null || true
             break
         fi
-        sleep 0.02
+        sleep 0.01
     done
-    [ -n "$caught" ] || fail "vt-tiles never ran: $(cat "$work/interrupted.log")"
-    sleep "$delay"
-    kill -INT -- "-$pid" 2>/dev/null || true
     rc=0
     wait "$pid" || rc=$?
+    # make waits for its jobs, but look for temporaries only once no vt-tiles is left at all
+    while [ -n "$(tiles_pids "$pid")" ] && [ $SECONDS -lt $deadline ]; do
+        sleep 0.01
+    done
+    [ -z "$(tiles_pids "$pid")" ] || fail "vt-tiles still runs after the interrupted make"
     cat "$work/interrupted.log"
-    echo "interrupted make ($delay s after vt-tiles started): exit $rc"
-    [ "$rc" -eq 0 ] || break
+    if [ -n "$caught" ]; then
+        echo "interrupted make (run $attempt, SIGINT while vt-tiles wrote the store): exit $rc"
+        break
+    fi
+    [ "$rc" -eq 0 ] || fail "make (not interrupted) failed: exit $rc"
+    echo "run $attempt: vt-tiles finished before it was seen writing; again"
 done
+[ -n "$caught" ] || fail "vt-tiles was never seen writing the store (10 runs)"
+# GNU make dies of the SIGINT (130), or stops with "wait: No child processes" (2) when vt-tiles,
+# dying of it too, was reaped first: either way not 0
+[ "$rc" -ne 0 ] || fail "the interrupted make exited 0"
 unset FAKE_TILES_SLEEP
-[ "$rc" -ne 0 ] || fail "make was never interrupted (vt-tiles finished first each time)"
 no_temp_files
 if [ -e "$out/scene.vts" ]; then
     # what is left under the final name is a complete store (the previous one)
