@@ -4,11 +4,13 @@
 #define VT_TEST_H
 
 #include <inttypes.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <string.h>
 
-static int vt_test_failures;
-static int vt_test_checks;
+/* Atomic: checks may run on worker threads (e.g. readers tested from several threads). */
+static _Atomic int vt_test_failures;
+static _Atomic int vt_test_checks;
 
 #define VT_CHECK(cond)                                                                             \
     do {                                                                                           \
@@ -50,7 +52,8 @@ static int vt_test_checks;
 
 static inline int vt_test_main_result(void)
 {
-    fprintf(stderr, "%d checks, %d failed\n", vt_test_checks, vt_test_failures);
+    fprintf(stderr, "%d checks, %d failed\n", atomic_load(&vt_test_checks),
+            atomic_load(&vt_test_failures));
     return vt_test_failures ? 1 : 0;
 }
 

@@ -188,13 +188,13 @@ int vt_atomic_file_commit(struct vt_atomic_file *f, struct vts_error *err)
     if (rc == 0 && rename(f->temp_path, f->final_path) != 0)
         rc = vt_error_set(err, VTS_ERR_IO, "cannot rename onto '%s': %s", f->final_path,
                           strerror(errno));
-    temp_unregister(f->temp_path);
-    if (rc != 0) {
+    /* Unlinked before it is unregistered: a signal in between still finds and removes it. */
+    if (rc != 0)
         unlink(f->temp_path);
-        f->temp_path[0] = '\0';
-        return rc;
-    }
+    temp_unregister(f->temp_path);
     f->temp_path[0] = '\0';
+    if (rc != 0)
+        return rc;
     sync_directory_of(f->final_path);
     return 0;
 }
@@ -207,8 +207,8 @@ void vt_atomic_file_abort(struct vt_atomic_file *f)
         close(f->fd);
     f->fd = -1;
     if (f->temp_path[0]) {
-        temp_unregister(f->temp_path);
         unlink(f->temp_path);
+        temp_unregister(f->temp_path);
     }
     f->temp_path[0] = '\0';
 }

@@ -16,8 +16,9 @@ struct vt_pool_fns {
     /* Runs one job on worker 0..threads-1. A negative return (with err filled) stops the pool:
      * no further job starts. */
     int (*do_job)(void *ctx, unsigned worker, uint64_t job, struct vts_error *err);
-    /* Optional. Called on the calling thread while workers run, and once at the end. A non-zero
-     * return cancels the run (VTS_ERR_CANCELLED). */
+    /* Optional. Called on the calling thread while workers run (without the pool's lock, so jobs
+     * may still be handed out while it runs), and once at the end. A non-zero return cancels the
+     * run (VTS_ERR_CANCELLED): no job starts after it has returned. */
     int (*on_progress)(void *ctx);
 };
 

@@ -13,7 +13,8 @@ struct vt_tile_cache;
 
 /* Wraps n independent sources of one tiled image (info.tile_w and tile_h > 0) into n sources
  * (out[0..n-1]) that decode through their own handle but share decoded tiles, up to budget_bytes
- * (least recently used tiles are dropped first). Close the out sources, then destroy the cache;
+ * (tiles of the highest rows are dropped first, since the blocks go down the image row by row; the
+ * least recently used among a row's). Close the out sources, then destroy the cache;
  * the wrapped sources stay owned by the caller. Returns NULL and fills err on failure. */
 struct vt_tile_cache *vt_tile_cache_create(struct vt_source *const *sources, unsigned n,
                                            size_t budget_bytes, struct vt_source *out,
