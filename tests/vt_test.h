@@ -32,6 +32,18 @@ static _Atomic int vt_test_checks;
         }                                                                                          \
     } while (0)
 
+/* Strings equal; a NULL actual value fails. */
+#define VT_CHECK_STR_EQ(a, b)                                                                      \
+    do {                                                                                           \
+        const char *vt_a_ = (a), *vt_b_ = (b);                                                     \
+        vt_test_checks++;                                                                          \
+        if (!vt_a_ || strcmp(vt_a_, vt_b_) != 0) {                                                 \
+            vt_test_failures++;                                                                    \
+            fprintf(stderr, "%s:%d: %s is '%s', not '%s'\n", __FILE__, __LINE__, #a,               \
+                    vt_a_ ? vt_a_ : "(null)", vt_b_);                                              \
+        }                                                                                          \
+    } while (0)
+
 #define VT_CHECK_STR_CONTAINS(haystack, needle)                                                    \
     do {                                                                                           \
         const char *vt_h_ = (haystack), *vt_n_ = (needle);                                         \

@@ -9,17 +9,6 @@
 #include "vt_atlas_place.h"
 #include "vt_test.h"
 
-#define CHECK_STR_EQ(a, b)                                                                         \
-    do {                                                                                           \
-        const char *s_a_ = (a), *s_b_ = (b);                                                       \
-        vt_test_checks++;                                                                          \
-        if (!s_a_ || strcmp(s_a_, s_b_) != 0) {                                                    \
-            vt_test_failures++;                                                                    \
-            fprintf(stderr, "%s:%d: %s is '%s', not '%s'\n", __FILE__, __LINE__, #a,               \
-                    s_a_ ? s_a_ : "(null)", s_b_);                                                 \
-        }                                                                                          \
-    } while (0)
-
 static char tex_a[] = "tex/a.png", tex_n[] = "tex/n.png", tex_c[] = "tex/c.png";
 static char id_a[] = "1:1", id_n[] = "1:2", id_c[] = "1:3";
 
@@ -66,7 +55,7 @@ static void check_valid(struct vt_layout *l)
 {
     struct vts_error err = {0};
     VT_CHECK_INT_EQ(vt_layout_index(l, &err), 0);
-    CHECK_STR_EQ(err.message, "");
+    VT_CHECK_STR_EQ(err.message, "");
 }
 
 /* red and alias: one file, no other layer -> one entry; blue wraps; plain is a constant. */
@@ -86,22 +75,22 @@ static void place_shares_entries_and_copies_wrapped_uvs(void)
     struct vts_error err = {0};
 
     VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), VTS_ERR_BAD_INPUT);
-    CHECK_STR_EQ(err.message, "'scene.obj': material 'blue' uses u -1..1, v 0..3 outside [0,1]: "
-                              "use --wrap replicate");
+    VT_CHECK_STR_EQ(err.message, "'scene.obj': material 'blue' uses u -1..1, v 0..3 outside [0,1]: "
+                                 "use --wrap replicate");
     vt_layout_release(&l);
 
     o.wrap_replicate = true;
     o.max_repeat = 2;
     VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), VTS_ERR_LIMIT);
-    CHECK_STR_EQ(err.message,
-                 "'scene.obj': material 'blue' uses u -1..1, v 0..3: more than --max-repeat 2 "
-                 "copies");
+    VT_CHECK_STR_EQ(err.message,
+                    "'scene.obj': material 'blue' uses u -1..1, v 0..3: more than --max-repeat 2 "
+                    "copies");
     vt_layout_release(&l);
 
     o.max_repeat = 16;
     err = (struct vts_error){0};
     VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), 0);
-    CHECK_STR_EQ(err.message, "");
+    VT_CHECK_STR_EQ(err.message, "");
     VT_CHECK_INT_EQ(l.layer_count, 2);
     VT_CHECK_INT_EQ(l.entry_count, 3);
     VT_CHECK_INT_EQ(r.materials, 4);
@@ -114,27 +103,27 @@ static void place_shares_entries_and_copies_wrapped_uvs(void)
     VT_CHECK_INT_EQ(l.height, r.pack.height);
     VT_CHECK_INT_EQ(l.tile_content, 256);
     VT_CHECK_INT_EQ(l.border, 4);
-    CHECK_STR_EQ(l.generator, "test 1.0");
+    VT_CHECK_STR_EQ(l.generator, "test 1.0");
     if (l.layer_count == 2 && l.entry_count == 3) {
-        CHECK_STR_EQ(l.layers[0].name, "diffuse");
-        CHECK_STR_EQ(l.layers[1].map, "norm");
+        VT_CHECK_STR_EQ(l.layers[0].name, "diffuse");
+        VT_CHECK_STR_EQ(l.layers[1].map, "norm");
         const struct vt_layout_entry *e0 = &l.entries[0], *e1 = &l.entries[1], *e2 = &l.entries[2];
-        CHECK_STR_EQ(e0->name, "red");
+        VT_CHECK_STR_EQ(e0->name, "red");
         VT_CHECK_INT_EQ(e0->alias_count, 1);
-        CHECK_STR_EQ(e0->alias_count ? e0->aliases[0] : NULL, "alias");
+        VT_CHECK_STR_EQ(e0->alias_count ? e0->aliases[0] : NULL, "alias");
         VT_CHECK_INT_EQ(e0->width, 128);
         VT_CHECK_INT_EQ(e0->height, 64);
-        CHECK_STR_EQ(e0->textures[0].path, "../tex/a.png"); /* relative to out/ */
+        VT_CHECK_STR_EQ(e0->textures[0].path, "../tex/a.png"); /* relative to out/ */
         VT_CHECK(e0->textures[1].path == NULL && e0->textures[1].fill[2] == 1);
-        CHECK_STR_EQ(e1->name, "blue");
+        VT_CHECK_STR_EQ(e1->name, "blue");
         VT_CHECK_INT_EQ(e1->width, 256); /* its largest texture */
         VT_CHECK_INT_EQ(e1->repeat_u, 2);
         VT_CHECK_INT_EQ(e1->repeat_v, 3);
         VT_CHECK_INT_EQ(e1->origin_u, -1);
         VT_CHECK_INT_EQ(e1->origin_v, 0);
-        CHECK_STR_EQ(e1->textures[1].path, "../tex/n.png");
+        VT_CHECK_STR_EQ(e1->textures[1].path, "../tex/n.png");
         VT_CHECK_INT_EQ(e1->textures[1].width, 256);
-        CHECK_STR_EQ(e2->name, "plain");
+        VT_CHECK_STR_EQ(e2->name, "plain");
         VT_CHECK_INT_EQ(e2->width, 4);
         VT_CHECK(e2->textures[0].path == NULL && e2->textures[0].fill[0] == 0.2);
         check_valid(&l);
@@ -213,26 +202,28 @@ static void place_lays_grid_pieces_edge_to_edge(void)
 
     textures[2].height = 60;
     VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), VTS_ERR_BAD_INPUT);
-    CHECK_STR_EQ(err.message,
-                 "'tex/c.png' is 100x60, not 100x50 like 'tex/a.png': --grid pieces must have one "
-                 "size");
+    VT_CHECK_STR_EQ(
+        err.message,
+        "'tex/c.png' is 100x60, not 100x50 like 'tex/a.png': --grid pieces must have one "
+        "size");
     vt_layout_release(&l);
 
     o.grid_cols = 3;
     VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), VTS_ERR_ARG);
-    CHECK_STR_EQ(err.message, "--grid 2x3 needs 6 files, not 4");
+    VT_CHECK_STR_EQ(err.message, "--grid 2x3 needs 6 files, not 4");
     vt_layout_release(&l);
 
     scene.material_count = 0;
     VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), VTS_ERR_BAD_INPUT);
-    CHECK_STR_EQ(err.message, "nothing to place: no face uses a material and no texture is listed");
+    VT_CHECK_STR_EQ(err.message,
+                    "nothing to place: no face uses a material and no texture is listed");
     vt_layout_release(&l);
 }
 
 static void check_relative(const char *output, const char *path, const char *want)
 {
     char *got = vt_atlas_place_relative_path(output, path);
-    CHECK_STR_EQ(got, want);
+    VT_CHECK_STR_EQ(got, want);
     free(got);
 }
 

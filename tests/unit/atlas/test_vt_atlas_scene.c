@@ -10,17 +10,6 @@
 #include "vt_atlas_scene.h"
 #include "vt_test.h"
 
-#define CHECK_STR_EQ(a, b)                                                                         \
-    do {                                                                                           \
-        const char *s_a_ = (a), *s_b_ = (b);                                                       \
-        vt_test_checks++;                                                                          \
-        if (!s_a_ || strcmp(s_a_, s_b_) != 0) {                                                    \
-            vt_test_failures++;                                                                    \
-            fprintf(stderr, "%s:%d: %s is '%s', not '%s'\n", __FILE__, __LINE__, #a,               \
-                    s_a_ ? s_a_ : "(null)", s_b_);                                                 \
-        }                                                                                          \
-    } while (0)
-
 static char tmp_dir[64];
 
 static void write_file(const char *name, const char *text)
@@ -138,7 +127,7 @@ static void scene_shares_files_and_measures_uvs(void)
     struct vt_atlas_scene s = {0};
     struct vts_error err = {0};
     VT_CHECK_INT_EQ(vt_atlas_scene_scan_obj(&s, "scene.obj", &o, &err), 0);
-    CHECK_STR_EQ(err.message, "");
+    VT_CHECK_STR_EQ(err.message, "");
     VT_CHECK_INT_EQ(s.material_count, 5);
     VT_CHECK_INT_EQ(s.texture_count, 2);
     VT_CHECK_INT_EQ(f.calls, 2); /* one open per file, whatever the paths and uses */
@@ -149,16 +138,16 @@ static void scene_shares_files_and_measures_uvs(void)
     const struct vt_atlas_material *red = &s.materials[0], *blue = &s.materials[1],
                                    *plain = &s.materials[2], *nowhere = &s.materials[3],
                                    *alias = &s.materials[4];
-    CHECK_STR_EQ(red->name, "red");
-    CHECK_STR_EQ(blue->name, "blue");
-    CHECK_STR_EQ(plain->name, "plain");
-    CHECK_STR_EQ(nowhere->name, "nowhere");
-    CHECK_STR_EQ(alias->name, "alias");
-    CHECK_STR_EQ(s.textures[0].path, "tex/shared.png");
+    VT_CHECK_STR_EQ(red->name, "red");
+    VT_CHECK_STR_EQ(blue->name, "blue");
+    VT_CHECK_STR_EQ(plain->name, "plain");
+    VT_CHECK_STR_EQ(nowhere->name, "nowhere");
+    VT_CHECK_STR_EQ(alias->name, "alias");
+    VT_CHECK_STR_EQ(s.textures[0].path, "tex/shared.png");
     VT_CHECK_INT_EQ(s.textures[0].width, 128);
     VT_CHECK_INT_EQ(s.textures[0].height, 64);
     VT_CHECK_INT_EQ(s.textures[0].channels, 3);
-    CHECK_STR_EQ(s.textures[1].path, "tex/b.png");
+    VT_CHECK_STR_EQ(s.textures[1].path, "tex/b.png");
     VT_CHECK_INT_EQ(s.textures[1].width, 256);
     VT_CHECK_INT_EQ(s.textures[1].channels, 4);
     /* Shared file: red, blue and alias (another path to the same inode) use texture 0. */
@@ -188,18 +177,18 @@ static void scene_shares_files_and_measures_uvs(void)
     VT_CHECK(!nowhere->defined && nowhere->fill[VT_ATLAS_DIFFUSE][0] == 0.8);
     VT_CHECK_INT_EQ(nowhere->first_line, 18);
     VT_CHECK_INT_EQ(red->first_line, 12);
-    CHECK_STR_EQ(red->obj, "scene.obj");
+    VT_CHECK_STR_EQ(red->obj, "scene.obj");
     VT_CHECK_INT_EQ(w.count, 1);
-    CHECK_STR_EQ(w.last,
-                 "'scene.obj':18: material 'nowhere' is not defined in any mtllib: constant grey");
+    VT_CHECK_STR_EQ(
+        w.last, "'scene.obj':18: material 'nowhere' is not defined in any mtllib: constant grey");
     /* Every file read, once, in order; the second path to the shared file too. */
     VT_CHECK_INT_EQ(s.dep_count, 5);
     if (s.dep_count == 5) {
-        CHECK_STR_EQ(s.deps[0], "scene.obj");
-        CHECK_STR_EQ(s.deps[1], "scene.mtl");
-        CHECK_STR_EQ(s.deps[2], "tex/shared.png");
-        CHECK_STR_EQ(s.deps[3], "tex/b.png");
-        CHECK_STR_EQ(s.deps[4], "tex/../tex/link.png");
+        VT_CHECK_STR_EQ(s.deps[0], "scene.obj");
+        VT_CHECK_STR_EQ(s.deps[1], "scene.mtl");
+        VT_CHECK_STR_EQ(s.deps[2], "tex/shared.png");
+        VT_CHECK_STR_EQ(s.deps[3], "tex/b.png");
+        VT_CHECK_STR_EQ(s.deps[4], "tex/../tex/link.png");
     }
     vt_atlas_scene_release(&s);
     VT_CHECK(s.materials == NULL && s.material_count == 0 && s.index == NULL);
@@ -214,8 +203,8 @@ static void scene_missing_texture_fails_or_is_skipped(void)
     struct vt_atlas_scene s = {0};
     struct vts_error err = {0};
     VT_CHECK_INT_EQ(vt_atlas_scene_scan_obj(&s, "scene.obj", &o, &err), VTS_ERR_IO);
-    CHECK_STR_EQ(err.message,
-                 "'scene.mtl':16: map_Kd 'tex/missing.png': No such file or directory");
+    VT_CHECK_STR_EQ(err.message,
+                    "'scene.mtl':16: map_Kd 'tex/missing.png': No such file or directory");
     VT_CHECK_INT_EQ(f.calls, 0);
     vt_atlas_scene_release(&s);
 
@@ -223,8 +212,8 @@ static void scene_missing_texture_fails_or_is_skipped(void)
     err = (struct vts_error){0};
     VT_CHECK_INT_EQ(vt_atlas_scene_scan_obj(&s, "scene.obj", &o, &err), 0);
     VT_CHECK_INT_EQ(w.count, 1);
-    CHECK_STR_EQ(w.last,
-                 "'scene.mtl':16: map_Kd 'tex/missing.png': No such file or directory (skipped)");
+    VT_CHECK_STR_EQ(
+        w.last, "'scene.mtl':16: map_Kd 'tex/missing.png': No such file or directory (skipped)");
     VT_CHECK_INT_EQ(s.material_count, 2);
     VT_CHECK_INT_EQ(s.texture_count, 1);
     if (s.material_count == 2) {
@@ -245,7 +234,7 @@ static void scene_prefixes_opener_errors_and_counts_textures(void)
     struct vt_atlas_scene s = {0};
     struct vts_error err = {0};
     VT_CHECK_INT_EQ(vt_atlas_scene_scan_obj(&s, "scene.obj", &o, &err), VTS_ERR_BAD_INPUT);
-    CHECK_STR_EQ(err.message, "'scene.mtl':20: map_Ks: 'tex/broken.png': not an image");
+    VT_CHECK_STR_EQ(err.message, "'scene.mtl':20: map_Ks: 'tex/broken.png': not an image");
     VT_CHECK_INT_EQ(f.calls, 1);
     vt_atlas_scene_release(&s);
 
@@ -253,15 +242,15 @@ static void scene_prefixes_opener_errors_and_counts_textures(void)
     o.max_textures = 1;
     err = (struct vts_error){0};
     VT_CHECK_INT_EQ(vt_atlas_scene_scan_obj(&s, "scene.obj", &o, &err), VTS_ERR_LIMIT);
-    CHECK_STR_EQ(err.message,
-                 "'scene.mtl':10: norm 'tex/b.png': more than 1 textures (--max-textures)");
+    VT_CHECK_STR_EQ(err.message,
+                    "'scene.mtl':10: norm 'tex/b.png': more than 1 textures (--max-textures)");
     vt_atlas_scene_release(&s);
 
     write_file("nolib.obj", "mtllib none.mtl\n");
     err = (struct vts_error){0};
     VT_CHECK_INT_EQ(vt_atlas_scene_scan_obj(&s, "nolib.obj", &o, &err), VTS_ERR_IO);
-    CHECK_STR_EQ(err.message,
-                 "'nolib.obj':1: mtllib: cannot open 'none.mtl': No such file or directory");
+    VT_CHECK_STR_EQ(err.message,
+                    "'nolib.obj':1: mtllib: cannot open 'none.mtl': No such file or directory");
     vt_atlas_scene_release(&s);
 }
 
@@ -278,9 +267,9 @@ static void scene_list_names_entries_by_line(void)
     VT_CHECK_INT_EQ(s.material_count, 2);
     VT_CHECK_INT_EQ(s.texture_count, 2);
     if (s.material_count == 2 && s.texture_count == 2) {
-        CHECK_STR_EQ(s.materials[0].name, "x.png");
-        CHECK_STR_EQ(s.textures[0].path, "lists/x.png");
-        CHECK_STR_EQ(s.materials[1].name, "../tex/b.png");
+        VT_CHECK_STR_EQ(s.materials[0].name, "x.png");
+        VT_CHECK_STR_EQ(s.textures[0].path, "lists/x.png");
+        VT_CHECK_STR_EQ(s.materials[1].name, "../tex/b.png");
         VT_CHECK_INT_EQ(s.textures[1].width, 256);
         VT_CHECK(s.materials[1].defined && s.materials[1].texture[VT_ATLAS_DIFFUSE] == 1);
     }
@@ -289,14 +278,14 @@ static void scene_list_names_entries_by_line(void)
     write_file("lists/twice.txt", "x.png\nx.png\n");
     err = (struct vts_error){0};
     VT_CHECK_INT_EQ(vt_atlas_scene_scan_list(&s, "lists/twice.txt", &o, &err), VTS_ERR_BAD_INPUT);
-    CHECK_STR_EQ(err.message, "'lists/twice.txt':2: 'x.png' is listed twice");
+    VT_CHECK_STR_EQ(err.message, "'lists/twice.txt':2: 'x.png' is listed twice");
     vt_atlas_scene_release(&s);
 
     char shared[] = "tex/shared.png", nothere[] = "tex/nothere.png";
     char *const files[] = {shared, nothere};
     err = (struct vts_error){0};
     VT_CHECK_INT_EQ(vt_atlas_scene_scan_files(&s, files, 2, &o, &err), VTS_ERR_IO);
-    CHECK_STR_EQ(err.message, "texture 'tex/nothere.png': No such file or directory");
+    VT_CHECK_STR_EQ(err.message, "texture 'tex/nothere.png': No such file or directory");
     VT_CHECK_INT_EQ(s.material_count, 1);
     vt_atlas_scene_release(&s);
 }

@@ -10,56 +10,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "output_fixture.h"
 #include "vt_codec.h"
 #include "vt_png_file.h"
 #include "vt_test.h"
-
-/* ---- helpers ---- */
-
-static char test_dir[256]; /* a fresh directory under $TMPDIR (or /tmp) */
-
-static uint64_t rng_state;
-
-/* splitmix64: a seeded stream, identical on every machine */
-static uint64_t rng_next(void)
-{
-    uint64_t z = (rng_state += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-
-static void rng_fill(void *buf, size_t len)
-{
-    unsigned char *p = buf;
-    for (size_t i = 0; i < len; i++)
-        p[i] = (unsigned char)rng_next();
-}
-
-static const char *test_path(const char *name)
-{
-    static char path[512];
-    snprintf(path, sizeof path, "%s/%s", test_dir, name);
-    return path;
-}
-
-static bool file_exists(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0;
-}
-
-/* Number of entries in the test directory besides . and .. (temporary files included). */
-static int dir_entry_count(void)
-{
-    DIR *d = opendir(test_dir);
-    int n = 0;
-    for (struct dirent *e; d && (e = readdir(d));)
-        n += strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0;
-    if (d)
-        closedir(d);
-    return n;
-}
 
 static void write_bytes(const char *path, const void *data, size_t len)
 {
