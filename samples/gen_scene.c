@@ -65,7 +65,7 @@ static int write_text(const char *path, const struct text *t, struct vts_error *
     if (t->failed)
         return vt_error_set(err, VTS_ERR_NOMEM, "out of memory writing '%s'", path);
     struct vt_atomic_file f;
-    int rc = vt_atomic_file_create(&f, path, "tmp", err);
+    int rc = vt_atomic_file_create(&f, path, "tmp", VT_ATOMIC_FILE_SEQUENTIAL, err);
     if (rc < 0)
         return rc;
     rc = vt_atomic_file_pwrite(&f, t->data, t->len, 0, err);

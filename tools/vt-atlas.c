@@ -346,7 +346,7 @@ static int run(const struct options *o)
     if (!rc)
         rc = vt_atlas_place(&scene, &o->place, &layout, &report, &err);
     if (!rc && o->deps) {
-        rc = vt_atomic_file_create(&deps, o->deps, "tmp", &err);
+        rc = vt_atomic_file_create(&deps, o->deps, "tmp", VT_ATOMIC_FILE_SEQUENTIAL, &err);
         if (!rc)
             rc = write_deps(&deps, o->output, scene.deps, scene.dep_count, &err);
     }

@@ -235,9 +235,9 @@ static int run(const struct options *o)
     }
     rc = vt_layout_read(o->layout_path, NULL, &layout, &err);
     if (rc == 0)
-        rc = vt_atomic_file_create(&obj.file, o->out_path, "tmp", &err);
+        rc = vt_atomic_file_create(&obj.file, o->out_path, "tmp", VT_ATOMIC_FILE_SEQUENTIAL, &err);
     if (rc == 0)
-        rc = vt_atomic_file_create(&mtl.file, mtl_path, "tmp", &err);
+        rc = vt_atomic_file_create(&mtl.file, mtl_path, "tmp", VT_ATOMIC_FILE_SEQUENTIAL, &err);
     struct vt_offset_options opt;
     vt_offset_options_default(&opt);
     opt.layout_name = o->layout_path;

@@ -189,7 +189,7 @@ struct vt_png_file_writer *vt_png_file_writer_create(const char *path, uint32_t 
         vt_error_set(err, VTS_ERR_NOMEM, "cannot write '%s': out of memory", path);
         goto out_destroy;
     }
-    if (vt_atomic_file_create(&w->file, path, "tmp", err) < 0)
+    if (vt_atomic_file_create(&w->file, path, "tmp", VT_ATOMIC_FILE_SEQUENTIAL, err) < 0)
         goto out_destroy;
     w->file_open = true;
     if (png_file_writer_start_run(w) < 0) {

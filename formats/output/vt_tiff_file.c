@@ -103,7 +103,7 @@ struct vt_tiff_file_writer *vt_tiff_file_writer_create(const char *path, uint32_
     }
     w->width = width;
     w->height = height;
-    if (vt_atomic_file_create(&w->file, path, "tmp", err) != 0)
+    if (vt_atomic_file_create(&w->file, path, "tmp", 0, err) != 0)
         goto out_free;
     if (tiff_file_open(w, channels, err) != 0)
         goto out_destroy;

@@ -8,6 +8,7 @@
 #include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
@@ -80,19 +81,42 @@ static int split_path(const char *path, char *dir, size_t dir_cap, const char **
     return 0;
 }
 
-int vt_atomic_file_create(struct vt_atomic_file *f, const char *final_path, const char *tag,
-                          struct vts_error *err)
+static void reset(struct vt_atomic_file *f)
 {
     f->fd = -1;
+    f->device_fd = -1;
+    f->mode = VT_ATOMIC_FILE_RENAME;
+    f->stream_end = 0;
     f->temp_path[0] = '\0';
-    char dir[VT_PATH_MAX];
-    const char *base;
+    f->final_path[0] = '\0';
+    f->target_path[0] = '\0';
+}
+
+/* Records final_path and resolves it into f->target_path and *t. */
+static int resolve(struct vt_atomic_file *f, const char *final_path, struct vt_output_target *t,
+                   struct vts_error *err)
+{
     size_t len = strlen(final_path);
-    if (len == 0 || len >= sizeof f->final_path || split_path(final_path, dir, sizeof dir, &base) ||
-        *base == '\0')
+    if (len == 0 || len >= sizeof f->final_path)
         return vt_error_set(err, VTS_ERR_ARG, "invalid output path '%s'", final_path);
     memcpy(f->final_path, final_path, len + 1);
+    int rc = vt_output_path_resolve(final_path, t, err);
+    if (rc != 0)
+        return rc;
+    if (t->kind == VT_OUTPUT_DIRECTORY)
+        return vt_error_set(err, VTS_ERR_ARG, "cannot write '%s': it is a directory", final_path);
+    memcpy(f->target_path, t->path, strlen(t->path) + 1);
+    return 0;
+}
 
+/* Creates f->temp_path, a new hidden file next to path (.<base>.<tag>-XXXXXX), open in f->fd. */
+static int create_named_temp(struct vt_atomic_file *f, const char *path, const char *tag,
+                             struct vts_error *err)
+{
+    char dir[VT_PATH_MAX];
+    const char *base;
+    if (split_path(path, dir, sizeof dir, &base) || *base == '\0')
+        return vt_error_set(err, VTS_ERR_ARG, "invalid output path '%s'", f->final_path);
     /* O_EXCL with a fresh name each try: no race with other writers of the same output. */
     static const char digits[] = "abcdefghijklmnopqrstuvwxyz0123456789";
     struct timespec ts;
@@ -105,12 +129,14 @@ int vt_atomic_file_create(struct vt_atomic_file *f, const char *final_path, cons
             suffix[i] = digits[(seed >> 33) % (sizeof digits - 1)];
         }
         suffix[6] = '\0';
-        int n = strcmp(dir, ".") == 0 && !strchr(final_path, '/')
+        int n = strcmp(dir, ".") == 0 && !strchr(path, '/')
                     ? snprintf(f->temp_path, sizeof f->temp_path, ".%s.%s-%s", base, tag, suffix)
                     : snprintf(f->temp_path, sizeof f->temp_path, "%s/.%s.%s-%s",
                                strcmp(dir, "/") == 0 ? "" : dir, base, tag, suffix);
-        if (n < 0 || (size_t)n >= sizeof f->temp_path)
-            return vt_error_set(err, VTS_ERR_ARG, "output path '%s' is too long", final_path);
+        if (n < 0 || (size_t)n >= sizeof f->temp_path) {
+            f->temp_path[0] = '\0';
+            return vt_error_set(err, VTS_ERR_ARG, "output path '%s' is too long", f->final_path);
+        }
         f->fd = open(f->temp_path, O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (f->fd >= 0) {
             temp_register(f->temp_path);
@@ -121,32 +147,145 @@ int vt_atomic_file_create(struct vt_atomic_file *f, const char *final_path, cons
     }
     int e = errno;
     f->temp_path[0] = '\0';
-    return vt_error_set(err, VTS_ERR_IO, "cannot create a file next to '%s': %s", final_path,
+    return vt_error_set(err, VTS_ERR_IO, "cannot create a file next to '%s': %s", f->final_path,
                         strerror(e));
+}
+
+/* Opens an unnamed file in the directory of path (O_TMPFILE), or a named hidden one there. */
+static int create_unnamed_temp(struct vt_atomic_file *f, const char *path, struct vts_error *err)
+{
+#ifdef O_TMPFILE
+    char dir[VT_PATH_MAX];
+    const char *base;
+    if (split_path(path, dir, sizeof dir, &base) == 0) {
+        f->fd = open(dir, O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+        if (f->fd >= 0)
+            return 0;
+    }
+#endif
+    return create_named_temp(f, path, "spool", err);
+}
+
+/* A path in the directory for scratch files of device outputs ($TMPDIR, or /tmp). */
+static int scratch_dir_path(char *out, size_t cap)
+{
+    const char *dir = getenv("TMPDIR");
+    if (!dir || !*dir)
+        dir = "/tmp";
+    int n = snprintf(out, cap, "%s/vtpipe", dir);
+    return n < 0 || (size_t)n >= cap ? -1 : 0;
+}
+
+/* The replacement of an existing regular file gets its permission bits, and as root its owner and
+ * group (best effort: a file system that refuses keeps the new file's). */
+static void keep_attributes(int fd, const struct vt_output_target *t)
+{
+    if (t->kind != VT_OUTPUT_REGULAR)
+        return;
+    if (geteuid() == 0 && fchown(fd, t->uid, t->gid) != 0) {
+        /* best effort, see above */
+    }
+    if (fchmod(fd, t->mode & 07777) != 0) {
+        /* best effort, see above */
+    }
+}
+
+/* A device, FIFO or socket: open it for writing; stream into it or spool for it. */
+static int open_special(struct vt_atomic_file *f, unsigned flags, struct vts_error *err)
+{
+    int fd = open(f->target_path, O_WRONLY | O_CLOEXEC | O_NOCTTY);
+    if (fd < 0)
+        return vt_error_set(err, VTS_ERR_IO, "cannot open '%s' for writing: %s", f->final_path,
+                            strerror(errno));
+    if (flags & VT_ATOMIC_FILE_SEQUENTIAL) {
+        f->mode = VT_ATOMIC_FILE_STREAM;
+        f->fd = fd;
+        return 0;
+    }
+    char spool[VT_PATH_MAX];
+    int rc = scratch_dir_path(spool, sizeof spool)
+                 ? vt_error_set(err, VTS_ERR_ARG, "TMPDIR is too long")
+                 : create_unnamed_temp(f, spool, err);
+    if (rc != 0) {
+        close(fd);
+        return rc;
+    }
+    /* A named fallback scratch file is removed at once: it is only read back through fd. */
+    if (f->temp_path[0]) {
+        unlink(f->temp_path);
+        temp_unregister(f->temp_path);
+        f->temp_path[0] = '\0';
+    }
+    f->mode = VT_ATOMIC_FILE_SPOOL;
+    f->device_fd = fd;
+    return 0;
+}
+
+int vt_atomic_file_create(struct vt_atomic_file *f, const char *final_path, const char *tag,
+                          unsigned flags, struct vts_error *err)
+{
+    reset(f);
+    struct vt_output_target t;
+    int rc = resolve(f, final_path, &t, err);
+    if (rc != 0)
+        return rc;
+    if (t.kind == VT_OUTPUT_SPECIAL)
+        return open_special(f, flags, err);
+    rc = create_named_temp(f, f->target_path, tag, err);
+    if (rc == 0)
+        keep_attributes(f->fd, &t);
+    return rc;
 }
 
 int vt_atomic_file_create_scratch(struct vt_atomic_file *f, const char *final_path,
                                   struct vts_error *err)
 {
-    char dir[VT_PATH_MAX];
-    const char *base;
-    size_t len = strlen(final_path);
-    f->fd = -1;
-    f->temp_path[0] = '\0';
-    if (len == 0 || len >= sizeof f->final_path || split_path(final_path, dir, sizeof dir, &base))
-        return vt_error_set(err, VTS_ERR_ARG, "invalid output path '%s'", final_path);
-    memcpy(f->final_path, final_path, len + 1);
-#ifdef O_TMPFILE
-    f->fd = open(dir, O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
-    if (f->fd >= 0)
-        return 0;
-#endif
-    return vt_atomic_file_create(f, final_path, "spool", err);
+    reset(f);
+    struct vt_output_target t;
+    int rc = resolve(f, final_path, &t, err);
+    if (rc != 0)
+        return rc;
+    char path[VT_PATH_MAX];
+    if (t.kind == VT_OUTPUT_SPECIAL) {
+        if (scratch_dir_path(path, sizeof path))
+            return vt_error_set(err, VTS_ERR_ARG, "TMPDIR is too long");
+    } else {
+        memcpy(path, f->target_path, strlen(f->target_path) + 1);
+    }
+    return create_unnamed_temp(f, path, err);
+}
+
+/* write() of the whole buffer to a stream, retrying short writes and EINTR. */
+static int write_all(int fd, const void *buf, size_t len, const char *name, struct vts_error *err)
+{
+    const unsigned char *p = buf;
+    while (len > 0) {
+        ssize_t n = write(fd, p, len);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            return vt_error_set(err, VTS_ERR_IO, "cannot write '%s': %s", name,
+                                n < 0 ? strerror(errno) : "no space written");
+        p += n;
+        len -= (size_t)n;
+    }
+    return 0;
 }
 
 int vt_atomic_file_pwrite(struct vt_atomic_file *f, const void *buf, size_t len,
                           unsigned long long off, struct vts_error *err)
 {
+    if (f->mode == VT_ATOMIC_FILE_STREAM) {
+        if (off != f->stream_end)
+            return vt_error_set(err, VTS_ERR_IO,
+                                "cannot write '%s' at byte %llu after byte %llu: it is not a "
+                                "regular file",
+                                f->final_path, off, f->stream_end);
+        int rc = write_all(f->fd, buf, len, f->final_path, err);
+        if (rc == 0)
+            f->stream_end += len;
+        return rc;
+    }
     const unsigned char *p = buf;
     while (len > 0) {
         ssize_t n = pwrite(f->fd, p, len, (off_t)off);
@@ -175,8 +314,48 @@ static void sync_directory_of(const char *path)
     }
 }
 
+/* VT_ATOMIC_FILE_SPOOL: copies the scratch file, start to end, into the device. */
+static int copy_spool(struct vt_atomic_file *f, struct vts_error *err)
+{
+    enum { CHUNK = 1 << 16 };
+    unsigned char *buf = malloc(CHUNK);
+    if (!buf)
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory writing '%s'", f->final_path);
+    int rc = 0;
+    for (off_t off = 0; rc == 0;) {
+        ssize_t n = pread(f->fd, buf, CHUNK, off);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n < 0)
+            rc = vt_error_set(err, VTS_ERR_IO, "cannot read back the spool of '%s': %s",
+                              f->final_path, strerror(errno));
+        if (n <= 0)
+            break;
+        rc = write_all(f->device_fd, buf, (size_t)n, f->final_path, err);
+        off += n;
+    }
+    free(buf);
+    return rc;
+}
+
+/* Commit of a device or FIFO output: nothing to rename, nothing to flush (fsync does not apply). */
+static int commit_special(struct vt_atomic_file *f, struct vts_error *err)
+{
+    int rc = f->mode == VT_ATOMIC_FILE_SPOOL ? copy_spool(f, err) : 0;
+    int out_fd = f->mode == VT_ATOMIC_FILE_SPOOL ? f->device_fd : f->fd;
+    if (close(out_fd) != 0 && rc == 0)
+        rc = vt_error_set(err, VTS_ERR_IO, "cannot close '%s': %s", f->final_path, strerror(errno));
+    if (f->mode == VT_ATOMIC_FILE_SPOOL)
+        close(f->fd);
+    f->fd = f->device_fd = -1;
+    f->mode = VT_ATOMIC_FILE_RENAME;
+    return rc;
+}
+
 int vt_atomic_file_commit(struct vt_atomic_file *f, struct vts_error *err)
 {
+    if (f->fd >= 0 && f->mode != VT_ATOMIC_FILE_RENAME)
+        return commit_special(f, err);
     if (f->fd < 0 || f->temp_path[0] == '\0')
         return vt_error_set(err, VTS_ERR_ARG, "'%s' is not open for writing", f->final_path);
     int rc = 0;
@@ -185,7 +364,7 @@ int vt_atomic_file_commit(struct vt_atomic_file *f, struct vts_error *err)
     if (close(f->fd) != 0 && rc == 0)
         rc = vt_error_set(err, VTS_ERR_IO, "cannot close '%s': %s", f->final_path, strerror(errno));
     f->fd = -1;
-    if (rc == 0 && rename(f->temp_path, f->final_path) != 0)
+    if (rc == 0 && rename(f->temp_path, f->target_path) != 0)
         rc = vt_error_set(err, VTS_ERR_IO, "cannot rename onto '%s': %s", f->final_path,
                           strerror(errno));
     /* Unlinked before it is unregistered: a signal in between still finds and removes it. */
@@ -195,7 +374,7 @@ int vt_atomic_file_commit(struct vt_atomic_file *f, struct vts_error *err)
     f->temp_path[0] = '\0';
     if (rc != 0)
         return rc;
-    sync_directory_of(f->final_path);
+    sync_directory_of(f->target_path);
     return 0;
 }
 
@@ -205,7 +384,11 @@ void vt_atomic_file_abort(struct vt_atomic_file *f)
         return;
     if (f->fd >= 0)
         close(f->fd);
+    if (f->mode == VT_ATOMIC_FILE_SPOOL && f->device_fd >= 0)
+        close(f->device_fd);
     f->fd = -1;
+    f->device_fd = -1;
+    f->mode = VT_ATOMIC_FILE_RENAME;
     if (f->temp_path[0]) {
         unlink(f->temp_path);
         temp_unregister(f->temp_path);

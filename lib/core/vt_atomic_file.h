@@ -1,4 +1,14 @@
-/* Output files that appear under their final name only when complete (temp file + rename). */
+/* Output files that appear under their final name only when complete (temp file + rename).
+ *
+ * What the final path names decides how (vt_output_path_resolve):
+ * - nothing or a regular file: a hidden temporary file next to it, renamed over it at commit; an
+ *   existing file's permission bits (and owner and group, as root) are kept;
+ * - a symbolic link: the same, next to the link's resolved target, renamed over the target (the
+ *   link stays a link);
+ * - a directory: refused (VTS_ERR_ARG);
+ * - a device, FIFO or socket: never renamed over. Writers that declare VT_ATOMIC_FILE_SEQUENTIAL
+ *   write straight into it; others write an unnamed scratch file (in $TMPDIR, or /tmp) that commit
+ *   copies into it. Either way, nothing can be taken back once written. */
 #ifndef VT_ATOMIC_FILE_H
 #define VT_ATOMIC_FILE_H
 
@@ -6,34 +16,55 @@
 
 #include "vt_error.h"
 
-#define VT_PATH_MAX 4096
+#include "vt_output_path.h"
 
-struct vt_atomic_file {
-    int fd; /* open for read and write; -1 when closed */
-    char final_path[VT_PATH_MAX];
-    char temp_path[VT_PATH_MAX]; /* hidden file in the same directory: .<name>.<tag>-XXXXXX */
+enum vt_atomic_file_flags {
+    /* Every write starts where the previous one ended (offsets 0, n, n + m...): a device or FIFO
+     * output is written into directly instead of through a scratch file. */
+    VT_ATOMIC_FILE_SEQUENTIAL = 1 << 0,
 };
 
-/* Creates a new empty temporary file next to final_path (permissions 0666 & ~umask). tag names
- * its role in the temporary name ("tmp", "spool"). Returns 0 or VTS_ERR_IO / VTS_ERR_ARG. */
-int vt_atomic_file_create(struct vt_atomic_file *f, const char *final_path, const char *tag,
-                          struct vts_error *err);
+enum vt_atomic_file_mode {
+    VT_ATOMIC_FILE_RENAME = 0, /* temp_path renamed over target_path at commit */
+    VT_ATOMIC_FILE_STREAM,     /* fd is the device or FIFO itself */
+    VT_ATOMIC_FILE_SPOOL,      /* fd is an unnamed scratch file, copied into device_fd at commit */
+};
 
-/* Like vt_atomic_file_create(), for a scratch file that is never committed: it has no name where
- * the file system allows (O_TMPFILE), so nothing is left even if the process is killed; falls
- * back to a hidden named file otherwise. */
+/* A zeroed struct with fd = -1 is a closed one (vt_atomic_file_abort does nothing). */
+struct vt_atomic_file {
+    int fd;                        /* open for read and write; -1 when closed */
+    char final_path[VT_PATH_MAX];  /* as given: the name in messages */
+    char temp_path[VT_PATH_MAX];   /* hidden file next to the target: .<name>.<tag>-XXXXXX */
+    char target_path[VT_PATH_MAX]; /* final_path with its symbolic links followed */
+    enum vt_atomic_file_mode mode;
+    int device_fd;                 /* VT_ATOMIC_FILE_SPOOL: the output, open for writing */
+    unsigned long long stream_end; /* VT_ATOMIC_FILE_STREAM: bytes written so far */
+};
+
+/* Opens final_path for writing as described above (a new temporary file has permissions
+ * 0666 & ~umask, or those of the file it replaces). tag names its role in the temporary name
+ * ("tmp", "spool"); flags are enum vt_atomic_file_flags. Opening a FIFO waits for its reader.
+ * Returns 0 or VTS_ERR_IO / VTS_ERR_ARG (a directory, a path too long). */
+int vt_atomic_file_create(struct vt_atomic_file *f, const char *final_path, const char *tag,
+                          unsigned flags, struct vts_error *err);
+
+/* Like vt_atomic_file_create(), for a scratch file that is never committed, next to final_path's
+ * target (in $TMPDIR or /tmp when that is a device or FIFO; a directory is refused): it has no
+ * name where the file system allows (O_TMPFILE), so nothing is left even if the process is
+ * killed; falls back to a hidden named file otherwise. */
 int vt_atomic_file_create_scratch(struct vt_atomic_file *f, const char *final_path,
                                   struct vts_error *err);
 
-/* Flushes the temporary file to disk, closes it and renames it over final_path, then flushes the
- * directory. On failure the temporary file is removed and final_path is untouched. */
+/* Flushes the temporary file to disk, closes it and renames it over the target, then flushes the
+ * directory. On failure the temporary file is removed and final_path is untouched. A device or
+ * FIFO output gets the spooled bytes (VT_ATOMIC_FILE_SPOOL) and is closed. */
 int vt_atomic_file_commit(struct vt_atomic_file *f, struct vts_error *err);
 
 /* Closes and removes the temporary file (no-op when already committed or aborted). */
 void vt_atomic_file_abort(struct vt_atomic_file *f);
 
 /* pwrite of the whole buffer, retrying short writes and EINTR; VTS_ERR_IO with a message naming
- * the final path on failure (ENOSPC included). */
+ * the final path on failure (ENOSPC included, and an offset out of order on a stream). */
 int vt_atomic_file_pwrite(struct vt_atomic_file *f, const void *buf, size_t len,
                           unsigned long long off, struct vts_error *err);
 

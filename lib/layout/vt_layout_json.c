@@ -470,7 +470,7 @@ int vt_layout_write(const char *path, struct vt_layout *layout, struct vts_error
     if (!text)
         return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory writing the layout", path);
     struct vt_atomic_file f;
-    rc = vt_atomic_file_create(&f, path, "tmp", err);
+    rc = vt_atomic_file_create(&f, path, "tmp", VT_ATOMIC_FILE_SEQUENTIAL, err);
     if (!rc) {
         size_t n = strlen(text);
         rc = vt_atomic_file_pwrite(&f, text, n, 0, err);

@@ -555,7 +555,7 @@ int vts_writer_finish(struct vts_writer *w, struct vts_error *err)
     if (lay.data_size == 0)
         lay.data_off = lay.meta_off + lay.meta_size; /* no payload: the file ends with metadata */
     if (rc == 0)
-        rc = vt_atomic_file_create(&w->out, w->spool.final_path, "tmp", err);
+        rc = vt_atomic_file_create(&w->out, w->spool.final_path, "tmp", 0, err);
     if (rc == 0)
         rc = write_layers_and_meta(w, &lay, &layers_crc, &meta_crc, err);
     if (rc == 0)

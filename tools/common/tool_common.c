@@ -5,6 +5,7 @@
 #include <time.h>
 #include <unistd.h> /* isatty, optind, optopt */
 
+#include "vt_output_path.h"
 #include "vt_version.h"
 #include "vts.h"
 
@@ -171,6 +172,16 @@ int vt_parse_u32_pair(const char *s, char sep, uint32_t min, uint32_t max, uint3
     *a = va;
     *b = vb;
     return 0;
+}
+
+int vt_check_output(const char *output, const char *const *inputs, size_t n)
+{
+    struct vts_error err = {0};
+    if (output && vt_output_path_check(output, inputs, n, &err) != 0) {
+        vt_log(VT_LOG_ERROR, "%s", err.message);
+        return VT_EXIT_BAD_INPUT;
+    }
+    return -1;
 }
 
 void vt_print_version(FILE *f)

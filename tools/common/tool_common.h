@@ -71,6 +71,11 @@ int vt_parse_u32_pair(const char *s, char sep, uint32_t min, uint32_t max, uint3
  * upper or lower case), e.g. "512M", "2T", "4096". Returns 0, or -1 on junk or overflow of 2^64. */
 int vt_parse_size(const char *s, uint64_t *out);
 
+/* Before any work: refuses an output that is a directory or the same file as one of the
+ * inputs[0..n) (vt_output_path_check; NULL entries are skipped). Prints "<tool>: <reason>" and
+ * returns VT_EXIT_BAD_INPUT, or returns -1 when the output may be written. */
+int vt_check_output(const char *output, const char *const *inputs, size_t n);
+
 /* Prints "<tool> (vtpipe) <version>" and the .vts format line to f. */
 void vt_print_version(FILE *f);
 

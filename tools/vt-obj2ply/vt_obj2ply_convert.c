@@ -35,7 +35,7 @@ int vt_obj2ply_convert_write(const struct vt_obj2ply_mesh *m, const char *out_pa
         return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     o->offset = 0;
     o->used = 0;
-    int rc = vt_atomic_file_create(&o->file, out_path, "tmp", err);
+    int rc = vt_atomic_file_create(&o->file, out_path, "tmp", VT_ATOMIC_FILE_SEQUENTIAL, err);
     if (rc) {
         free(o);
         return rc;

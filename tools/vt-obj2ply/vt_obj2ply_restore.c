@@ -80,7 +80,7 @@ int vt_obj2ply_restore_write(const struct vt_obj2ply_mesh *orig, const char *mes
     }
     o->offset = 0;
     o->used = 0;
-    rc = vt_atomic_file_create(&o->file, out_path, "tmp", err);
+    rc = vt_atomic_file_create(&o->file, out_path, "tmp", VT_ATOMIC_FILE_SEQUENTIAL, err);
     if (rc)
         goto cleanup;
     created = true;

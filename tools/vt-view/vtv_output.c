@@ -86,7 +86,7 @@ int vtv_write_stats(const char *path, const struct vtv_run_info *info,
     fputs("]\n}\n", f);
     fclose(f);
     struct vt_atomic_file af;
-    int st = vt_atomic_file_create(&af, path, "tmp", err);
+    int st = vt_atomic_file_create(&af, path, "tmp", VT_ATOMIC_FILE_SEQUENTIAL, err);
     if (st == 0) {
         st = vt_atomic_file_pwrite(&af, buf, len, 0, err);
         if (st == 0)

@@ -1,0 +1,84 @@
+#include "vt_output_path.h"
+
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#define MAX_LINKS 40
+
+/* Replaces the link path in cur (of length cur_len) by its target read into target. */
+static int follow_link(char *cur, const char *target, size_t target_len)
+{
+    if (target[0] == '/' || !strrchr(cur, '/')) {
+        if (target_len >= VT_PATH_MAX)
+            return -1;
+        memcpy(cur, target, target_len + 1);
+        return 0;
+    }
+    size_t dir_len = (size_t)(strrchr(cur, '/') - cur) + 1; /* keeps the slash */
+    if (dir_len + target_len >= VT_PATH_MAX)
+        return -1;
+    memcpy(cur + dir_len, target, target_len + 1);
+    return 0;
+}
+
+int vt_output_path_resolve(const char *output, struct vt_output_target *t, struct vts_error *err)
+{
+    memset(t, 0, sizeof *t);
+    size_t len = strlen(output);
+    if (len >= sizeof t->path)
+        return vt_error_set(err, VTS_ERR_ARG, "output path '%s' is too long", output);
+    memcpy(t->path, output, len + 1);
+    for (int links = 0; links <= MAX_LINKS; links++) {
+        struct stat st;
+        if (lstat(t->path, &st) != 0) {
+            t->kind = VT_OUTPUT_NEW;
+            return 0;
+        }
+        if (S_ISLNK(st.st_mode)) {
+            char target[VT_PATH_MAX];
+            ssize_t n = readlink(t->path, target, sizeof target - 1);
+            if (n <= 0) {
+                t->kind = VT_OUTPUT_NEW;
+                return 0;
+            }
+            target[n] = '\0';
+            if (follow_link(t->path, target, (size_t)n) != 0)
+                return vt_error_set(err, VTS_ERR_ARG,
+                                    "output path '%s' resolves to a path too long", output);
+            continue;
+        }
+        t->kind = S_ISREG(st.st_mode)   ? VT_OUTPUT_REGULAR
+                  : S_ISDIR(st.st_mode) ? VT_OUTPUT_DIRECTORY
+                                        : VT_OUTPUT_SPECIAL;
+        t->dev = st.st_dev;
+        t->ino = st.st_ino;
+        t->mode = st.st_mode;
+        t->uid = st.st_uid;
+        t->gid = st.st_gid;
+        return 0;
+    }
+    return vt_error_set(err, VTS_ERR_ARG, "output '%s': too many levels of symbolic links", output);
+}
+
+int vt_output_path_check(const char *output, const char *const *inputs, size_t input_count,
+                         struct vts_error *err)
+{
+    struct vt_output_target t;
+    int rc = vt_output_path_resolve(output, &t, err);
+    if (rc != 0)
+        return rc;
+    if (t.kind == VT_OUTPUT_DIRECTORY)
+        return vt_error_set(err, VTS_ERR_ARG, "output '%s' is a directory", output);
+    if (t.kind == VT_OUTPUT_NEW)
+        return 0;
+    for (size_t i = 0; i < input_count; i++) {
+        struct stat st;
+        if (!inputs[i] || stat(inputs[i], &st) != 0)
+            continue;
+        if (st.st_dev == t.dev && st.st_ino == t.ino)
+            return vt_error_set(err, VTS_ERR_ARG, "output '%s' is the input '%s' (the same file)",
+                                output, inputs[i]);
+    }
+    return 0;
+}

@@ -1,0 +1,47 @@
+/* What an output path names before a tool writes it: a new file, a regular file (possibly through
+ * symbolic links), a directory or a device/FIFO/socket; and whether it is one of the tool's inputs.
+ * Used by vt_atomic_file (where to put the temporary file, how to commit) and by every tool right
+ * after validating its options (vt_output_path_check). */
+#ifndef VT_OUTPUT_PATH_H
+#define VT_OUTPUT_PATH_H
+
+#include <stddef.h>
+#include <sys/types.h>
+
+#include "vt_error.h"
+
+#define VT_PATH_MAX 4096
+
+enum vt_output_kind {
+    VT_OUTPUT_NEW = 0,   /* nothing there yet (or a dangling symbolic link's target) */
+    VT_OUTPUT_REGULAR,   /* an existing regular file: replaced by a rename */
+    VT_OUTPUT_DIRECTORY, /* refused */
+    VT_OUTPUT_SPECIAL,   /* character or block device, FIFO, socket: written into, never renamed */
+};
+
+struct vt_output_target {
+    char
+        path[VT_PATH_MAX]; /* the output with its symbolic links followed: what a rename replaces */
+    enum vt_output_kind kind;
+    dev_t dev; /* of the existing file (kind REGULAR, DIRECTORY, SPECIAL) */
+    ino_t ino;
+    mode_t mode; /* st_mode of the existing file */
+    uid_t uid;
+    gid_t gid;
+};
+
+/* Follows output through every symbolic link it ends in (relative targets against the link's
+ * directory, at most 40 links) and describes what is there. A path that cannot be examined (no
+ * such directory, no permission) is reported as VT_OUTPUT_NEW: creating the file names the error.
+ * Returns 0, or VTS_ERR_ARG for a path too long or a loop of links. */
+int vt_output_path_resolve(const char *output, struct vt_output_target *t, struct vts_error *err);
+
+/* The check every tool makes before any work: refuses (VTS_ERR_ARG) an output that is an existing
+ * directory, or that is the same file (device and inode, after following links; a hard link
+ * counts) as one of the inputs[0..input_count) (NULL entries and inputs that cannot be examined
+ * are skipped: reading them reports the error). The message names the output and the input:
+ * "output 'a.png' is the input 'b.png' (the same file)". Returns 0 or a negative vts_status. */
+int vt_output_path_check(const char *output, const char *const *inputs, size_t input_count,
+                         struct vts_error *err);
+
+#endif
