@@ -335,6 +335,19 @@ static int scan(const struct options *o, struct vt_atlas_scene *scene, struct vt
     return 0;
 }
 
+/* Neither atlas.json nor the --deps file may be one of the n files in inputs (nor the deps file
+ * atlas.json). Returns -1 when they may be written, else the exit status. */
+static int check_outputs(const struct options *o, const char *const *inputs, size_t n)
+{
+    int status = vt_check_output(o->output, inputs, n);
+    if (status < 0 && o->deps) {
+        const char *json[] = {o->output};
+        if ((status = vt_check_output(o->deps, inputs, n)) < 0)
+            status = vt_check_output(o->deps, json, 1);
+    }
+    return status;
+}
+
 static int run(const struct options *o)
 {
     struct vt_atlas_scene scene = {0};
@@ -343,6 +356,11 @@ static int run(const struct options *o)
     struct vt_atomic_file deps = {.fd = -1};
     struct vts_error err = {0};
     int rc = scan(o, &scene, &err);
+    /* the MTL files and textures are known once scanned: before anything is written */
+    if (!rc && check_outputs(o, (const char *const *)scene.deps, scene.dep_count) >= 0) {
+        rc = VTS_ERR_BAD_INPUT;
+        goto out;
+    }
     if (!rc)
         rc = vt_atlas_place(&scene, &o->place, &layout, &report, &err);
     if (!rc && o->deps) {
@@ -358,6 +376,7 @@ static int run(const struct options *o)
         print_summary(o, &layout, &report, scene.texture_count);
     else
         vt_log(VT_LOG_ERROR, "%s", err.message);
+out:
     if (deps.fd >= 0)
         vt_atomic_file_abort(&deps);
     vt_layout_release(&layout);
@@ -374,6 +393,11 @@ int main(int argc, char **argv)
     struct options o;
     int rc = parse_options(argc, argv, &o);
     if (rc >= 0)
+        return rc;
+    if ((rc = check_outputs(&o, (const char *const *)o.inputs, o.input_count)) >= 0)
+        return rc;
+    const char *list[] = {o.textures};
+    if (o.textures && (rc = check_outputs(&o, list, 1)) >= 0)
         return rc;
     return run(&o);
 }

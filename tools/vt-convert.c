@@ -464,5 +464,8 @@ int main(int argc, char **argv)
     rc = validate_options(&o, &codec);
     if (rc != 0)
         return rc;
+    const char *inputs[] = {o.in_path};
+    if ((rc = vt_check_output(o.out_path, inputs, 1)) >= 0)
+        return rc;
     return run(&o, codec);
 }

@@ -467,6 +467,9 @@ int main(int argc, char **argv)
     rc = validate_options(&o);
     if (rc != 0)
         return rc;
+    const char *inputs[] = {o.store_path};
+    if (o.extract && (rc = vt_check_output(o.out_path, inputs, 1)) >= 0)
+        return rc;
     rc = run(&o);
     if (fflush(stdout) != 0 || ferror(stdout)) {
         vt_log(VT_LOG_ERROR, "cannot write to standard output");

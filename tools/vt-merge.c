@@ -447,5 +447,8 @@ int main(int argc, char **argv)
     int rc = parse_options(argc, argv, &o);
     if (rc >= 0)
         return rc;
+    if ((rc = vt_check_output(o.out_path, (const char *const *)o.inputs, (size_t)o.input_count)) >=
+        0)
+        return rc;
     return run(&o);
 }

@@ -11,6 +11,7 @@
 #include "vt_atomic_file.h"
 #include "vt_error.h"
 #include "vt_layout.h"
+#include "vt_obj.h"
 #include "vt_offset.h"
 #include "vt_uv_text.h"
 #include "vt_version.h"
@@ -153,6 +154,84 @@ static char *mtllib_text(const char *out_path, const char *mtl_path)
     return out;
 }
 
+/* ---- the outputs against the inputs ---- */
+
+struct path_list {
+    char **paths;
+    size_t count, cap;
+};
+
+static int path_list_add(struct path_list *l, char *path)
+{
+    if (!path)
+        return -1;
+    if (l->count == l->cap) {
+        size_t cap = l->cap ? l->cap * 2 : 8;
+        char **p = realloc(l->paths, cap * sizeof *p);
+        if (!p) {
+            free(path);
+            return -1;
+        }
+        l->paths = p;
+        l->cap = cap;
+    }
+    l->paths[l->count++] = path;
+    return 0;
+}
+
+static void path_list_release(struct path_list *l)
+{
+    for (size_t i = 0; i < l->count; i++)
+        free(l->paths[i]);
+    free(l->paths);
+}
+
+/* Adds the MTL files the mtllib lines of the OBJ name (each space-separated piece and the whole
+ * rest, resolved as vt_obj does; names that are no file are skipped by the check). A plain read
+ * of the file, no parse: an unreadable OBJ is reported by the rewrite. */
+static int add_mtllibs(struct path_list *l, const char *obj_path)
+{
+    FILE *f = fopen(obj_path, "rb");
+    if (!f)
+        return 0;
+    char *line = NULL;
+    size_t cap = 0;
+    int rc = 0;
+    while (rc == 0 && getline(&line, &cap, f) >= 0) {
+        char *s = line + strspn(line, " \t");
+        if (strncmp(s, "mtllib", 6) != 0 || (s[6] != ' ' && s[6] != '\t'))
+            continue;
+        s += 6 + strspn(s + 6, " \t");
+        s[strcspn(s, "\r\n")] = '\0';
+        rc = path_list_add(l, vt_obj_resolve_path(obj_path, s));
+        for (char *tok = strtok(s, " \t"); tok && rc == 0; tok = strtok(NULL, " \t"))
+            rc = path_list_add(l, vt_obj_resolve_path(obj_path, tok));
+    }
+    free(line);
+    fclose(f);
+    return rc;
+}
+
+/* Before any work: neither OUT.obj nor OUT.mtl may be the scene, its MTL files or the layout,
+ * nor OUT.mtl the same file as OUT.obj. Returns -1 when they may be written, else the exit
+ * status. */
+static int check_outputs(const struct options *o, const char *mtl_path)
+{
+    struct path_list l = {0};
+    int status = VT_EXIT_BAD_INPUT;
+    if (path_list_add(&l, strdup(o->out_path)) || path_list_add(&l, strdup(o->obj_path)) ||
+        path_list_add(&l, strdup(o->layout_path)) || add_mtllibs(&l, o->obj_path)) {
+        vt_log(VT_LOG_ERROR, "out of memory");
+        goto out;
+    }
+    const char *const *inputs = (const char *const *)l.paths;
+    if ((status = vt_check_output(o->out_path, inputs + 1, l.count - 1)) < 0)
+        status = vt_check_output(mtl_path, inputs, l.count);
+out:
+    path_list_release(&l);
+    return status;
+}
+
 /* ---- output ---- */
 
 struct file_sink {
@@ -233,6 +312,9 @@ static int run(const struct options *o)
         status = vt_usage_error("--mtl names the output OBJ '%s'", o->out_path);
         goto out;
     }
+    if ((status = check_outputs(o, mtl_path)) >= 0)
+        goto out;
+    status = VT_EXIT_BAD_INPUT;
     rc = vt_layout_read(o->layout_path, NULL, &layout, &err);
     if (rc == 0)
         rc = vt_atomic_file_create(&obj.file, o->out_path, "tmp", VT_ATOMIC_FILE_SEQUENTIAL, &err);

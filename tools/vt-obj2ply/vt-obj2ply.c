@@ -116,6 +116,10 @@ int main(int argc, char **argv)
         return vt_usage_error("--check writes nothing: no -o");
     if (!do_check && same_faces)
         return vt_usage_error("--same-faces needs --check");
+    const char *inputs[] = {argv[optind], nargs > 1 ? argv[optind + 1] : NULL};
+    int status = vt_check_output(output, inputs, 2);
+    if (status >= 0)
+        return status;
 
     struct vts_error err = {0};
     struct vt_obj2ply_mesh a, b;

@@ -322,5 +322,9 @@ int main(int argc, char **argv)
     int status = parse_options(argc, argv, &o);
     if (status >= 0)
         return status;
+    /* --layout: the layout and its textures are checked once the layout is read */
+    const char *inputs[] = {o.input};
+    if (!o.layout && (status = vt_check_output(o.output, inputs, 1)) >= 0)
+        return status;
     return o.layout ? run_layout(&o) : run_image(&o);
 }

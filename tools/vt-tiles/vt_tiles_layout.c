@@ -8,6 +8,7 @@
 
 #include "tool_common.h"
 #include "vt_atlas_build.h"
+#include "vt_checked.h"
 #include "vt_codec.h"
 #include "vt_error.h"
 #include "vt_image_input.h"
@@ -286,6 +287,35 @@ static int start_build(struct layout_run *r, struct vts_error *err)
     return r->build ? 0 : err->status;
 }
 
+/* Before any work: neither the store nor the exported image may be the layout, one of its
+ * textures or (the export) the store. Returns -1 when they may be written, else the exit status. */
+static int check_outputs(const struct layout_run *r)
+{
+    const struct vt_layout *lay = &r->lay;
+    size_t n = 2, cap;
+    if (!vt_size_mul((size_t)lay->entry_count, lay->layer_count, &cap) ||
+        !vt_size_add(cap, n, &cap)) {
+        vt_log(VT_LOG_ERROR, "'%s' names too many textures", r->o->layout);
+        return VT_EXIT_BAD_INPUT;
+    }
+    const char **inputs = malloc(cap * sizeof *inputs);
+    if (!inputs) {
+        vt_log(VT_LOG_ERROR, "out of memory");
+        return VT_EXIT_BAD_INPUT;
+    }
+    inputs[0] = r->o->layout;
+    inputs[1] = NULL; /* the store, for the export */
+    for (uint32_t e = 0; e < lay->entry_count; e++)
+        for (uint32_t l = 0; l < lay->layer_count; l++)
+            inputs[n++] = lay->entries[e].textures[l].resolved; /* NULL for a fill: skipped */
+    int status = vt_check_output(r->o->output, inputs, n);
+    inputs[1] = r->o->output;
+    if (status < 0)
+        status = vt_check_output(r->o->export_atlas, inputs, n);
+    free(inputs);
+    return status;
+}
+
 int vt_tiles_layout_run(const struct vt_tiles_layout_options *options)
 {
     struct vt_tiles_layout_options fixed = *options, *o = &fixed;
@@ -299,6 +329,8 @@ int vt_tiles_layout_run(const struct vt_tiles_layout_options *options)
     if (!o->output && !o->export_atlas)
         return vt_usage_error("missing -o OUT.vts (or --export-atlas FILE)");
     if (vt_layout_read(o->layout, NULL, &r.lay, &err))
+        goto out;
+    if ((status = check_outputs(&r)) >= 0)
         goto out;
     if ((status = check_geometry(o, &r.lay)) != 0 || (status = pick_layers(&r)) != 0)
         goto out;

@@ -213,5 +213,12 @@ int main(int argc, char **argv)
         o.frames = o.headless ? (o.orbit ? o.orbit : 30) : 0;
     if (o.headless && o.frames == 0)
         return vt_usage_error("--frames 0 needs a window (no --headless)");
+    /* before any work: no output is an input (nor the screenshot the statistics) */
+    const char *inputs[] = {o.store_path, o.obj_path, o.camera_path, o.reference_scene, o.stats};
+    int status = vt_check_output(o.screenshot, inputs, 5);
+    if (status < 0)
+        status = vt_check_output(o.stats, inputs, 4);
+    if (status >= 0)
+        return status;
     return vtv_app_run(&o);
 }
