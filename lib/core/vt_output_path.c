@@ -1,5 +1,6 @@
 #include "vt_output_path.h"
 
+#include <stdbool.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -70,13 +71,17 @@ int vt_output_path_check(const char *output, const char *const *inputs, size_t i
         return rc;
     if (t.kind == VT_OUTPUT_DIRECTORY)
         return vt_error_set(err, VTS_ERR_ARG, "output '%s' is a directory", output);
-    if (t.kind == VT_OUTPUT_NEW)
-        return 0;
     for (size_t i = 0; i < input_count; i++) {
         struct stat st;
-        if (!inputs[i] || stat(inputs[i], &st) != 0)
+        struct vt_output_target in;
+        bool same = false;
+        if (!inputs[i])
             continue;
-        if (st.st_dev == t.dev && st.st_ino == t.ino)
+        if (stat(inputs[i], &st) == 0)
+            same = t.kind != VT_OUTPUT_NEW && st.st_dev == t.dev && st.st_ino == t.ino;
+        else if (t.kind == VT_OUTPUT_NEW && vt_output_path_resolve(inputs[i], &in, NULL) == 0)
+            same = strcmp(in.path, t.path) == 0; /* not there yet (another output): one name */
+        if (same)
             return vt_error_set(err, VTS_ERR_ARG, "output '%s' is the input '%s' (the same file)",
                                 output, inputs[i]);
     }

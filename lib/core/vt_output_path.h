@@ -38,9 +38,10 @@ int vt_output_path_resolve(const char *output, struct vt_output_target *t, struc
 
 /* The check every tool makes before any work: refuses (VTS_ERR_ARG) an output that is an existing
  * directory, or that is the same file (device and inode, after following links; a hard link
- * counts) as one of the inputs[0..input_count) (NULL entries and inputs that cannot be examined
- * are skipped: reading them reports the error). The message names the output and the input:
- * "output 'a.png' is the input 'b.png' (the same file)". Returns 0 or a negative vts_status. */
+ * counts) as one of the inputs[0..input_count). An input not there yet (another output of the
+ * tool) is the same file when both paths resolve to one name. NULL entries are skipped. The
+ * message names the output and the input: "output 'a.png' is the input 'b.png' (the same file)".
+ * Returns 0 or a negative vts_status. */
 int vt_output_path_check(const char *output, const char *const *inputs, size_t input_count,
                          struct vts_error *err);
 

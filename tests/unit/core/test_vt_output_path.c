@@ -118,6 +118,14 @@ static void the_same_file_as_an_input_is_refused(void)
     VT_CHECK_INT_EQ(vt_output_path_check(in, NULL, 0, &err), 0);
     const char *missing[] = {fresh};
     VT_CHECK_INT_EQ(vt_output_path_check(in, missing, 1, &err), 0);
+    /* two outputs not there yet, one a link to the other: one name once resolved */
+    char to_fresh[600], elsewhere[600];
+    join(to_fresh, sizeof to_fresh, dir, "to_fresh.mtl");
+    join(elsewhere, sizeof elsewhere, dir, "elsewhere.mtl");
+    VT_CHECK(symlink("fresh.vts", to_fresh) == 0);
+    VT_CHECK_INT_EQ(vt_output_path_check(to_fresh, missing, 1, &err), VTS_ERR_ARG);
+    VT_CHECK_INT_EQ(vt_output_path_check(fresh, missing, 1, &err), VTS_ERR_ARG);
+    VT_CHECK_INT_EQ(vt_output_path_check(elsewhere, missing, 1, &err), 0);
     VT_CHECK(holds(in, "input"));
 }
 
