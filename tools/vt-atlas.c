@@ -370,8 +370,11 @@ static int run(const struct options *o)
     }
     if (!rc)
         rc = vt_layout_write(o->output, &layout, &err);
-    if (!rc && o->deps && (rc = vt_atomic_file_commit(&deps, &err)))
-        unlink(o->output); /* all or nothing */
+    if (!rc && o->deps && (rc = vt_atomic_file_commit(&deps, &err))) {
+        struct vt_output_target json;
+        if (vt_output_path_resolve(o->output, &json, NULL) == 0 && json.kind == VT_OUTPUT_REGULAR)
+            unlink(json.path); /* all or nothing (a device or FIFO stays) */
+    }
     if (!rc)
         print_summary(o, &layout, &report, scene.texture_count);
     else

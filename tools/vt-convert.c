@@ -464,8 +464,9 @@ int main(int argc, char **argv)
     rc = validate_options(&o, &codec);
     if (rc != 0)
         return rc;
-    const char *inputs[] = {o.in_path};
-    if ((rc = vt_check_output(o.out_path, inputs, 1)) >= 0)
+    /* OUT may be IN itself (documented; scripts/vt.mk converts layer after layer in place): IN is
+     * read through the open store and replaced only by the complete new one. A directory is not. */
+    if ((rc = vt_check_output(o.out_path, NULL, 0)) >= 0)
         return rc;
     return run(&o, codec);
 }

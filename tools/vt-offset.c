@@ -335,8 +335,8 @@ static int run(const struct options *o)
         rc = vt_atomic_file_commit(&mtl.file, &err);
     if (rc == 0) {
         rc = vt_atomic_file_commit(&obj.file, &err);
-        if (rc < 0)
-            unlink(mtl_path); /* no half output */
+        if (rc < 0 && mtl.file.mode == VT_ATOMIC_FILE_RENAME)
+            unlink(mtl.file.target_path); /* no half output (a device or FIFO stays) */
     }
     if (rc < 0) {
         vt_log(VT_LOG_ERROR, "%s", err.message);

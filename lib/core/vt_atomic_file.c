@@ -348,7 +348,6 @@ static int commit_special(struct vt_atomic_file *f, struct vts_error *err)
     if (f->mode == VT_ATOMIC_FILE_SPOOL)
         close(f->fd);
     f->fd = f->device_fd = -1;
-    f->mode = VT_ATOMIC_FILE_RENAME;
     return rc;
 }
 
@@ -388,7 +387,6 @@ void vt_atomic_file_abort(struct vt_atomic_file *f)
         close(f->device_fd);
     f->fd = -1;
     f->device_fd = -1;
-    f->mode = VT_ATOMIC_FILE_RENAME;
     if (f->temp_path[0]) {
         unlink(f->temp_path);
         temp_unregister(f->temp_path);

@@ -36,7 +36,7 @@ struct vt_atomic_file {
     char final_path[VT_PATH_MAX];  /* as given: the name in messages */
     char temp_path[VT_PATH_MAX];   /* hidden file next to the target: .<name>.<tag>-XXXXXX */
     char target_path[VT_PATH_MAX]; /* final_path with its symbolic links followed */
-    enum vt_atomic_file_mode mode;
+    enum vt_atomic_file_mode mode; /* set by create, kept after commit and abort */
     int device_fd;                 /* VT_ATOMIC_FILE_SPOOL: the output, open for writing */
     unsigned long long stream_end; /* VT_ATOMIC_FILE_STREAM: bytes written so far */
 };

@@ -23,6 +23,18 @@ static int follow_link(char *cur, const char *target, size_t target_len)
     return 0;
 }
 
+static void describe(struct vt_output_target *t, const struct stat *st)
+{
+    t->kind = S_ISREG(st->st_mode)   ? VT_OUTPUT_REGULAR
+              : S_ISDIR(st->st_mode) ? VT_OUTPUT_DIRECTORY
+                                     : VT_OUTPUT_SPECIAL;
+    t->dev = st->st_dev;
+    t->ino = st->st_ino;
+    t->mode = st->st_mode;
+    t->uid = st->st_uid;
+    t->gid = st->st_gid;
+}
+
 int vt_output_path_resolve(const char *output, struct vt_output_target *t, struct vts_error *err)
 {
     memset(t, 0, sizeof *t);
@@ -30,8 +42,14 @@ int vt_output_path_resolve(const char *output, struct vt_output_target *t, struc
     if (len >= sizeof t->path)
         return vt_error_set(err, VTS_ERR_ARG, "output path '%s' is too long", output);
     memcpy(t->path, output, len + 1);
+    struct stat st;
+    if (stat(output, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) {
+        /* a device, FIFO or socket is opened, never renamed: keep the path as given, which also
+         * works through /proc's links (/dev/stdout -> /proc/self/fd/1 -> "pipe:[N]") */
+        describe(t, &st);
+        return 0;
+    }
     for (int links = 0; links <= MAX_LINKS; links++) {
-        struct stat st;
         if (lstat(t->path, &st) != 0) {
             t->kind = VT_OUTPUT_NEW;
             return 0;
@@ -49,14 +67,7 @@ int vt_output_path_resolve(const char *output, struct vt_output_target *t, struc
                                     "output path '%s' resolves to a path too long", output);
             continue;
         }
-        t->kind = S_ISREG(st.st_mode)   ? VT_OUTPUT_REGULAR
-                  : S_ISDIR(st.st_mode) ? VT_OUTPUT_DIRECTORY
-                                        : VT_OUTPUT_SPECIAL;
-        t->dev = st.st_dev;
-        t->ino = st.st_ino;
-        t->mode = st.st_mode;
-        t->uid = st.st_uid;
-        t->gid = st.st_gid;
+        describe(t, &st);
         return 0;
     }
     return vt_error_set(err, VTS_ERR_ARG, "output '%s': too many levels of symbolic links", output);

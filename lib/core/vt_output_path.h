@@ -31,7 +31,9 @@ struct vt_output_target {
 };
 
 /* Follows output through every symbolic link it ends in (relative targets against the link's
- * directory, at most 40 links) and describes what is there. A path that cannot be examined (no
+ * directory, at most 40 links) and describes what is there; a device, FIFO or socket keeps the
+ * path as given (opened, never renamed: also through /proc's links, /dev/stdout -> "pipe:[N]").
+ * A path that cannot be examined (no
  * such directory, no permission) is reported as VT_OUTPUT_NEW: creating the file names the error.
  * Returns 0, or VTS_ERR_ARG for a path too long or a loop of links. */
 int vt_output_path_resolve(const char *output, struct vt_output_target *t, struct vts_error *err);
