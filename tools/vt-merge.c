@@ -329,11 +329,10 @@ static int build_coarse(struct merge *m, struct vts_error *err)
     if (!sink_layer.codec)
         return vt_error_set(err, VTS_ERR_UNSUPPORTED, "'%s': codec of layer 0 is not available",
                             m->o->inputs[0]);
-    char dir[4096];
-    const char *slash = strrchr(m->o->out_path, '/');
-    snprintf(dir, sizeof dir, "%.*s",
-             slash ? (int)(slash - m->o->out_path) + (slash == m->o->out_path) : 1,
-             slash ? m->o->out_path : ".");
+    char dir[VT_PATH_MAX];
+    rc = vt_output_path_scratch_dir(m->o->out_path, dir, sizeof dir, err);
+    if (rc != 0)
+        return rc;
     po.threads = m->o->threads;
     po.temp_dir = m->o->temp_dir ? m->o->temp_dir : dir;
     po.emit = emit_coarse_tile;

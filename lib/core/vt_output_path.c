@@ -1,6 +1,8 @@
 #include "vt_output_path.h"
 
 #include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -71,6 +73,27 @@ int vt_output_path_resolve(const char *output, struct vt_output_target *t, struc
         return 0;
     }
     return vt_error_set(err, VTS_ERR_ARG, "output '%s': too many levels of symbolic links", output);
+}
+
+int vt_output_path_scratch_dir(const char *output, char *dir, size_t dir_cap, struct vts_error *err)
+{
+    struct vt_output_target t;
+    int rc = vt_output_path_resolve(output, &t, err);
+    if (rc != 0)
+        return rc;
+    int n;
+    if (t.kind == VT_OUTPUT_SPECIAL) {
+        const char *tmp = getenv("TMPDIR");
+        n = snprintf(dir, dir_cap, "%s", tmp && *tmp ? tmp : "/tmp");
+    } else {
+        const char *slash = strrchr(t.path, '/');
+        n = snprintf(dir, dir_cap, "%.*s", slash ? (int)(slash - t.path) + (slash == t.path) : 1,
+                     slash ? t.path : ".");
+    }
+    if (n < 0 || (size_t)n >= dir_cap)
+        return vt_error_set(err, VTS_ERR_ARG, "the directory for scratch files of '%s' is too long",
+                            output);
+    return 0;
 }
 
 int vt_output_path_check(const char *output, const char *const *inputs, size_t input_count,

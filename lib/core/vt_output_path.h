@@ -38,6 +38,12 @@ struct vt_output_target {
  * Returns 0, or VTS_ERR_ARG for a path too long or a loop of links. */
 int vt_output_path_resolve(const char *output, struct vt_output_target *t, struct vts_error *err);
 
+/* The directory for a tool's scratch files of output (pass images): that of its resolved target
+ * ("." for a bare name, "/" for one at the root), or $TMPDIR (else /tmp) for a device, FIFO or
+ * socket. Returns 0, or VTS_ERR_ARG when it does not fit in dir_cap bytes. */
+int vt_output_path_scratch_dir(const char *output, char *dir, size_t dir_cap,
+                               struct vts_error *err);
+
 /* The check every tool makes before any work: refuses (VTS_ERR_ARG) an output that is an existing
  * directory, or that is the same file (device and inode, after following links; a hard link
  * counts) as one of the inputs[0..input_count). An input not there yet (another output of the

@@ -10,6 +10,7 @@
 #include "vt_codec.h"
 #include "vt_error.h"
 #include "vt_image_input.h"
+#include "vt_output_path.h"
 #include "vt_pool.h"
 #include "vt_pyramid.h"
 #include "vt_shard.h"
@@ -252,12 +253,10 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
                                     .emit = emit_tile,
                                     .progress = show_progress,
                                     .user = &r};
-    char dir[4096];
+    char dir[VT_PATH_MAX];
     if (!po.temp_dir) {
-        const char *slash = strrchr(o->output, '/');
-        snprintf(dir, sizeof dir, "%.*s",
-                 slash ? (int)(slash - o->output) + (slash == o->output) : 1,
-                 slash ? o->output : ".");
+        if ((rc = vt_output_path_scratch_dir(o->output, dir, sizeof dir, &err)) != 0)
+            goto out;
         po.temp_dir = dir;
     }
     struct vt_pyramid_plan plan;

@@ -285,6 +285,34 @@ static void a_replaced_file_keeps_its_mode_owner_and_group(void)
     }
 }
 
+static void scratch_files_go_next_to_the_target_or_to_tmpdir(void)
+{
+    char dir[512], sub[600], link_path[600], fifo[600], got[VT_PATH_MAX];
+    fresh_dir(dir, sizeof dir, "scratch_dir");
+    join(sub, sizeof sub, dir, "sub");
+    join(link_path, sizeof link_path, dir, "link.vts");
+    join(fifo, sizeof fifo, dir, "fifo.vts");
+    VT_CHECK(mkdir(sub, 0755) == 0);
+    VT_CHECK(symlink("sub/out.vts", link_path) == 0);
+    VT_CHECK(mkfifo(fifo, 0644) == 0);
+    struct vts_error err = {0};
+    VT_CHECK_INT_EQ(vt_output_path_scratch_dir("out.vts", got, sizeof got, &err), 0);
+    VT_CHECK_STR_EQ(got, ".");
+    VT_CHECK_INT_EQ(vt_output_path_scratch_dir("/out.vts", got, sizeof got, &err), 0);
+    VT_CHECK_STR_EQ(got, "/");
+    VT_CHECK_INT_EQ(vt_output_path_scratch_dir("a/b/out.vts", got, sizeof got, &err), 0);
+    VT_CHECK_STR_EQ(got, "a/b");
+    VT_CHECK_INT_EQ(vt_output_path_scratch_dir(link_path, got, sizeof got, &err), 0);
+    VT_CHECK_STR_EQ(got, sub); /* the link's target's directory */
+    setenv("TMPDIR", sub, 1);
+    VT_CHECK_INT_EQ(vt_output_path_scratch_dir(fifo, got, sizeof got, &err), 0);
+    VT_CHECK_STR_EQ(got, sub); /* a FIFO: $TMPDIR */
+    unsetenv("TMPDIR");
+    VT_CHECK_INT_EQ(vt_output_path_scratch_dir(fifo, got, sizeof got, &err), 0);
+    VT_CHECK_STR_EQ(got, "/tmp");
+    VT_CHECK_INT_EQ(vt_output_path_scratch_dir("a/b/out.vts", got, 3, &err), VTS_ERR_ARG);
+}
+
 static void remove_tree(const char *dir)
 {
     DIR *d = opendir(dir);
@@ -317,6 +345,7 @@ int main(void)
     VT_RUN(a_fifo_is_written_into_not_replaced);
     VT_RUN(a_character_device_is_written_into_not_replaced);
     VT_RUN(a_replaced_file_keeps_its_mode_owner_and_group);
+    VT_RUN(scratch_files_go_next_to_the_target_or_to_tmpdir);
     remove_tree(tmpdir);
     return vt_test_main_result();
 }
