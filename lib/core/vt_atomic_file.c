@@ -176,7 +176,8 @@ static int scratch_dir_path(char *out, size_t cap)
     return n < 0 || (size_t)n >= cap ? -1 : 0;
 }
 
-/* The replacement of an existing regular file gets its permission bits, and as root its owner and
+/* The replacement of an existing regular file gets its permission bits (rwx, not set-user-ID,
+ * set-group-ID or sticky: they would carry over to new content), and as root its owner and
  * group (best effort: a file system that refuses keeps the new file's). */
 static void keep_attributes(int fd, const struct vt_output_target *t)
 {
@@ -185,7 +186,7 @@ static void keep_attributes(int fd, const struct vt_output_target *t)
     if (geteuid() == 0 && fchown(fd, t->uid, t->gid) != 0) {
         /* best effort, see above */
     }
-    if (fchmod(fd, t->mode & 07777) != 0) {
+    if (fchmod(fd, t->mode & 0777) != 0) {
         /* best effort, see above */
     }
 }
