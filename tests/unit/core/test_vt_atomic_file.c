@@ -17,72 +17,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "file_fixture.h"
 #include "vt_atomic_file.h"
 #include "vt_error.h"
 #include "vt_test.h"
-
-static char tmpdir[256];
-
-/* A fresh empty directory under tmpdir for one test. */
-static void fresh_dir(char *out, size_t cap, const char *name)
-{
-    snprintf(out, cap, "%s/%s", tmpdir, name);
-    VT_CHECK(mkdir(out, 0755) == 0);
-}
-
-static void join(char *out, size_t cap, const char *dir, const char *name)
-{
-    snprintf(out, cap, "%s/%s", dir, name);
-}
-
-/* Entries of dir other than . and .. (names joined by spaces into list, when given). */
-static int count_entries(const char *dir, char *list, size_t cap)
-{
-    int n = 0;
-    if (list)
-        list[0] = '\0';
-    DIR *d = opendir(dir);
-    if (!d)
-        return -1;
-    for (struct dirent *de; (de = readdir(d));) {
-        if (strcmp(de->d_name, ".") == 0 || strcmp(de->d_name, "..") == 0)
-            continue;
-        n++;
-        if (list) {
-            size_t len = strlen(list);
-            snprintf(list + len, cap - len, "%s%s", len ? " " : "", de->d_name);
-        }
-    }
-    closedir(d);
-    return n;
-}
 
 static bool exists(const char *path)
 {
     struct stat st;
     return lstat(path, &st) == 0;
-}
-
-/* The whole content of path is text (and nothing more). */
-static bool holds(const char *path, const char *text)
-{
-    char buf[256];
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return false;
-    size_t n = fread(buf, 1, sizeof buf, f);
-    fclose(f);
-    return n == strlen(text) && memcmp(buf, text, n) == 0;
-}
-
-static void write_file(const char *path, const char *text)
-{
-    FILE *f = fopen(path, "wb");
-    VT_CHECK(f != NULL);
-    if (f) {
-        fputs(text, f);
-        fclose(f);
-    }
 }
 
 static int put(struct vt_atomic_file *f, const char *text, struct vts_error *err)
@@ -515,26 +458,6 @@ static void the_signal_cleanup_removes_temporaries_of_a_killed_process(void)
     int status = kill_child_when_ready(dir, false, SIGTERM, &left);
     VT_CHECK(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
     VT_CHECK_INT_EQ(left, 2);
-}
-
-static void remove_tree(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (!d)
-        return;
-    for (struct dirent *de; (de = readdir(d));) {
-        if (strcmp(de->d_name, ".") == 0 || strcmp(de->d_name, "..") == 0)
-            continue;
-        char p[1024];
-        snprintf(p, sizeof p, "%s/%s", dir, de->d_name);
-        struct stat st;
-        if (lstat(p, &st) == 0 && S_ISDIR(st.st_mode))
-            remove_tree(p);
-        else
-            unlink(p);
-    }
-    closedir(d);
-    rmdir(dir);
 }
 
 int main(void)

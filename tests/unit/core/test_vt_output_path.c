@@ -14,57 +14,11 @@
 #include <sys/sysmacros.h>
 #include <unistd.h>
 
+#include "file_fixture.h"
 #include "vt_atomic_file.h"
 #include "vt_error.h"
 #include "vt_output_path.h"
 #include "vt_test.h"
-
-static char tmpdir[256];
-
-static void fresh_dir(char *out, size_t cap, const char *name)
-{
-    snprintf(out, cap, "%s/%s", tmpdir, name);
-    VT_CHECK(mkdir(out, 0755) == 0);
-}
-
-static void join(char *out, size_t cap, const char *dir, const char *name)
-{
-    snprintf(out, cap, "%s/%s", dir, name);
-}
-
-static int count_entries(const char *dir)
-{
-    int n = 0;
-    DIR *d = opendir(dir);
-    if (!d)
-        return -1;
-    for (struct dirent *de; (de = readdir(d));)
-        if (strcmp(de->d_name, ".") != 0 && strcmp(de->d_name, "..") != 0)
-            n++;
-    closedir(d);
-    return n;
-}
-
-static bool holds(const char *path, const char *text)
-{
-    char buf[256];
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return false;
-    size_t n = fread(buf, 1, sizeof buf, f);
-    fclose(f);
-    return n == strlen(text) && memcmp(buf, text, n) == 0;
-}
-
-static void write_file(const char *path, const char *text)
-{
-    FILE *f = fopen(path, "wb");
-    VT_CHECK(f != NULL);
-    if (f) {
-        fputs(text, f);
-        fclose(f);
-    }
-}
 
 static mode_t lmode(const char *path)
 {
@@ -145,7 +99,7 @@ static void a_directory_is_refused(void)
     VT_CHECK_INT_EQ(vt_atomic_file_create(&f, sub, "tmp", 0, &err), VTS_ERR_ARG);
     VT_CHECK_STR_CONTAINS(err.message, "is a directory");
     VT_CHECK_INT_EQ(vt_atomic_file_create_scratch(&f, link_to_sub, &err), VTS_ERR_ARG);
-    VT_CHECK_INT_EQ(count_entries(sub), 0);
+    VT_CHECK_INT_EQ(count_entries(sub, NULL, 0), 0);
     VT_CHECK(S_ISDIR(lmode(sub)));
 }
 
@@ -165,15 +119,15 @@ static void a_symbolic_link_is_written_through(void)
     struct vts_error err = {0};
     VT_CHECK_INT_EQ(vt_atomic_file_create(&f, link2, "tmp", 0, &err), 0);
     VT_CHECK_STR_EQ(f.target_path, target);
-    VT_CHECK_INT_EQ(count_entries(sub), 2); /* the temporary is next to the target */
+    VT_CHECK_INT_EQ(count_entries(sub, NULL, 0), 2); /* the temporary is next to the target */
     VT_CHECK_INT_EQ(vt_atomic_file_pwrite(&f, "new", 3, 0, &err), 0);
     VT_CHECK_INT_EQ(vt_atomic_file_commit(&f, &err), 0);
     VT_CHECK(S_ISLNK(lmode(link1)) && S_ISLNK(lmode(link2)));
     VT_CHECK(S_ISREG(lmode(target)));
     VT_CHECK(holds(target, "new"));
     VT_CHECK(holds(link2, "new"));
-    VT_CHECK_INT_EQ(count_entries(sub), 1);
-    VT_CHECK_INT_EQ(count_entries(dir), 3);
+    VT_CHECK_INT_EQ(count_entries(sub, NULL, 0), 1);
+    VT_CHECK_INT_EQ(count_entries(dir, NULL, 0), 3);
     /* a dangling link: its target is created */
     join(dangling, sizeof dangling, dir, "dangling.vts");
     join(made, sizeof made, sub, "made.vts");
@@ -236,7 +190,7 @@ static void a_fifo_is_written_into_not_replaced(void)
     VT_CHECK_STR_EQ(buf, "helloworld");
     close(rd);
     VT_CHECK(S_ISFIFO(lmode(fifo)));
-    VT_CHECK_INT_EQ(count_entries(dir), 1); /* no temporary, no spool left */
+    VT_CHECK_INT_EQ(count_entries(dir, NULL, 0), 1); /* no temporary, no spool left */
 }
 
 static void a_character_device_is_written_into_not_replaced(void)
@@ -253,11 +207,11 @@ static void a_character_device_is_written_into_not_replaced(void)
     struct vt_atomic_file f;
     struct vts_error err = {0};
     VT_CHECK_INT_EQ(vt_atomic_file_create_scratch(&f, dev, &err), 0); /* not next to it */
-    VT_CHECK_INT_EQ(count_entries(dir), 1);
+    VT_CHECK_INT_EQ(count_entries(dir, NULL, 0), 1);
     vt_atomic_file_abort(&f);
     struct stat st;
     VT_CHECK(lstat(dev, &st) == 0 && S_ISCHR(st.st_mode) && st.st_rdev == makedev(1, 3));
-    VT_CHECK_INT_EQ(count_entries(dir), 1);
+    VT_CHECK_INT_EQ(count_entries(dir, NULL, 0), 1);
 }
 
 static void a_replaced_file_keeps_its_mode_owner_and_group(void)
@@ -311,25 +265,6 @@ static void scratch_files_go_next_to_the_target_or_to_tmpdir(void)
     VT_CHECK_INT_EQ(vt_output_path_scratch_dir(fifo, got, sizeof got, &err), 0);
     VT_CHECK_STR_EQ(got, "/tmp");
     VT_CHECK_INT_EQ(vt_output_path_scratch_dir("a/b/out.vts", got, 3, &err), VTS_ERR_ARG);
-}
-
-static void remove_tree(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (!d)
-        return;
-    for (struct dirent *de; (de = readdir(d));) {
-        if (strcmp(de->d_name, ".") == 0 || strcmp(de->d_name, "..") == 0)
-            continue;
-        char p[1024];
-        snprintf(p, sizeof p, "%s/%s", dir, de->d_name);
-        if (S_ISDIR(lmode(p)))
-            remove_tree(p);
-        else
-            unlink(p);
-    }
-    closedir(d);
-    rmdir(dir);
 }
 
 int main(void)
