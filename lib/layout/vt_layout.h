@@ -16,6 +16,26 @@
  * side by side from (x, y), and origin_u/origin_v is the integer part of the smallest u/v the
  * material uses, so its whole UV range [origin, origin + repeat] lands inside the copies.
  *
+ * Crop (vt-atlas packs only the texels the charts of a material use): the copies form a block of
+ * width * repeat_u x height * repeat_v texels, and the entry holds only the rectangle
+ * [crop_x, crop_x + crop_width) x [crop_y, crop_y + crop_height) of that block (crop_y counted from
+ * the block's top row), placed at (x, y). The formula becomes
+ *
+ *   U = (x - crop_x + (u - origin_u) * width) / atlas_width
+ *   V = 1 - (y - crop_y + (repeat_v - (v - origin_v)) * height) / atlas_height
+ *
+ * and the covered UV range is origin_u + crop_x / width .. origin_u + (crop_x + crop_width) / width
+ * (v: origin_v + repeat_v - (crop_y + crop_height) / height .. origin_v + repeat_v - crop_y /
+ * height). Without "crop" in the file the entry holds the whole block (crop 0, 0, width * repeat_u,
+ * height * repeat_v), as before.
+ *
+ * Wrap (vt-atlas --wrap split, and the automatic choice for large repeats): the entry holds one
+ * whole copy of a texture the scene repeats; vt-offset cut the faces along the integer UV lines
+ * and moved every piece into [0,1]. Its gutter, its cell padding and the tile borders at its edges
+ * repeat the texture's opposite edge (texel -1 is texel width - 1), and its mip chain is filtered
+ * with wrap-around, so that bilinear and trilinear filtering across a cut read what the repeating
+ * texture shows there. A wrap entry has repeat 1 and no crop.
+ *
  * The entry's cell may start before (x, y) (cell_left/cell_top, "cell_x"/"cell_y" in the file):
  * vt-atlas --gutter leaves texels around a texture that shares a tile, which the compositor
  * fills with the texture's own edge so that filtering never reads a neighbour. */
@@ -72,6 +92,14 @@ struct vt_layout_entry {
                                     (density rescaling; 1 normally). width = ceil(source width *
                                     scale) for scale < 1 (the source's own mip level), source
                                     width * scale for scale >= 1 (texels replicated) */
+    uint32_t crop_x, crop_y;     /* first texel of the block of copies the entry holds (0) */
+    uint32_t crop_width;         /* texels of the block it holds (file "crop": [x, y, w, h]); */
+    uint32_t crop_height;        /* 0 in a layout built in memory means the whole block:
+                                    vt_layout_index() and the reader fill in width * repeat_u,
+                                    height * repeat_v. The cell holds crop_width x crop_height
+                                    texels at (x, y) */
+    bool wrap;                   /* one copy of a repeating texture: gutter, padding, borders and
+                                    mips wrap around (file "wrap": true); repeat 1, no crop */
     uint32_t group;              /* 0: a texture of its own. Entries sharing a non-zero group are
                                     one continuous surface laid edge to edge (vt-atlas --grid
                                     terrain pieces): borders and mip filtering cross between them
@@ -162,8 +190,8 @@ int vt_layout_layer_index(const struct vt_layout *layout, const char *name);
 void vt_layout_map_uv(const struct vt_layout *layout, const struct vt_layout_entry *e, double u,
                       double v, double *au, double *av);
 
-/* True when (u, v) lies inside the UV range the copies of e cover: origin_u <= u <=
- * origin_u + repeat_u, and the same for v. */
+/* True when (u, v) lies inside the UV range e covers (with its crop; see the top of this file),
+ * bounds included. */
 bool vt_layout_uv_covered(const struct vt_layout_entry *e, double u, double v);
 
 /* Allocation helpers for writers (vt-atlas, tests): zeroed arrays of count layers/entries, and

@@ -1,0 +1,62 @@
+/* UV charts of a polygon mesh (libc only, pure computation): the connected groups of faces of one
+ * material that share texture coordinates, and the whole-repeat move of each chart. Used by
+ * vt-atlas (lib/atlas: which texels each material's charts use) and by vt-offset (lib/offset: the
+ * move it applies, the same by construction). See docs/real-scenes.md.
+ *
+ * Connectivity. Two faces of the same group (material) are in one chart when they share a
+ * texcoord index, or when they share an undirected edge (the same two position indices) whose two
+ * ends carry bitwise-equal texcoord values on both faces (exporters that write one vt per face
+ * corner). Faces of different groups never share a chart. A corner without texcoord
+ * (VT_CHART_NONE) joins nothing; a face without any texcoord is in no chart.
+ *
+ * The move of a chart is the integer (du, dv) = (-floor(umin), -floor(vmin)) of its texcoord box:
+ * after it the box starts in [0,1). u + du is exact in double precision (an integer added to a
+ * double of at least its magnitude), so the move changes no texel. */
+#ifndef VT_CHART_H
+#define VT_CHART_H
+
+#include <stdint.h>
+
+#include "vt_error.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define VT_CHART_NONE UINT32_MAX
+
+/* A mesh as the OBJ reader gives it: faces as runs of corners. Every index is checked by the
+ * caller (pos < position_count, tex < texcoord_count or VT_CHART_NONE). */
+struct vt_chart_mesh {
+    uint32_t face_count;
+    const uint64_t *face_start; /* face_count + 1 offsets into the corner arrays; >= 3 corners */
+    const uint32_t *pos;        /* per corner: position index */
+    const uint32_t *tex;        /* per corner: texcoord index or VT_CHART_NONE */
+    const uint32_t *nrm;        /* per corner: normal index or VT_CHART_NONE (may be NULL: none) */
+    const uint32_t *group;      /* per face: material id; VT_CHART_NONE: the face is in no chart */
+    const double *uv;           /* 2 per texcoord index: u, v */
+    uint32_t position_count, texcoord_count;
+};
+
+/* Labels every face with its chart (chart[f], numbered 0.. in order of each chart's first face;
+ * VT_CHART_NONE for faces in no chart) and sets *chart_count. Returns 0, VTS_ERR_NOMEM or
+ * VTS_ERR_LIMIT (more than 2^32 - 2 charts). Deterministic. */
+int vt_chart_label(const struct vt_chart_mesh *m, uint32_t *chart, uint32_t *chart_count,
+                   struct vts_error *err);
+
+/* The texcoord box of a chart and its move. */
+struct vt_chart_box {
+    uint32_t group;                /* the material of its faces */
+    uint32_t faces;                /* faces in the chart */
+    double umin, umax, vmin, vmax; /* over its corners with texcoords, before the move */
+    double du, dv;                 /* the move: integers, -floor(umin), -floor(vmin) */
+};
+
+/* Fills boxes[0 .. chart_count) from the labels of vt_chart_label(). */
+void vt_chart_boxes(const struct vt_chart_mesh *m, const uint32_t *chart, uint32_t chart_count,
+                    struct vt_chart_box *boxes);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,82 @@
+/* Cutting faces along the integer UV lines (libc only, pure computation): for vt-offset on the
+ * materials whose atlas entry wraps (lib/layout/vt_layout.h "wrap"). See docs/real-scenes.md.
+ *
+ * Input: a mesh (vt_chart.h), a flag per face ("wrap": cut it) and a move per face (du, dv:
+ * integers, the chart's move). For a wrap face, with its texcoords moved, every integer line
+ * u = k or v = k that passes strictly between two of its corners' values cuts it: the face is
+ * clipped to each unit cell [a, a+1] x [b, b+1] it covers, and each non-degenerate piece is moved
+ * by (-a, -b) so that it lies in [0,1] x [0,1]. A wrap face that no line cuts lies in one cell
+ * [a, a+1] x [b, b+1] (a = floor(umin), b = floor(vmin)) and is moved by (-a, -b) as a whole.
+ *
+ * No cracks: a point where a line cuts a mesh edge (two position indices) is a new position
+ * shared by every face on that edge, so a face next to a cut face (any material, with or without
+ * texcoords) gets the points of that edge as extra corners (it is "split", its shape unchanged).
+ * Points inside a face (where two lines cross) are shared by the pieces of that face. Every edge
+ * of the output is then shared by exactly the faces that shared the input edge it lies on: no
+ * T-junction, no new boundary.
+ *
+ * Polygons with more than three corners are clipped as they are (convex ones exactly; a concave
+ * n-gon gives pieces covering it, possibly with overlapping degenerate edges). A piece with zero
+ * area in UV (it only touches a cell along a line) is dropped. */
+#ifndef VT_CUT_H
+#define VT_CUT_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "vt_chart.h"
+#include "vt_error.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* One corner of an output polygon. */
+struct vt_cut_corner {
+    uint32_t pos;     /* position index: < position_count an input one, else the new position
+                         vertices[pos - position_count] */
+    bool has_uv;      /* the face has texcoords at every corner */
+    double u, v;      /* texcoord: for a wrap face, moved into [0,1] (its cell's move); for a
+                         split face that does not wrap, moved by the face's (du, dv) only */
+    uint32_t src[3];  /* input face corners (0-based within the face) whose attributes (normals)
+                         this corner interpolates; unused ones are VT_CHART_NONE */
+    double w[3];      /* their weights (sum 1): an input corner is {i}, {1}; an edge point two
+                         corners; a point inside the face three (barycentric in UV) */
+};
+
+/* A new position: sum of w[i] * position[pos[i]] (pos[2] VT_CHART_NONE for an edge point). */
+struct vt_cut_vertex {
+    uint32_t pos[3];
+    double w[3];
+};
+
+struct vt_cut_result {
+    uint8_t *changed;     /* per input face: 0 kept (write it as it is, moved by face_shift),
+                             1 replaced by its polygons below */
+    double *face_shift;   /* per input face, 2: the move of a kept face (du, dv: the chart's,
+                             plus the cell's for a wrap face) */
+    uint64_t *face_poly;  /* face_count + 1 offsets into the polygons (kept faces have none) */
+    uint64_t *poly_start; /* poly_count + 1 offsets into corners */
+    struct vt_cut_corner *corners;
+    uint64_t poly_count, corner_count;
+    struct vt_cut_vertex *vertices; /* new positions, in order of creation */
+    uint32_t vertex_count;
+    uint64_t faces_cut;   /* wrap faces that lines cut */
+    uint64_t faces_split; /* other faces that got extra corners (neighbours of cuts) */
+    uint64_t pieces;      /* polygons of the cut faces */
+};
+
+/* Computes the cut of m. wrap: per face, non-zero to cut it (faces in no chart are never cut);
+ * shift: 2 per face (du, dv), ignored for faces without texcoords. *r is overwritten; release it
+ * after success or failure. Returns 0, VTS_ERR_NOMEM or VTS_ERR_LIMIT (more than 2^32 - 1 - 
+ * position_count new positions, or a face spanning more than 2^20 cells). Deterministic. */
+int vt_cut(const struct vt_chart_mesh *m, const uint8_t *wrap, const double *shift,
+           struct vt_cut_result *r, struct vts_error *err);
+
+/* Frees everything *r holds and zeroes it. Accepts NULL. */
+void vt_cut_release(struct vt_cut_result *r);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
