@@ -9,6 +9,7 @@
 #include "vt_image.h"
 #include "vt_image_input.h"
 #include "vt_obj.h"
+#include "vtv_mipmap.h"
 
 /* Triangles of one material, 5 floats (x y z u v) per vertex, in order of first use. */
 struct mat_geo {
@@ -170,12 +171,11 @@ static int load_texture(const char *path, bool srgb, GLuint *out, struct vts_err
         goto cleanup;
     }
     to_rgba8(&img, rgba);
-    bool s = srgb && in->colour == VTS_COLOUR_SRGB;
     glGenTextures(1, out);
     glBindTexture(GL_TEXTURE_2D, *out);
-    glTexImage2D(GL_TEXTURE_2D, 0, s ? GL_SRGB8_ALPHA8 : GL_RGBA8, (GLsizei)in->width,
-                 (GLsizei)in->height, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
-    glGenerateMipmap(GL_TEXTURE_2D);
+    /* mips as the store's: box in linear light for an sRGB texture in an sRGB frame */
+    st = vtv_mipmap_upload(rgba, in->width, in->height, srgb && in->colour == VTS_COLOUR_SRGB,
+                           in->has_alpha, path, err);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
 cleanup:
     free(rgba);

@@ -1,7 +1,8 @@
 /* vt-view --reference-scene: the original scene (the OBJ before vt-offset, with its MTL files)
  * drawn with one plain GL texture per material's map_Kd, read through
  * formats/input/vt_image_input.h (8/16-bit samples, shown as 8 bits; sRGB textures as
- * GL_SRGB8_ALPHA8 when the frame is sRGB), mipmapped with glGenerateMipmap, GL_REPEAT along an axis
+ * GL_SRGB8_ALPHA8 when the frame is sRGB), mip levels made on the CPU like the store's
+ * (vtv_mipmap.h: box in linear light), GL_REPEAT along an axis
  * where the material's UVs leave [0, 1] (clamped at the outer edge of the copies vt-atlas lays, as
  * the atlas is), else GL_CLAMP_TO_EDGE. Materials without map_Kd are drawn with their Kd (0.8 grey
  * without one), taken as sRGB-encoded like vt-atlas's constant cells. Needs a current GL 3.3 core
