@@ -11,12 +11,13 @@
 #include "vt_obj.h"
 #include "vtv_mipmap.h"
 
-/* Triangles of one material, 5 floats (x y z u v) per vertex, in order of first use. */
+/* Triangles of one material, in order of first use: per vertex its position (3 floats) and its
+ * texcoord as read (2 doubles, v flipped); per triangle the shift of its face (2 doubles). */
 struct mat_geo {
     char *name;
-    float *v;
-    size_t n, cap;
-    double uv_lo[2], uv_hi[2]; /* texcoord range of the corners (v flipped) */
+    float *pos;
+    double *uv, *shift;
+    size_t n, cap; /* vertices (3 per triangle) */
 };
 
 struct load_ctx {
@@ -57,8 +58,6 @@ static int material_index(struct load_ctx *c, const char *name, struct vts_error
         return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     c->mats = m;
     memset(&m[c->mat_count], 0, sizeof(*m));
-    m[c->mat_count].uv_lo[0] = m[c->mat_count].uv_lo[1] = 1e300;
-    m[c->mat_count].uv_hi[0] = m[c->mat_count].uv_hi[1] = -1e300;
     m[c->mat_count].name = strdup(name);
     if (!m[c->mat_count].name)
         return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
@@ -66,37 +65,76 @@ static int material_index(struct load_ctx *c, const char *name, struct vts_error
     return 0;
 }
 
-static int push(struct load_ctx *c, const struct vt_obj *obj, const struct vt_obj_corner *k)
+/* Room for one more triangle. */
+static int grow(struct mat_geo *m)
+{
+    if (m->n + 3 <= m->cap)
+        return 0;
+    if (m->cap >= ((size_t)3 << 27))
+        return VTS_ERR_LIMIT;
+    size_t nc = m->cap ? m->cap * 2 : 768; /* a multiple of 3 */
+    float *p = realloc(m->pos, nc * 3 * sizeof(float));
+    if (p)
+        m->pos = p;
+    double *uv = realloc(m->uv, nc * 2 * sizeof(double));
+    if (uv)
+        m->uv = uv;
+    double *sh = realloc(m->shift, nc / 3 * 2 * sizeof(double));
+    if (sh)
+        m->shift = sh;
+    if (!p || !uv || !sh)
+        return VTS_ERR_NOMEM;
+    m->cap = nc;
+    return 0;
+}
+
+/* Corner k's texcoord as drawn: (u, 1 - v), v flipped as in vtv_mesh.c (v = 1 is the first row);
+ * (0, 0) without one. */
+static void corner_uv(const struct vt_obj *obj, const struct vt_obj_corner *k, double uv[2])
+{
+    uv[0] = uv[1] = 0.0;
+    if (k->vt != VT_OBJ_NONE) {
+        const double *t = vt_obj_texcoords(obj) + (size_t)k->vt * 3;
+        uv[0] = t[0];
+        uv[1] = 1.0 - t[1];
+    }
+}
+
+/* Appends the triangle of corners k[0..2] of a face whose shift is shift[0..1]. */
+static int push_triangle(struct load_ctx *c, const struct vt_obj *obj,
+                         const struct vt_obj_corner *const k[3], const double shift[2])
 {
     struct mat_geo *m = &c->mats[c->cur];
-    if (m->n == m->cap) {
-        if (m->cap >= ((size_t)1 << 27))
-            return VTS_ERR_LIMIT;
-        size_t nc = m->cap ? m->cap * 2 : 256;
-        float *p = realloc(m->v, nc * 5 * sizeof(float));
-        if (!p)
-            return VTS_ERR_NOMEM;
-        m->v = p;
-        m->cap = nc;
-    }
-    float *out = m->v + m->n++ * 5;
-    const double *p = vt_obj_positions(obj) + (size_t)k->v * 3;
-    for (int i = 0; i < 3; i++) {
-        out[i] = (float)p[i];
-        c->lo[i] = fmin(c->lo[i], p[i]);
-        c->hi[i] = fmax(c->hi[i], p[i]);
-    }
-    out[3] = out[4] = 0.0f;
-    if (k->vt != VT_OBJ_NONE) { /* v flipped as in vtv_mesh.c: v = 1 is the first row */
-        const double *t = vt_obj_texcoords(obj) + (size_t)k->vt * 3;
-        out[3] = (float)t[0];
-        out[4] = (float)(1.0 - t[1]);
-        for (int i = 0; i < 2; i++) {
-            m->uv_lo[i] = fmin(m->uv_lo[i], out[3 + i]);
-            m->uv_hi[i] = fmax(m->uv_hi[i], out[3 + i]);
+    int st = grow(m);
+    if (st != 0)
+        return st;
+    memcpy(m->shift + m->n / 3 * 2, shift, 2 * sizeof(double));
+    for (int j = 0; j < 3; j++, m->n++) {
+        const double *p = vt_obj_positions(obj) + (size_t)k[j]->v * 3;
+        for (int i = 0; i < 3; i++) {
+            m->pos[m->n * 3 + i] = (float)p[i];
+            c->lo[i] = fmin(c->lo[i], p[i]);
+            c->hi[i] = fmax(c->hi[i], p[i]);
         }
+        corner_uv(obj, k[j], m->uv + m->n * 2);
     }
     return 0;
+}
+
+/* The shift of a face: the floor of its smallest u and (flipped) v over the corners that have a
+ * texcoord (0 without any). */
+static void face_shift(const struct vt_obj *obj, const struct vt_obj_face *f, double shift[2])
+{
+    double lo[2] = {INFINITY, INFINITY};
+    for (uint32_t i = 0; i < f->corner_count; i++)
+        if (f->corners[i].vt != VT_OBJ_NONE) {
+            double uv[2];
+            corner_uv(obj, &f->corners[i], uv);
+            lo[0] = fmin(lo[0], uv[0]);
+            lo[1] = fmin(lo[1], uv[1]);
+        }
+    for (int i = 0; i < 2; i++)
+        shift[i] = isfinite(lo[i]) ? floor(lo[i]) : 0.0;
 }
 
 static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_face *f,
@@ -104,12 +142,11 @@ static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_fac
 {
     struct load_ctx *c = user;
     int st = material_index(c, f->material, err);
+    double shift[2];
+    face_shift(obj, f, shift);
     for (uint32_t i = 1; st == 0 && i + 1 < f->corner_count; i++) { /* fanned as in vtv_mesh.c */
-        st = push(c, obj, &f->corners[0]);
-        if (st == 0)
-            st = push(c, obj, &f->corners[i]);
-        if (st == 0)
-            st = push(c, obj, &f->corners[i + 1]);
+        const struct vt_obj_corner *k[3] = {&f->corners[0], &f->corners[i], &f->corners[i + 1]};
+        st = push_triangle(c, obj, k, shift);
         if (st != 0 && st != VTS_ERR_NOMEM)
             return vt_error_set(err, st, "'%s':%llu: too many triangles", c->path,
                                 (unsigned long long)f->line);
@@ -190,7 +227,8 @@ static float srgb_to_linear(double c)
     return (float)(c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4));
 }
 
-/* The texture or colour of material m (first MTL file that defines it, as vt-atlas does). */
+/* The texture or colour of material m (first MTL file that defines it, as vt-atlas does) and its
+ * addressing: repeat, unless its map_Kd statement says -clamp on. */
 static int setup_part(struct vtv_reference_scene *s, struct load_ctx *c, const struct mat_geo *g,
                       bool srgb, struct vtv_reference_part *part, struct vts_error *err)
 {
@@ -204,16 +242,8 @@ static int setup_part(struct vtv_reference_scene *s, struct load_ctx *c, const s
     for (int k = 0; k < 3; k++)
         part->kd[k] = srgb ? srgb_to_linear(kd[k]) : (float)kd[k];
     part->kd[3] = 1.0f;
-    /* vt-atlas --wrap replicate lays copies floor(min) .. ceil(max) (1e-6 tolerance) and clamps
-     * at their outer edge: an axis with copies repeats, clamped in the shader at the range's ends
-     * (exact at level 0); an axis in [0, 1] is GL_CLAMP_TO_EDGE (exact on every level). */
-    for (int k = 0; k < 2; k++) {
-        double lo = floor(g->uv_lo[k] + 1e-6), hi = ceil(g->uv_hi[k] - 1e-6);
-        part->repeat[k] = g->uv_lo[k] <= g->uv_hi[k] && (lo < 0 || hi > 1);
-        part->range[k] = part->repeat[k] ? (float)lo : -1e6f;
-        part->range[2 + k] = part->repeat[k] ? (float)hi : 1e6f;
-    }
     const char *path = mat ? mat->maps[VT_MTL_MAP_KD].path : NULL;
+    part->clamp = path && mat->maps[VT_MTL_MAP_KD].clamp;
     if (!path)
         return 0;
     for (uint32_t i = 0; i < s->texture_count; i++)
@@ -234,6 +264,53 @@ static int setup_part(struct vtv_reference_scene *s, struct load_ctx *c, const s
     int st = load_texture(path, srgb, &t[s->texture_count - 1], err);
     part->tex = t[s->texture_count - 1];
     return st;
+}
+
+/* The vertices of g as drawn (x y z u v floats) into out. A repeating material's texcoords get
+ * their face's shift subtracted in double before the conversion to float: u = 2600.3 has a float
+ * step of 1/4096 (a sixteenth of a texel of a 256-texel texture, and interpolation adds more),
+ * 0.3 one of 1/2^25; repeat addressing shows the same texels either way, and the shift is the same
+ * over a face, so the derivatives (the level of detail) do not change. A clamped material keeps
+ * its texcoords. */
+static void write_vertices(const struct mat_geo *g, bool repeat, float *out)
+{
+    for (size_t j = 0; j < g->n; j++, out += 5) {
+        const double *sh = g->shift + j / 3 * 2;
+        memcpy(out, g->pos + j * 3, 3 * sizeof(float));
+        out[3] = (float)(g->uv[j * 2] - (repeat ? sh[0] : 0.0));
+        out[4] = (float)(g->uv[j * 2 + 1] - (repeat ? sh[1] : 0.0));
+    }
+}
+
+static void upload_geometry(struct vtv_reference_scene *s, const float *all, size_t total)
+{
+    glGenVertexArrays(1, &s->vao);
+    glGenBuffers(1, &s->vbo);
+    glBindVertexArray(s->vao);
+    glBindBuffer(GL_ARRAY_BUFFER, s->vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(total * 5 * sizeof(float)), all, GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 5 * sizeof(float), (void *)0);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 5 * sizeof(float), (void *)(3 * sizeof(float)));
+    glBindVertexArray(0);
+}
+
+static void release_ctx(struct load_ctx *c, uint32_t texture_count)
+{
+    for (size_t i = 0; i < c->mtl_count; i++)
+        vt_mtl_release(&c->mtls[i]);
+    free(c->mtls);
+    for (uint32_t i = 0; i < c->mat_count; i++) {
+        free(c->mats[i].name);
+        free(c->mats[i].pos);
+        free(c->mats[i].uv);
+        free(c->mats[i].shift);
+    }
+    free(c->mats);
+    for (uint32_t i = 0; i < texture_count; i++)
+        free(c->tex_paths ? c->tex_paths[i] : NULL);
+    free(c->tex_paths);
 }
 
 int vtv_reference_scene_load(struct vtv_reference_scene *s, const char *obj_path, bool srgb,
@@ -260,7 +337,7 @@ int vtv_reference_scene_load(struct vtv_reference_scene *s, const char *obj_path
     if (st != 0)
         goto cleanup;
     s->parts = calloc(c.mat_count, sizeof(*s->parts));
-    all = malloc(total * 5 * sizeof(float)); /* total < mat_count * 2^27 */
+    all = malloc(total * 5 * sizeof(float)); /* total < mat_count * 3 * 2^27 */
     if (!s->parts || !all) {
         st = vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
         goto cleanup;
@@ -270,37 +347,18 @@ int vtv_reference_scene_load(struct vtv_reference_scene *s, const char *obj_path
         struct vtv_reference_part *part = &s->parts[s->part_count++];
         part->first = (uint32_t)first;
         part->count = (uint32_t)c.mats[i].n;
-        memcpy(all + first * 5, c.mats[i].v, c.mats[i].n * 5 * sizeof(float));
-        first += c.mats[i].n;
         st = setup_part(s, &c, &c.mats[i], srgb, part, err);
+        write_vertices(&c.mats[i], !part->clamp, all + first * 5);
+        first += c.mats[i].n;
     }
     if (st != 0)
         goto cleanup;
     memcpy(s->lo, c.lo, sizeof(s->lo));
     memcpy(s->hi, c.hi, sizeof(s->hi));
-    glGenVertexArrays(1, &s->vao);
-    glGenBuffers(1, &s->vbo);
-    glBindVertexArray(s->vao);
-    glBindBuffer(GL_ARRAY_BUFFER, s->vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(total * 5 * sizeof(float)), all, GL_STATIC_DRAW);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 5 * sizeof(float), (void *)0);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 5 * sizeof(float), (void *)(3 * sizeof(float)));
-    glBindVertexArray(0);
+    upload_geometry(s, all, total);
 cleanup:
     free(all);
-    for (size_t i = 0; i < c.mtl_count; i++)
-        vt_mtl_release(&c.mtls[i]);
-    free(c.mtls);
-    for (uint32_t i = 0; i < c.mat_count; i++) {
-        free(c.mats[i].name);
-        free(c.mats[i].v);
-    }
-    free(c.mats);
-    for (uint32_t i = 0; i < s->texture_count; i++)
-        free(c.tex_paths ? c.tex_paths[i] : NULL);
-    free(c.tex_paths);
+    release_ctx(&c, s->texture_count);
     if (st != 0)
         vtv_reference_scene_free(s);
     return st;
@@ -311,19 +369,16 @@ void vtv_reference_scene_draw(struct vtv_render *r, const struct vtv_reference_s
 {
     GLuint p = vtv_render_reference_begin(r, v);
     GLint mode = glGetUniformLocation(p, "u_mode"), kd = glGetUniformLocation(p, "u_kd");
-    GLint range = glGetUniformLocation(p, "u_range");
     glBindVertexArray(s->vao);
     for (uint32_t i = 0; i < s->part_count; i++) {
         const struct vtv_reference_part *part = &s->parts[i];
-        glUniform1i(mode, !part->tex ? 0 : part->repeat[0] || part->repeat[1] ? 2 : 1);
+        glUniform1i(mode, part->tex ? 1 : 0);
         glUniform4fv(kd, 1, part->kd);
-        glUniform4fv(range, 1, part->range);
         if (part->tex) {
+            GLint wrap = part->clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT;
             glBindTexture(GL_TEXTURE_2D, part->tex);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S,
-                            part->repeat[0] ? GL_REPEAT : GL_CLAMP_TO_EDGE);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T,
-                            part->repeat[1] ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
             glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
                             v->trilinear ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR_MIPMAP_NEAREST);
         }

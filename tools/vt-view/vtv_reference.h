@@ -1,12 +1,14 @@
 /* vt-view --reference-scene: the original scene (the OBJ before vt-offset, with its MTL files)
- * drawn with one plain GL texture per material's map_Kd, read through
+ * drawn the way an engine draws it, with one plain GL texture per material's map_Kd, read through
  * formats/input/vt_image_input.h (8/16-bit samples, shown as 8 bits; sRGB textures as
  * GL_SRGB8_ALPHA8 when the frame is sRGB), mip levels made on the CPU like the store's
- * (vtv_mipmap.h: box in linear light), GL_REPEAT along an axis
- * where the material's UVs leave [0, 1] (clamped at the outer edge of the copies vt-atlas lays, as
- * the atlas is), else GL_CLAMP_TO_EDGE. Materials without map_Kd are drawn with their Kd (0.8 grey
- * without one), taken as sRGB-encoded like vt-atlas's constant cells. Needs a current GL 3.3 core
- * context and an initialised struct vtv_render. */
+ * (vtv_mipmap.h: box in linear light). Addressing is GL_REPEAT on both axes, or GL_CLAMP_TO_EDGE
+ * when the map_Kd statement says -clamp on; filtering follows the view's (bilinear:
+ * GL_LINEAR_MIPMAP_NEAREST, trilinear: GL_LINEAR_MIPMAP_LINEAR). A repeating material's texcoords
+ * are drawn minus the floor of their face's smallest u and v (subtracted in double per face), so
+ * that UVs far from 0 keep float precision. Materials without map_Kd are drawn with their Kd (0.8
+ * grey without one), taken as sRGB-encoded like vt-atlas's constant cells. Needs a current GL 3.3
+ * core context and an initialised struct vtv_render. */
 #ifndef VTV_REFERENCE_H
 #define VTV_REFERENCE_H
 
@@ -22,8 +24,8 @@ struct vtv_reference_part {
     uint32_t first, count; /* vertices in the scene's buffer */
     GLuint tex;            /* 0: the constant kd */
     float kd[4];           /* linear when the frame is sRGB-encoded */
-    bool repeat[2];        /* u, v: the material's UVs leave [0, 1] (vt-atlas copies) */
-    float range[4];        /* u lo, v lo, u hi, v hi of the copies (v flipped); +-1e6 if none */
+    bool clamp;            /* map_Kd -clamp on: GL_CLAMP_TO_EDGE, texcoords as read; else
+                              GL_REPEAT, texcoords shifted per face */
 };
 
 struct vtv_reference_scene {

@@ -79,7 +79,7 @@ int vtv_render_set_reference(struct vtv_render *r, const uint8_t *rgba, uint32_t
                              bool srgb, struct vts_error *err);
 void vtv_render_reference(struct vtv_render *r, const struct vtv_view *v);
 /* The reference pass's frame and program, for other geometry (vtv_reference.c): texture unit 0,
- * uniforms u_mode, u_kd, u_range (vtv_shaders.c). Returns the program; end with _end(). */
+ * uniforms u_mode, u_kd (vtv_shaders.c). Returns the program; end with _end(). */
 GLuint vtv_render_reference_begin(struct vtv_render *r, const struct vtv_view *v);
 void vtv_render_reference_end(void);
 

@@ -110,27 +110,19 @@ const char vtv_fs_feedback_source[] =
                "    o_request = uvec4(uint(tc.x), uint(tc.y), uint(want), 1u);\n"
                "}\n";
 
-/* The reference: u_mode 0 the colour u_kd, 1 the texture as GL samples it, 2 (--reference-scene)
- * the texture with v_uv clamped half a texel inside u_range (lo.xy, hi.xy: the copies vt-atlas
- * lays for the material, clamped at their outer edge like the atlas entry), the level of detail
- * still from the unclamped coordinates. */
-const char vtv_fs_reference_source[] =
-    "#version 330 core\n"
-    "in vec2 v_uv;\n"
-    "uniform sampler2D u_tex;\n"
-    "uniform int u_mode;\n"
-    "uniform vec4 u_kd;\n"
-    "uniform vec4 u_range;\n"
-    "uniform float u_alpha_test;\n"
-    "layout(location = 0) out vec4 o_color;\n"
-    "layout(location = 1) out uint o_fallback;\n"
-    "void main() {\n"
-    "    vec2 h = 0.5 / vec2(textureSize(u_tex, 0));\n"
-    "    vec2 uv = clamp(v_uv, u_range.xy + h, u_range.zw - h);\n"
-    "    vec4 c = u_mode == 0 ? u_kd\n"
-    "           : u_mode == 1 ? texture(u_tex, v_uv) : textureGrad(u_tex, uv, dFdx(v_uv), "
-    "dFdy(v_uv));\n"
-    "    if (c.a < u_alpha_test) discard;\n"
-    "    o_color = c;\n"
-    "    o_fallback = 0u;\n"
-    "}\n";
+/* The reference: u_mode 0 the colour u_kd, 1 the texture as GL samples it (its own addressing,
+ * filtering and level of detail). */
+const char vtv_fs_reference_source[] = "#version 330 core\n"
+                                       "in vec2 v_uv;\n"
+                                       "uniform sampler2D u_tex;\n"
+                                       "uniform int u_mode;\n"
+                                       "uniform vec4 u_kd;\n"
+                                       "uniform float u_alpha_test;\n"
+                                       "layout(location = 0) out vec4 o_color;\n"
+                                       "layout(location = 1) out uint o_fallback;\n"
+                                       "void main() {\n"
+                                       "    vec4 c = u_mode == 0 ? u_kd : texture(u_tex, v_uv);\n"
+                                       "    if (c.a < u_alpha_test) discard;\n"
+                                       "    o_color = c;\n"
+                                       "    o_fallback = 0u;\n"
+                                       "}\n";
