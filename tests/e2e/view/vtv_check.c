@@ -5,6 +5,9 @@
  *   vtv_check dark A.png MAX                          at most MAX pixels with R+G+B < 24
  *   vtv_check diff A.png B.png OUT.png                |A - B| x 8 as a PNG (for failures), and
  *                                                     the count of pixels off by more than 8
+ *   vtv_check maxdiff A.png B.png X Y W H --max N    the largest |A - B| over RGB in the crop
+ *                                                     [X, X+W) x [Y, Y+H) (rows from the top,
+ *                                                     clipped to the image) is at most N
  * Exit 0 when the check holds, 1 when it does not, 2 on bad use or unreadable files. */
 #include <jansson.h>
 #include <math.h>
@@ -159,6 +162,51 @@ static int diff(int argc, char **argv)
     return st == 0 ? 0 : 2;
 }
 
+static int maxdiff(int argc, char **argv)
+{
+    if (argc != 10 || strcmp(argv[8], "--max"))
+        return 2;
+    struct vt_image a = {0}, b = {0};
+    if (load(argv[2], &a) || load(argv[3], &b))
+        return 2;
+    if (a.width != b.width || a.height != b.height || a.channels < 3 || b.channels < 3) {
+        fprintf(stderr, "vtv_check: images differ in size or channels\n");
+        return 2;
+    }
+    long x0 = atol(argv[4]), y0 = atol(argv[5]);
+    long x1 = x0 + atol(argv[6]), y1 = y0 + atol(argv[7]), limit = atol(argv[9]);
+    x0 = x0 < 0 ? 0 : x0;
+    y0 = y0 < 0 ? 0 : y0;
+    x1 = x1 > (long)a.width ? (long)a.width : x1;
+    y1 = y1 > (long)a.height ? (long)a.height : y1;
+    int worst = 0;
+    long wx = -1, wy = -1, over = 0;
+    for (long y = y0; y < y1; y++)
+        for (long x = x0; x < x1; x++) {
+            const uint8_t *p = vt_image_at(&a, (uint32_t)x, (uint32_t)y);
+            const uint8_t *q = vt_image_at(&b, (uint32_t)x, (uint32_t)y);
+            int d = 0;
+            for (int c = 0; c < 3; c++)
+                d = abs(p[c] - q[c]) > d ? abs(p[c] - q[c]) : d;
+            over += d > limit;
+            if (d > worst) {
+                worst = d;
+                wx = x;
+                wy = y;
+            }
+        }
+    vt_image_release(&a);
+    vt_image_release(&b);
+    if (x0 >= x1 || y0 >= y1) {
+        fprintf(stderr, "vtv_check: empty crop\n");
+        return 2;
+    }
+    printf(
+        "max difference %d at %ld,%ld in [%ld,%ld) x [%ld,%ld), %ld pixels above %ld (max %ld)\n",
+        worst, wx, wy, x0, x1, y0, y1, over, limit, limit);
+    return worst <= limit ? 0 : 1;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2)
@@ -173,5 +221,7 @@ int main(int argc, char **argv)
         return dark(argc, argv);
     if (!strcmp(argv[1], "diff"))
         return diff(argc, argv);
+    if (!strcmp(argv[1], "maxdiff"))
+        return maxdiff(argc, argv);
     return 2;
 }
