@@ -461,7 +461,7 @@ int main(int argc, char **argv)
     abuild_tool = argv[1];
     abuild_dir = argv[2];
     mkdir(abuild_dir, 0777);
-    static const char *names[TEX_COUNT] = {"wA", "wB", "cA", "cB", "cC", "wBig"};
+    static const char *names[TEX_COUNT] = {"wA", "wB", "cA", "cB", "cC", "wBig", "wHalf"};
     for (uint32_t i = 0; i < TEX_COUNT; i++)
         abuild_texture(&texs[i], names[i], tex_size[i][0], tex_size[i][1], 3, 50 + i);
     snprintf(layout_path, sizeof layout_path, "%s/crop.json", abuild_dir);
