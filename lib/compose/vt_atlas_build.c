@@ -51,9 +51,20 @@ static int build_chain(void *user, uint64_t key, struct vt_mip_chain *c, struct 
     const struct vt_layout_texture *t = &en->textures[b->t.slots[s].layer];
     const struct vt_atlas_layer_format *f = &b->t.slots[s].fmt;
     uint32_t levels = b->t.lmax[e] + 1u < b->level_count ? b->t.lmax[e] + 1u : b->level_count;
-    struct vt_mip_chain_spec spec = {en->width,   en->height,         en->repeat_u, en->repeat_v,
-                                     levels,      f->colour_channels, f->alpha,     f->colour,
-                                     b->o.filter, b->o.max_pixels};
+    assert(en->crop_width && en->crop_height); /* vt_layout_check() fills them in */
+    struct vt_mip_chain_spec spec = {.width = en->width,
+                                     .height = en->height,
+                                     .crop_x = en->crop_x,
+                                     .crop_y = en->crop_y,
+                                     .crop_width = en->crop_width,
+                                     .crop_height = en->crop_height,
+                                     .wrap = en->wrap,
+                                     .level_count = levels,
+                                     .colour_channels = f->colour_channels,
+                                     .alpha = f->alpha,
+                                     .colour = f->colour,
+                                     .filter = b->o.filter,
+                                     .max_pixels = b->o.max_pixels};
     if (!t->path)
         return vt_mip_chain_from_fill(c, &spec, t->fill, err);
     struct vt_source src = {0};

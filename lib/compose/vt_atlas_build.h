@@ -7,11 +7,13 @@
  * inside one entry's cell, with the entry aligned at 2^L, is "owned": it reads that entry's chain
  * at level L (clamped into the chain's rectangle, so cell padding, the gutter before x/y of a cell
  * that starts before its texture, and borders on a texture's edge repeat that texture's edge
- * texels, and filtering never mixes textures). A texel whose footprint
- * touches no cell is empty. Any other texel (coarse levels above an entry's alignment) is "mixed":
- * the coverage-weighted average, in the working space, of its four children one level down. A tile
- * whose content texels are all empty is emitted as empty. Output is 8-bit; the bytes do not depend
- * on the number of threads or on the cache size. Details in docs/atlas-build.md. */
+ * texels, and filtering never mixes textures; a wrap entry's chain is read modulo its size
+ * instead, so they show the opposite edge). The chain holds the entry's crop of its copies. A
+ * texel whose footprint touches no cell is empty. Any other texel (coarse levels above an entry's
+ * alignment) is "mixed": the coverage-weighted average, in the working space, of its four children
+ * one level down. A tile whose content texels are all empty is emitted as empty. Output is 8-bit;
+ * the bytes do not depend on the number of threads or on the cache size. Details in
+ * docs/atlas-build.md. */
 #ifndef VT_ATLAS_BUILD_H
 #define VT_ATLAS_BUILD_H
 
@@ -47,7 +49,7 @@ struct vt_atlas_build_options {
     enum vt_filter_kind filter;     /* mip filter of the textures' chains */
     unsigned threads;               /* 1..256 */
     uint64_t cache_bytes;           /* decoded chains kept; 0 = 1 GiB */
-    uint64_t max_pixels;            /* per texture (its copies together); 0 = 2^34 */
+    uint64_t max_pixels;            /* per entry chain (its crop of the copies); 0 = 2^34 */
     vt_atlas_open_fn open;
     void *open_user;
     vt_atlas_progress_fn progress; /* optional, for the texture scan of create() too */

@@ -108,7 +108,9 @@ int32_t vt_atlas_tile_classify(const struct vt_atlas_tile *t, uint32_t L, uint32
 }
 
 /* Texel of owned entry e at level L, position (X, Y) clamped into the entry's chain: cell
- * padding and the gutter before x/y repeat the texture's edge. */
+ * padding and the gutter before x/y repeat the texture's edge. A wrap entry's chain is read modulo
+ * its level's size instead: texel -1 is texel width - 1, so the gutter, the padding and the
+ * borders at its edges show the opposite edge, as the repeating texture does. */
 static int owned_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, uint32_t s,
                        uint32_t e, uint32_t L, int64_t X, int64_t Y, const uint8_t **out,
                        struct vts_error *err)
@@ -121,8 +123,15 @@ static int owned_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, 
     const struct vt_layout_entry *en = &t->lay->entries[e];
     const struct vt_image *lv = &c->levels[L];
     int64_t i = X - (int64_t)(en->x >> L), j = Y - (int64_t)(en->y >> L);
-    i = i < 0 ? 0 : i >= lv->width ? lv->width - 1 : i;
-    j = j < 0 ? 0 : j >= lv->height ? lv->height - 1 : j;
+    if (en->wrap) {
+        i %= (int64_t)lv->width;
+        j %= (int64_t)lv->height;
+        i += i < 0 ? lv->width : 0;
+        j += j < 0 ? lv->height : 0;
+    } else {
+        i = i < 0 ? 0 : i >= lv->width ? lv->width - 1 : i;
+        j = j < 0 ? 0 : j >= lv->height ? lv->height - 1 : j;
+    }
     *out = vt_image_at(lv, (uint32_t)i, (uint32_t)j);
     return 0;
 }
@@ -253,7 +262,9 @@ int vt_atlas_tile_fill_payload(struct vt_atlas_tile *t, struct vt_atlas_tile_wor
             if (k >= 0) {
                 const uint8_t *src;
                 k = group_owner(t, L, k, Xn, Yn, Xc, Yc);
-                rc = owned_texel(t, w, s, (uint32_t)k, L, Xn, Yn, &src, err);
+                /* a wrap entry wraps past the atlas's edge too: its own position, not clamped */
+                bool wrap = t->lay->entries[k].wrap;
+                rc = owned_texel(t, w, s, (uint32_t)k, L, wrap ? X : Xn, wrap ? Y : Yn, &src, err);
                 if (rc == 0)
                     memcpy(o, src, ch);
             } else {

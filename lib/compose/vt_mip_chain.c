@@ -1,6 +1,7 @@
 /* Mip chain of one atlas entry in one layer (see vt_mip_chain.h). */
 #include "internal/vt_mip_chain.h"
 
+#include <assert.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -37,30 +38,65 @@ static int alloc_floats(float **out, uint64_t texels, uint32_t channels, struct 
     return *out ? 0 : vt_error_set(err, VTS_ERR_NOMEM, "out of memory for a mip level");
 }
 
-/* One 2:1 reduction of a whole w x h working image with edges clamped; *dst is allocated. */
+static uint32_t wrap_index(int64_t v, uint32_t n)
+{
+    int64_t r = v % (int64_t)n;
+    return (uint32_t)(r < 0 ? r + n : r);
+}
+
+/* The finer texels a wrapped reduction of a whole w x h level reads: positions 2X + first + t for
+ * every coarser X and tap t (some before 0 or past the end), each read modulo the level's size.
+ * out->px is allocated. */
+static int wrap_region(const struct vt_kernel *k, uint32_t ch, const float *src, uint32_t w,
+                       uint32_t h, struct vt_fregion *out, struct vts_error *err)
+{
+    int64_t x1 = 2 * ((int64_t)ceil_shift(w, 1) - 1) + k->first + k->count;
+    int64_t y1 = 2 * ((int64_t)ceil_shift(h, 1) - 1) + k->first + k->count;
+    *out = (struct vt_fregion){
+        k->first, k->first, (uint32_t)(x1 - k->first), (uint32_t)(y1 - k->first), ch, NULL};
+    int rc = alloc_floats(&out->px, (uint64_t)out->width * out->height, ch, err);
+    if (rc)
+        return rc;
+    size_t tf = ch * sizeof(float);
+    for (uint32_t j = 0; j < out->height; j++) {
+        const float *row = src + (size_t)wrap_index(out->y0 + j, h) * w * ch;
+        float *o = out->px + (size_t)j * out->width * ch;
+        for (uint32_t i = 0; i < out->width; i++)
+            memcpy(o + (size_t)i * ch, row + (size_t)wrap_index(out->x0 + i, w) * ch, tf);
+    }
+    return 0;
+}
+
+/* One 2:1 reduction of a whole w x h working image with edges clamped, or read modulo the size
+ * (wrap: the last texel of an odd size then averages the edge with the opposite edge); *dst is
+ * allocated. */
 static int reduce_once(const struct vt_kernel *k, const struct vt_pixel_mode *m, const float *src,
-                       uint32_t w, uint32_t h, float **dst, struct vts_error *err)
+                       uint32_t w, uint32_t h, bool wrap, float **dst, struct vts_error *err)
 {
     uint32_t dw = ceil_shift(w, 1), dh = ceil_shift(h, 1), ch = m->channels;
     struct vt_fregion s = {0, 0, w, h, ch, (float *)(uintptr_t)src};
     struct vt_fregion d = {0, 0, dw, dh, ch, NULL};
-    struct vt_edges edges = {w, h, false, false};
-    int rc = alloc_floats(&d.px, (uint64_t)dw * dh, ch, err);
+    struct vt_edges edges = {w, h, wrap, wrap};
+    int rc = wrap ? wrap_region(k, ch, src, w, h, &s, err) : 0;
     if (rc)
         return rc;
+    float *padded = wrap ? s.px : NULL, *scratch = NULL;
+    if ((rc = alloc_floats(&d.px, (uint64_t)dw * dh, ch, err)) != 0)
+        goto out;
     size_t scratch_n = vt_filter_reduce_scratch(k, &s, &d);
-    float *scratch = NULL;
     if ((rc = alloc_floats(&scratch, scratch_n ? scratch_n : 1, 1, err)) == 0)
         rc = vt_filter_reduce(k, &edges, &s, &d, scratch, scratch_n, err);
-    free(scratch);
     if (rc == 0 && m->colour == VTS_COLOUR_NORMAL)
         vt_filter_renormalize(&d);
     if (rc) {
         free(d.px);
-        return rc;
+        goto out;
     }
     *dst = d.px;
-    return 0;
+out:
+    free(scratch);
+    free(padded);
+    return rc;
 }
 
 /* Converts the source's texels (any channels and sample) into the layer's 8-bit layout. */
@@ -130,20 +166,11 @@ out:
     return rc;
 }
 
-/* dst (already allocated, W x H) from src by nearest-neighbour sampling at texel centres. */
-static void resample_nearest(const struct vt_image *src, struct vt_image *dst)
+/* The texel of a texture n texels wide that texel x of its nearest-neighbour resampling to
+ * n_out texels samples (at texel centres). */
+static uint32_t nearest_texel(uint32_t x, uint32_t n, uint32_t n_out)
 {
-    size_t tb = vt_image_texel_bytes(dst);
-    for (uint32_t y = 0; y < dst->height; y++) {
-        uint32_t sy =
-            (uint32_t)(((2 * (uint64_t)y + 1) * src->height) / (2 * (uint64_t)dst->height));
-        uint8_t *o = vt_image_at(dst, 0, y);
-        for (uint32_t x = 0; x < dst->width; x++) {
-            uint32_t sx =
-                (uint32_t)(((2 * (uint64_t)x + 1) * src->width) / (2 * (uint64_t)dst->width));
-            memcpy(o + (size_t)x * tb, vt_image_at(src, sx, sy), tb);
-        }
-    }
+    return (uint32_t)(((2 * (uint64_t)x + 1) * n) / (2 * (uint64_t)n_out));
 }
 
 /* Reduces an 8-bit image k times in the working space (the texture's own mip level k). */
@@ -164,7 +191,7 @@ static int reduce_u8(const struct vt_mip_chain_spec *s, const struct vt_image *s
                              cur + (size_t)y * w * m.channels, w);
     for (uint32_t i = 0; i < k && rc == 0; i++) {
         float *next = NULL;
-        rc = reduce_once(&kern, &m, cur, w, h, &next, err);
+        rc = reduce_once(&kern, &m, cur, w, h, s->wrap, &next, err);
         free(cur);
         cur = next;
         w = ceil_shift(w, 1);
@@ -179,24 +206,26 @@ static int reduce_u8(const struct vt_mip_chain_spec *s, const struct vt_image *s
     return rc;
 }
 
-/* Brings a layer-format image of the texture's size to the entry's size W x H. */
-static int resample(const struct vt_mip_chain_spec *s, struct vt_image *img, struct vts_error *err)
+/* Brings a layer-format image of the texture's size to the entry's size W x H: unchanged, or the
+ * texture's own mip level k. Other sizes (a power-of-two enlargement: exact replication) are left
+ * to crop_copies, which samples them nearest-neighbour (*nearest), so that the enlarged texture
+ * is never held whole. */
+static int resample(const struct vt_mip_chain_spec *s, struct vt_image *img, bool *nearest,
+                    struct vts_error *err)
 {
     uint32_t tw = img->width, th = img->height, W = s->width, H = s->height;
+    *nearest = false;
     if (tw == W && th == H)
         return 0;
-    struct vt_image out = {0};
-    int rc = 0;
     uint32_t k = 1;
     while (k < 32 && (ceil_shift(tw, k) != W || ceil_shift(th, k) != H) && ceil_shift(tw, k) > W)
         k++;
-    if (tw > W && k < 32 && ceil_shift(tw, k) == W && ceil_shift(th, k) == H) {
-        rc = reduce_u8(s, img, k, &out, err);
-    } else {
-        if ((rc = vt_image_alloc(&out, W, H, img->channels, VTS_SAMPLE_U8, err)) != 0)
-            return rc;
-        resample_nearest(img, &out); /* exact replication for a power-of-two enlargement */
+    if (!(tw > W && k < 32 && ceil_shift(tw, k) == W && ceil_shift(th, k) == H)) {
+        *nearest = true;
+        return 0;
     }
+    struct vt_image out = {0};
+    int rc = reduce_u8(s, img, k, &out, err);
     if (rc)
         return rc;
     vt_image_release(img);
@@ -204,22 +233,38 @@ static int resample(const struct vt_mip_chain_spec *s, struct vt_image *img, str
     return 0;
 }
 
-/* Replaces img by repeat_u x repeat_v copies of it. */
-static int replicate(const struct vt_mip_chain_spec *s, struct vt_image *img, struct vts_error *err)
+/* Replaces img by level 0 of the chain: the crop of the block of copies, texel (a, b) = texel
+ * ((crop_x + a) mod W, (crop_y + b) mod H) of the texture at the entry's size W x H. img holds the
+ * texture at that size, or (nearest) at its own size, sampled at the centres of the W x H texels.
+ */
+static int crop_copies(const struct vt_mip_chain_spec *s, struct vt_image *img, bool nearest,
+                       struct vts_error *err)
 {
-    if (s->repeat_u == 1 && s->repeat_v == 1)
-        return 0;
+    uint32_t W = s->width, H = s->height;
+    if (!nearest && s->crop_x == 0 && s->crop_y == 0 && s->crop_width == W && s->crop_height == H)
+        return 0; /* one whole copy: img is level 0 */
     struct vt_image out;
-    int rc = vt_image_alloc(&out, img->width * s->repeat_u, img->height * s->repeat_v,
-                            img->channels, VTS_SAMPLE_U8, err);
+    int rc = vt_image_alloc(&out, s->crop_width, s->crop_height, img->channels, VTS_SAMPLE_U8, err);
     if (rc)
         return rc;
-    size_t row = (size_t)img->width * vt_image_texel_bytes(img);
-    for (uint32_t y = 0; y < out.height; y++) {
-        uint8_t *o = vt_image_at(&out, 0, y);
-        const uint8_t *i = vt_image_at(img, 0, y % img->height);
-        for (uint32_t r = 0; r < s->repeat_u; r++)
-            memcpy(o + r * row, i, row);
+    size_t tb = vt_image_texel_bytes(img);
+    for (uint32_t b = 0; b < out.height; b++) {
+        uint32_t y = (uint32_t)(((uint64_t)s->crop_y + b) % H);
+        const uint8_t *row = vt_image_at(img, 0, nearest ? nearest_texel(y, img->height, H) : y);
+        uint8_t *o = vt_image_at(&out, 0, b);
+        uint32_t x = s->crop_x % W;
+        for (uint32_t a = 0; a < out.width;) {
+            if (nearest) {
+                memcpy(o + (size_t)a * tb, row + (size_t)nearest_texel(x, img->width, W) * tb, tb);
+                a++;
+                x = x + 1 == W ? 0 : x + 1;
+                continue;
+            }
+            uint32_t run = W - x < out.width - a ? W - x : out.width - a;
+            memcpy(o + (size_t)a * tb, row + (size_t)x * tb, (size_t)run * tb);
+            a += run;
+            x = 0;
+        }
     }
     vt_image_release(img);
     *img = out;
@@ -249,7 +294,7 @@ static int build_levels(struct vt_mip_chain *c, const struct vt_mip_chain_spec *
                              cur + (size_t)y * w * m.channels, w);
     for (uint32_t l = 1; l < s->level_count && rc == 0; l++) {
         float *next = NULL;
-        if ((rc = reduce_once(&kern, &m, cur, w, h, &next, err)) != 0)
+        if ((rc = reduce_once(&kern, &m, cur, w, h, s->wrap, &next, err)) != 0)
             break;
         free(cur);
         cur = next;
@@ -272,15 +317,15 @@ int vt_mip_chain_from_source(struct vt_mip_chain *c, const struct vt_mip_chain_s
                              struct vt_source *src, struct vts_error *err)
 {
     memset(c, 0, sizeof *c);
-    uint64_t copies_w, copies_h, texels;
-    if (!vt_u64_mul(s->width, s->repeat_u, &copies_w) ||
-        !vt_u64_mul(s->height, s->repeat_v, &copies_h) ||
-        !vt_u64_mul(copies_w, copies_h, &texels) || texels > s->max_pixels ||
-        copies_w > UINT32_MAX || copies_h > UINT32_MAX)
-        return vt_error_set(err, VTS_ERR_LIMIT,
-                            "'%s': %ux%u copies of %ux%u texels exceed the limit of %llu texels",
-                            src->name, s->repeat_u, s->repeat_v, s->width, s->height,
-                            (unsigned long long)s->max_pixels);
+    assert(s->crop_width >= 1 && s->crop_height >= 1 && s->width >= 1 && s->height >= 1);
+    /* the chain holds the crop, never the whole block of copies */
+    uint64_t texels = (uint64_t)s->crop_width * s->crop_height;
+    if (texels > s->max_pixels)
+        return vt_error_set(
+            err, VTS_ERR_LIMIT,
+            "'%s': the entry's crop of %ux%u texels (copies of %ux%u) exceeds the limit of %llu texels",
+            src->name, s->crop_width, s->crop_height, s->width, s->height,
+            (unsigned long long)s->max_pixels);
     struct vt_image raw = {0};
     const struct vt_source_info *in = &src->info;
     int rc = vt_image_alloc(&raw, in->width, in->height, in->channels, in->sample, err);
@@ -289,10 +334,11 @@ int vt_mip_chain_from_source(struct vt_mip_chain *c, const struct vt_mip_chain_s
     if (rc == 0)
         rc = to_layer_u8(s, in, &raw, &c->levels[0], err);
     vt_image_release(&raw);
+    bool nearest = false;
     if (rc == 0)
-        rc = resample(s, &c->levels[0], err);
+        rc = resample(s, &c->levels[0], &nearest, err);
     if (rc == 0)
-        rc = replicate(s, &c->levels[0], err);
+        rc = crop_copies(s, &c->levels[0], nearest, err);
     if (rc == 0)
         rc = build_levels(c, s, err);
     if (rc)

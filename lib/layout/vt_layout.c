@@ -73,14 +73,42 @@ static void sort_names(struct vt_layout_name *idx, struct vt_layout_name *tmp, s
     memcpy(idx, tmp, n * sizeof *idx);
 }
 
+/* A crop of 0 x 0 (either size 0) in a layout built in memory means the whole block of copies:
+ * fills it in when the block's sizes fit in 32 bits (check_entry refuses the entry otherwise). */
+static void fill_crop(struct vt_layout_entry *e)
+{
+    uint64_t bw = (uint64_t)e->width * e->repeat_u, bh = (uint64_t)e->height * e->repeat_v;
+    if ((e->crop_width == 0 || e->crop_height == 0) && bw <= UINT32_MAX && bh <= UINT32_MAX) {
+        e->crop_width = (uint32_t)bw;
+        e->crop_height = (uint32_t)bh;
+    }
+}
+
+/* The crop and wrap rules (docs/atlas-format.md): the crop lies inside the block of copies, and a
+ * wrap entry holds one whole copy. NULL when they hold, else what is wrong. */
+static const char *crop_wrap_problem(const struct vt_layout_entry *e)
+{
+    uint64_t bw = (uint64_t)e->width * e->repeat_u, bh = (uint64_t)e->height * e->repeat_v;
+    if (e->crop_width == 0 || e->crop_height == 0) /* fill_crop: a block over 2^32 texels */
+        return "does not fit in its cell";
+    if ((uint64_t)e->crop_x + e->crop_width > bw || (uint64_t)e->crop_y + e->crop_height > bh)
+        return "has a crop outside its block of copies";
+    if (e->wrap && (e->repeat_u != 1 || e->repeat_v != 1))
+        return "wraps but has a repeat other than [1, 1]";
+    if (e->wrap && (e->crop_x || e->crop_y || e->crop_width != bw || e->crop_height != bh))
+        return "wraps but has a crop smaller than its texture";
+    return NULL;
+}
+
 /* Checks one entry against the atlas; the message names the entry. */
 static int check_entry(const struct vt_layout *l, uint32_t i, const char *name,
                        struct vts_error *err)
 {
     const struct vt_layout_entry *e = &l->entries[i];
     const char *what = NULL;
-    uint64_t cw = (uint64_t)e->width * e->repeat_u + e->cell_left,
-             ch = (uint64_t)e->height * e->repeat_v + e->cell_top;
+    /* the cell holds the crop (the whole block of copies without one) after the gutter */
+    uint64_t cw = (uint64_t)e->crop_width + e->cell_left,
+             ch = (uint64_t)e->crop_height + e->cell_top;
     if (!e->name || !e->name[0])
         what = "has no name";
     else if ((e->alias_count && !e->aliases) || e->alias_count == UINT32_MAX)
@@ -89,6 +117,8 @@ static int check_entry(const struct vt_layout *l, uint32_t i, const char *name,
         what = "has an empty size";
     else if (e->repeat_u == 0 || e->repeat_v == 0 || e->repeat_u > 65536 || e->repeat_v > 65536)
         what = "has a repeat outside 1..65536";
+    else if ((what = crop_wrap_problem(e)) != NULL)
+        ;
     else if (e->cell_left > e->x || e->cell_top > e->y)
         what = "has a cell starting after its texture (cell_x > x or cell_y > y)";
     else if (cw > e->cell_width || ch > e->cell_height)
@@ -358,6 +388,7 @@ int vt_layout_check(struct vt_layout *l, const char *name, struct vts_error *err
                                     a->name);
     }
     for (uint32_t i = 0; i < l->entry_count; i++) {
+        fill_crop(&l->entries[i]);
         int rc = check_entry(l, i, name, err);
         if (rc < 0)
             return rc;
@@ -401,15 +432,27 @@ int vt_layout_layer_index(const struct vt_layout *layout, const char *name)
 void vt_layout_map_uv(const struct vt_layout *layout, const struct vt_layout_entry *e, double u,
                       double v, double *au, double *av)
 {
-    *au = ((double)e->x + (u - e->origin_u) * e->width) / layout->width;
-    *av = 1.0 -
-          ((double)e->y + ((double)e->repeat_v - (v - e->origin_v)) * e->height) / layout->height;
+    /* x - crop_x is exact in double; without a crop it is x, as before crops existed */
+    *au = ((double)e->x - e->crop_x + (u - e->origin_u) * e->width) / layout->width;
+    *av = 1.0 - ((double)e->y - e->crop_y + ((double)e->repeat_v - (v - e->origin_v)) * e->height) /
+                    layout->height;
 }
 
 bool vt_layout_uv_covered(const struct vt_layout_entry *e, double u, double v)
 {
-    return u >= e->origin_u && u <= (double)e->origin_u + e->repeat_u && v >= e->origin_v &&
-           v <= (double)e->origin_v + e->repeat_v;
+    /* The crop's UV range; crop 0 x 0 (a layout not checked yet) is the whole block. The bounds
+     * are exact for the whole block: (width * repeat_u) / width is repeat_u, so an entry without
+     * a crop covers [origin, origin + repeat] exactly, as before crops existed. */
+    uint64_t cw = e->crop_width, chh = e->crop_height;
+    if (cw == 0 || chh == 0) {
+        cw = (uint64_t)e->width * e->repeat_u;
+        chh = (uint64_t)e->height * e->repeat_v;
+    }
+    double u0 = e->origin_u + (double)e->crop_x / e->width,
+           u1 = e->origin_u + (double)(e->crop_x + cw) / e->width;
+    double v1 = (double)e->origin_v + e->repeat_v - (double)e->crop_y / e->height,
+           v0 = (double)e->origin_v + e->repeat_v - (double)(e->crop_y + chh) / e->height;
+    return u >= u0 && u <= u1 && v >= v0 && v <= v1;
 }
 
 int vt_layout_alloc(struct vt_layout *layout, uint32_t layer_count, uint32_t entry_count,

@@ -139,9 +139,11 @@ void vt_layout_limits_default(struct vt_layout_limits *limits);
 
 /* Reads and validates the layout at path into *layout (overwritten: release it after success or
  * failure). limits may be NULL (defaults). Checks: format and version, every field's type and
- * range, layer names unique, entry names and aliases all unique and non-empty, every copy inside
- * its cell, every cell inside the atlas, alignment a power of two dividing x/y/cell sizes, no two
- * cells overlapping, texture sizes non-zero. Returns 0, VTS_ERR_IO, VTS_ERR_BAD_INPUT
+ * range, layer names unique, entry names and aliases all unique and non-empty, the crop inside the
+ * block of copies, a wrap entry with repeat 1 and its whole texture, the crop (without one every
+ * copy) inside its cell, every cell inside the atlas, alignment a power of two dividing x/y/cell
+ * sizes, no two cells overlapping, texture sizes non-zero. An entry without "crop" gets the whole
+ * block (crop 0, 0, width * repeat_u, height * repeat_v). Returns 0, VTS_ERR_IO, VTS_ERR_BAD_INPUT
  * ("'atlas.json': entries[3].x: ..."), VTS_ERR_LIMIT or VTS_ERR_NOMEM. */
 int vt_layout_read(const char *path, const struct vt_layout_limits *limits,
                    struct vt_layout *layout, struct vts_error *err);
@@ -153,7 +155,8 @@ int vt_layout_parse_memory(const void *data, size_t size, const char *name,
                            struct vts_error *err);
 
 /* Checks a layout built in memory (the same checks as the reader) and builds its name index.
- * Call before vt_layout_write() or vt_layout_find() on a layout that was not read. */
+ * Call before vt_layout_write() or vt_layout_find() on a layout that was not read. An entry whose
+ * crop_width or crop_height is 0 gets the whole block of copies as its crop (filled in). */
 int vt_layout_index(struct vt_layout *layout, struct vts_error *err);
 
 /* As vt_layout_index(), with messages naming name ("'atlas.json': the cells of 'a' and 'b'
@@ -186,7 +189,8 @@ static inline uint32_t vt_layout_cell_y(const struct vt_layout_entry *e)
 int vt_layout_layer_index(const struct vt_layout *layout, const char *name);
 
 /* Maps a material coordinate (u, v) of entry e to atlas coordinates (*au, *av) in double precision
- * with the formula at the top of this file. Does not check that (u, v) lies in the copies. */
+ * with the formula at the top of this file (with the crop). Does not check that (u, v) lies in the
+ * crop (vt_layout_uv_covered()). */
 void vt_layout_map_uv(const struct vt_layout *layout, const struct vt_layout_entry *e, double u,
                       double v, double *au, double *av);
 

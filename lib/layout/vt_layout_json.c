@@ -184,6 +184,60 @@ static int read_aliases(struct ctx *c, json_t *arr, const char *where, struct vt
     return 0;
 }
 
+/* "crop": optional [x, y, width, height] inside the block of copies (width * repeat_u x
+ * height * repeat_v); without it the crop stays 0 x 0 and vt_layout_check() makes it the whole
+ * block. "wrap": optional boolean; a wrap entry holds one whole copy. The repeat is read first. */
+static int read_crop_wrap(struct ctx *c, json_t *o, const char *where, struct vt_layout_entry *e)
+{
+    char path[96], what[200];
+    json_t *crop = json_object_get(o, "crop"), *wrap = json_object_get(o, "wrap");
+    uint64_t bw = (uint64_t)e->width * e->repeat_u, bh = (uint64_t)e->height * e->repeat_v;
+    if (crop) {
+        snprintf(path, sizeof path, "%s.crop", where);
+        json_int_t v[4];
+        for (size_t k = 0; k < 4; k++) {
+            json_t *x =
+                json_is_array(crop) && json_array_size(crop) == 4 ? json_array_get(crop, k) : NULL;
+            if (!x || !json_is_integer(x) || json_integer_value(x) < (k < 2 ? 0 : 1) ||
+                json_integer_value(x) > (json_int_t)UINT32_MAX)
+                return bad(c, path,
+                           "expected [x, y, width, height]: integers 0..4294967295, width and "
+                           "height at least 1");
+            v[k] = json_integer_value(x);
+        }
+        if ((uint64_t)v[0] + (uint64_t)v[2] > bw || (uint64_t)v[1] + (uint64_t)v[3] > bh) {
+            snprintf(what, sizeof what,
+                     "[%lld, %lld, %lld, %lld] is not inside the block of copies (%llux%llu)",
+                     (long long)v[0], (long long)v[1], (long long)v[2], (long long)v[3],
+                     (unsigned long long)bw, (unsigned long long)bh);
+            return bad(c, path, what);
+        }
+        e->crop_x = (uint32_t)v[0], e->crop_y = (uint32_t)v[1];
+        e->crop_width = (uint32_t)v[2], e->crop_height = (uint32_t)v[3];
+    }
+    if (!wrap)
+        return 0;
+    snprintf(path, sizeof path, "%s.wrap", where);
+    if (!json_is_boolean(wrap))
+        return bad(c, path, "expected true or false");
+    e->wrap = json_is_true(wrap);
+    if (e->wrap && (e->repeat_u != 1 || e->repeat_v != 1)) {
+        snprintf(what, sizeof what,
+                 "a wrap entry holds one copy: repeat must be [1, 1], not [%u, %u]", e->repeat_u,
+                 e->repeat_v);
+        return bad(c, path, what);
+    }
+    if (e->wrap && crop &&
+        (e->crop_x || e->crop_y || e->crop_width != bw || e->crop_height != bh)) {
+        snprintf(what, sizeof what,
+                 "a wrap entry holds its whole texture: crop must be absent or [0, 0, %u, %u], not "
+                 "[%u, %u, %u, %u]",
+                 e->width, e->height, e->crop_x, e->crop_y, e->crop_width, e->crop_height);
+        return bad(c, path, what);
+    }
+    return 0;
+}
+
 static int read_entry(struct ctx *c, json_t *o, size_t i, const struct vt_layout *l,
                       struct vt_layout_entry *e)
 {
@@ -225,7 +279,9 @@ static int read_entry(struct ctx *c, json_t *o, size_t i, const struct vt_layout
     e->repeat_u = (uint32_t)rep[0], e->repeat_v = (uint32_t)rep[1];
     e->origin_u = (int32_t)org[0], e->origin_v = (int32_t)org[1];
     e->group = (uint32_t)group;
-    rc = read_aliases(c, json_object_get(o, "aliases"), where, e);
+    rc = read_crop_wrap(c, o, where, e);
+    if (!rc)
+        rc = read_aliases(c, json_object_get(o, "aliases"), where, e);
     if (rc)
         return rc;
     json_t *scale = json_object_get(o, "scale");
@@ -425,6 +481,20 @@ static json_t *entry_json(const struct vt_layout *l, const struct vt_layout_entr
         return NULL;
     }
     json_decref(rest);
+    /* crop only when it is not the whole block, wrap only when true: layouts without them are
+     * written as before the fields existed */
+    uint64_t bw = (uint64_t)e->width * e->repeat_u, bh = (uint64_t)e->height * e->repeat_v;
+    if ((e->crop_x || e->crop_y || e->crop_width != bw || e->crop_height != bh) &&
+        json_object_set_new(o, "crop",
+                            json_pack("[IIII]", (json_int_t)e->crop_x, (json_int_t)e->crop_y,
+                                      (json_int_t)e->crop_width, (json_int_t)e->crop_height))) {
+        json_decref(o);
+        return NULL;
+    }
+    if (e->wrap && json_object_set_new(o, "wrap", json_true())) {
+        json_decref(o);
+        return NULL;
+    }
     return o;
 }
 

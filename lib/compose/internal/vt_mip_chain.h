@@ -1,8 +1,9 @@
 /* The mip chain of one atlas entry in one layer: the entry's texture (or constant fill) decoded,
- * converted to the layer's 8-bit format, resampled to the entry's size, copied repeat_u x repeat_v
- * times side by side, then reduced level by level in the float working space (linear light for
- * sRGB, premultiplied alpha, renormalised normals) with edges clamped at the copies' rectangle.
- * Used by vt_atlas_build.c; see docs/atlas-build.md. */
+ * converted to the layer's 8-bit format, resampled to the entry's size, cut to the entry's crop of
+ * its block of copies (repeat_u x repeat_v copies side by side; the whole block without a crop),
+ * then reduced level by level in the float working space (linear light for sRGB, premultiplied
+ * alpha, renormalised normals) with edges clamped at the crop's rectangle, or wrapped around for
+ * a wrap entry. Used by vt_atlas_build.c; see docs/atlas-build.md. */
 #ifndef VT_MIP_CHAIN_H
 #define VT_MIP_CHAIN_H
 
@@ -18,18 +19,22 @@
 
 /* What the chain holds: the layer's output format and the entry's geometry. */
 struct vt_mip_chain_spec {
-    uint32_t width, height;      /* one copy, atlas texels at level 0 */
-    uint32_t repeat_u, repeat_v; /* copies side by side (>= 1) */
-    uint32_t level_count;        /* levels to compute, >= 1 (level l is ceil(size / 2^l)) */
-    uint32_t colour_channels;    /* 1 (grey) or 3 (RGB) */
-    bool alpha;                  /* an alpha channel follows the colour channels */
-    uint32_t colour;             /* enum vts_colour of the layer */
-    enum vt_filter_kind filter;  /* reduction kernel */
-    uint64_t max_pixels;         /* refuse copies (all of them together) above this many texels */
+    uint32_t width, height;     /* one copy, atlas texels at level 0 */
+    uint32_t crop_x, crop_y;    /* the rectangle of the block of copies the chain holds: texel */
+    uint32_t crop_width;        /* (a, b) of level 0 is texel ((crop_x + a) mod width, (crop_y + */
+    uint32_t crop_height;       /* b) mod height) of the resampled texture; sizes >= 1 */
+    bool wrap;                  /* reduce with wrap-around edges (a wrap entry: crop = one copy) */
+    uint32_t level_count;       /* levels to compute, >= 1 (level l is ceil(size / 2^l)) */
+    uint32_t colour_channels;   /* 1 (grey) or 3 (RGB) */
+    bool alpha;                 /* an alpha channel follows the colour channels */
+    uint32_t colour;            /* enum vts_colour of the layer */
+    enum vt_filter_kind filter; /* reduction kernel */
+    uint64_t max_pixels;        /* refuse a crop of more texels than this */
 };
 
-/* Level l: (width * repeat_u) / 2^l rounded up, 8-bit samples, colour_channels + alpha channels.
- * Level 0 holds the texture's texels exactly (8-bit inputs at scale 1 are copied byte for byte). */
+/* Level l: crop_width / 2^l x crop_height / 2^l rounded up, 8-bit samples, colour_channels +
+ * alpha channels. Level 0 holds the texture's texels exactly (8-bit inputs at scale 1 are copied
+ * byte for byte). */
 struct vt_mip_chain {
     uint32_t level_count;
     struct vt_image levels[VTS_MAX_LEVELS];
