@@ -11,6 +11,10 @@
 #   run.sh negative KIND WORK SYNTH BINDIR  KIND built with --wrap replicate --max-repeat 64 passes
 #       both checkers; one vt moved by a texel fails check_texels (and still passes
 #       check_watertight); one face line dropped fails check_watertight.
+#   run.sh selftest KIND WORK SYNTH BINDIR  ref_cut.py (a reference cut of every textured face
+#       along the integer UV lines, on its own replicating layout) built by vt-tiles --layout passes
+#       both checkers: they accept new vertices, split neighbours and edges inside faces; for roof
+#       the same cut without splitting the neighbours (T-junctions) fails check_watertight.
 set -euo pipefail
 mode=$1 kind=$2 work=$3 synth=$4 bin=$5
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -29,6 +33,30 @@ mkdir -p "$work"
 "$synth" "$kind" "$work/scene" || fail "vt-synth-scene"
 cd "$work/scene"
 
+expect() { # expect STATUS NAME CMD...: CMD exits with STATUS; its output is kept in NAME.out
+  local want=$1 name=$2 rc=0; shift 2
+  "$@" >"$name.out" 2>&1 || rc=$?
+  cat "$name.out"
+  [[ $rc == "$want" ]] || fail "$name: exit status $rc, expected $want"
+}
+step() { expect 0 "$@"; } # step NAME CMD...: CMD must succeed
+
+if [[ $mode == selftest ]]; then
+  step ref_cut "$py" "$here/ref_cut.py" "$kind.obj" .
+  step tiles "$bin/vt-tiles" --layout atlas.json -o scene.vts --codec png
+  step extract "$bin/vt-info" --extract 0 -o level0.png scene.vts
+  step texels "$py" "$here/check_texels.py" "$kind.obj" cut.obj level0.png
+  step watertight "$py" "$here/check_watertight.py" "$kind.obj" cut.obj
+  if [[ $kind == roof ]]; then
+    mkdir nosplit
+    step ref_cut_nosplit "$py" "$here/ref_cut.py" "$kind.obj" nosplit --no-split
+    expect 1 nosplit_watertight "$py" "$here/check_watertight.py" "$kind.obj" nosplit/cut.obj
+    grep -q '  face count: ' nosplit_watertight.out || fail "check_watertight saw no T-junction"
+  fi
+  echo "ok: real_scenes selftest $kind"
+  exit 0
+fi
+
 atlas_opts=()
 case $mode in
 final) ;;
@@ -39,12 +67,6 @@ negative) atlas_opts=(--wrap replicate --max-repeat 64) ;;
 *) fail "unknown mode" ;;
 esac
 
-step() { # step NAME CMD...: runs CMD with its output in NAME.out, shown on failure
-  local name=$1 rc=0; shift
-  "$@" >"$name.out" 2>&1 || rc=$?
-  cat "$name.out"
-  [[ $rc == 0 ]] || fail "$name exited with status $rc"
-}
 step atlas "$bin/vt-atlas" "$kind.obj" -o atlas.json "${atlas_opts[@]}"
 step offset "$bin/vt-offset" "$kind.obj" atlas.json -o scene.vt.obj
 step tiles "$bin/vt-tiles" --layout atlas.json -o scene.vts --codec png
@@ -70,12 +92,6 @@ width=$("$py" -c 'import sys; from PIL import Image; print(Image.open(sys.argv[1
         level0.png)
 "$py" "$here/corrupt.py" shift-vt scene.vt.obj shifted.obj "$width"
 "$py" "$here/corrupt.py" drop-face scene.vt.obj dropped.obj
-expect() { # expect STATUS NAME CMD...
-  local want=$1 name=$2 rc=0; shift 2
-  "$@" >"$name.out" 2>&1 || rc=$?
-  cat "$name.out"
-  [[ $rc == "$want" ]] || fail "$name: exit status $rc, expected $want"
-}
 expect 1 shifted_texels "$py" "$here/check_texels.py" "$kind.obj" shifted.obj level0.png
 grep -q 'mismatch: ' shifted_texels.out || fail "check_texels printed no mismatch"
 expect 0 shifted_watertight "$py" "$here/check_watertight.py" "$kind.obj" shifted.obj
