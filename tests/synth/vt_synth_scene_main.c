@@ -169,9 +169,12 @@ static void kind_strip(struct vt_synth_scene *s)
             } else {
                 cur = prev; /* the seam between sections: positions shared, texcoords not */
             }
-            uint32_t t[2] = {vt_synth_scene_vt(s, u, 0), vt_synth_scene_vt(s, u, 1)};
+            uint32_t t[2], k[2]; /* one statement each: the order of the lines is fixed */
+            t[0] = vt_synth_scene_vt(s, u, 0);
+            t[1] = vt_synth_scene_vt(s, u, 1);
             double ku = ku0 + 0.3 * i;
-            uint32_t k[2] = {vt_synth_scene_vt(s, ku, 0), vt_synth_scene_vt(s, ku, 1)};
+            k[0] = vt_synth_scene_vt(s, ku, 0);
+            k[1] = vt_synth_scene_vt(s, ku, 1);
             if (i > 0) {
                 uint64_t f0 = s->face_count;
                 vt_synth_scene_obj(s, "usemtl road\n");
@@ -267,9 +270,10 @@ static void roof_house(struct vt_synth_scene *s, int n, double ox, double oy, do
         {{T84, T44, R4, R8}, {{0, 0}, {4, 0}, {4, 4}, {0, 4}}},
         {{T44, T04, R0, R4}, {{4, 0}, {8, 0}, {8, 4}, {4, 4}}},
     };
-    uint32_t vn[5] = {vt_synth_scene_vn(s, 0, -1, 0), vt_synth_scene_vn(s, 0, 1, 0),
-                      vt_synth_scene_vn(s, -1, 0, 0), vt_synth_scene_vn(s, 1, 0, 0),
-                      vt_synth_scene_vn(s, 0, 0, -1)};
+    static const double normals[5][3] = {{0, -1, 0}, {0, 1, 0}, {-1, 0, 0}, {1, 0, 0}, {0, 0, -1}};
+    uint32_t vn[5];
+    for (int i = 0; i < 5; i++)
+        vn[i] = vt_synth_scene_vn(s, normals[i][0], normals[i][1], normals[i][2]);
     vt_synth_scene_obj(s, "g house%d walls\nusemtl brick\n", n);
     for (size_t w = 0; w < sizeof walls / sizeof walls[0]; w++) {
         uint32_t v[5], t[5], nn[5];
@@ -460,8 +464,10 @@ static void kind_mix(struct vt_synth_scene *s)
     uint32_t faces = 0, missing = 0, constant = 0;
     for (uint32_t i = 0; i < MIX_MATERIALS; i++) {
         struct vt_synth_scene_rng *r = &s->rng;
-        vt_synth_scene_mtl(s, "\nnewmtl m%03u\nKd %.3f %.3f %.3f\n", i, vt_synth_scene_rng_unit(r),
-                           vt_synth_scene_rng_unit(r), vt_synth_scene_rng_unit(r));
+        double kd[3];
+        for (int c = 0; c < 3; c++) /* one call each: argument order is unspecified */
+            kd[c] = vt_synth_scene_rng_unit(r);
+        vt_synth_scene_mtl(s, "\nnewmtl m%03u\nKd %.3f %.3f %.3f\n", i, kd[0], kd[1], kd[2]);
         if (i == 137 || i == 412) {
             vt_synth_scene_mtl(s, "map_Kd ../tex/%s\n",
                                i == 137 ? "gone/nothing.png" : "rgb/absent.png");
