@@ -16,7 +16,7 @@
 #       both checkers: they accept new vertices, split neighbours and edges inside faces; for roof
 #       the same cut without splitting the neighbours (T-junctions) fails check_watertight.
 set -euo pipefail
-mode=$1 kind=$2 work=$3 synth=$4 bin=$5
+mode=$1 kind=$2 work=$3 synth=$(realpath "$4") bin=$(realpath "$5")
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 export PYTHONDONTWRITEBYTECODE=1 # no __pycache__ in the source tree
 fail() { echo "FAIL: real_scenes $mode $kind: $*" >&2; exit 1; }
