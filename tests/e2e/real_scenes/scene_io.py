@@ -70,7 +70,9 @@ class Obj:
         else:
             raise ObjError("%s:%d: %s index 0" % (self.path, n, what))
         if not 0 <= i < count:
-            raise ObjError("%s:%d: %s index %s out of range" % (self.path, n, what, tok))
+            raise ObjError("%s:%d: %s index %s out of range (%d defined so far; a line further "
+                           "down is a forward reference, which OBJ readers refuse)"
+                           % (self.path, n, what, tok, count))
         return i
 
     def _read(self):
