@@ -93,6 +93,10 @@ static int tiff_status(const struct tiff_input *t)
 
 /* ---- libtiff's I/O on t->fd ---- */
 
+/* A failed read returns the bytes read so far, never -1: libtiff 4.5's TIFFReadAndRealloc adds
+ * the result to its offset and clears the rest of its buffer from there (a write one byte before
+ * the buffer after -1, seen by ASan in tool_eio.sh). A short read fails the same way, and
+ * read_errno says why. */
 static tmsize_t tiff_io_read(thandle_t h, void *buf, tmsize_t size)
 {
     struct tiff_input *t = h;
@@ -101,13 +105,10 @@ static tmsize_t tiff_io_read(thandle_t h, void *buf, tmsize_t size)
         ssize_t n = read(t->fd, (char *)buf + done, (size_t)size - done);
         if (n < 0 && errno == EINTR)
             continue;
-        if (n < 0) {
-            if (!t->read_errno)
-                t->read_errno = errno;
-            return -1;
-        }
-        if (n == 0)
-            break; /* end of file: libtiff reports the short read */
+        if (n < 0 && !t->read_errno)
+            t->read_errno = errno;
+        if (n <= 0)
+            break; /* an error, or the end of the file: libtiff reports the short read */
         done += (size_t)n;
     }
     return (tmsize_t)done;
