@@ -35,10 +35,10 @@ static int input_read_magic(const char *path, unsigned char magic[8], size_t *le
     if (!f)
         return vt_error_set(err, VTS_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
     *len = fread(magic, 1, 8, f);
-    int read_failed = ferror(f);
+    int read_errno = ferror(f) ? errno : 0;
     fclose(f);
-    if (read_failed)
-        return vt_error_set(err, VTS_ERR_IO, "cannot read '%s': read error", path);
+    if (read_errno)
+        return vt_error_set(err, VTS_ERR_IO, "cannot read '%s': %s", path, strerror(read_errno));
     if (*len == 0)
         return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': empty file", path);
     return 0;

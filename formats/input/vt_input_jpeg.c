@@ -53,13 +53,19 @@ struct jpeg_input {
 /* Records the message (once per failure) and jumps back to the *_run function. */
 static void jpeg_input_fail(j_common_ptr cinfo, bool truncated)
 {
+    int read_errno = errno; /* of the failed fread() when libjpeg's source stopped on one */
     struct jpeg_input_error *jerr = (struct jpeg_input_error *)cinfo->err;
     struct jpeg_input *t = jerr->input;
     if (t->error.status == VTS_OK) {
         char msg[JMSG_LENGTH_MAX];
         int code = cinfo->err->msg_code;
         int status = VTS_ERR_BAD_INPUT;
-        if (truncated)
+        /* libjpeg's stdio source takes a failed read for the end of the file ("Empty input
+         * file", or padding with a warning that reads as truncated): the stream says which */
+        if (ferror(t->file)) {
+            snprintf(msg, sizeof msg, "%s", strerror(read_errno));
+            status = VTS_ERR_IO;
+        } else if (truncated)
             snprintf(msg, sizeof msg, "truncated");
         else if (code == JERR_NO_BACKING_STORE)
             snprintf(msg, sizeof msg, "decoding needs more than %llu MiB (progressive JPEG?)",

@@ -30,6 +30,7 @@ struct png_input {
     struct vts_error error;  /* filled by the libpng callbacks */
     bool in_rows;            /* errors happen while decoding rows: name the row */
     bool broken;             /* the decoder stopped on an error: restart before the next read */
+    bool read_failed;        /* the error is a failed read of the file (VTS_ERR_IO) */
     uint32_t width, height;  /* from IHDR */
     uint32_t channels;       /* after the transforms */
     uint32_t bit_depth;      /* after the transforms: 8 or 16 */
@@ -45,7 +46,9 @@ static void png_input_on_error(png_structp png, png_const_charp msg)
 {
     struct png_input *t = png_get_error_ptr(png);
     if (t->error.status == VTS_OK) {
-        int status = strstr(msg, "memory") ? VTS_ERR_NOMEM : VTS_ERR_BAD_INPUT;
+        int status = t->read_failed          ? VTS_ERR_IO
+                     : strstr(msg, "memory") ? VTS_ERR_NOMEM
+                                             : VTS_ERR_BAD_INPUT;
         if (t->in_rows)
             vt_error_set(&t->error, status, "cannot read '%s': %s at row %u", t->name, msg,
                          t->next_row);
@@ -64,8 +67,12 @@ static void png_input_on_warning(png_structp png, png_const_charp msg)
 static void png_input_on_read(png_structp png, png_bytep data, size_t length)
 {
     struct png_input *t = png_get_io_ptr(png);
-    if (fread(data, 1, length, t->file) != length)
-        png_error(png, ferror(t->file) ? "read error" : "truncated");
+    if (fread(data, 1, length, t->file) == length)
+        return;
+    if (!ferror(t->file))
+        png_error(png, "truncated");
+    t->read_failed = true; /* the message is the reason, "Input/output error" */
+    png_error(png, strerror(errno));
 }
 
 /* The status of a run that libpng stopped; the decoder is unusable until restarted. */
@@ -146,10 +153,12 @@ static int png_input_start(struct png_input *t, struct vts_error *err)
 {
     png_input_destroy_decoder(t);
     vt_error_clear(&t->error);
+    t->read_failed = false;
     t->in_rows = false;
     t->next_row = 0;
     if (fseek(t->file, 0, SEEK_SET) != 0)
         return vt_error_set(err, VTS_ERR_IO, "cannot read '%s': %s", t->name, strerror(errno));
+    clearerr(t->file);
     t->png =
         png_create_read_struct(PNG_LIBPNG_VER_STRING, t, png_input_on_error, png_input_on_warning);
     t->info = t->png ? png_create_info_struct(t->png) : NULL;

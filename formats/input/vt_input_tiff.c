@@ -4,13 +4,20 @@
  * big to decode at once. Both planar configurations; 1/2/4-bit grey is scaled to 8 bits, palettes
  * become RGB, MINISWHITE is inverted, YCbCr JPEG-in-TIFF is converted to RGB by libtiff. The first
  * image directory is read; the Orientation tag is ignored (texels come in stored order).
- * libtiff's messages go to the source's own handler (TIFFOpenOptions), never to stderr. */
+ * libtiff's messages go to the source's own handler (TIFFOpenOptions), never to stderr. libtiff
+ * reads through this file's procedures (TIFFClientOpenExt), so that a failed read() is reported
+ * with its reason ("Input/output error") as VTS_ERR_IO, not as libtiff's "Read error at scanline
+ * 160; got -1 bytes" or "IO error during reading of ..." as a corrupt file. */
+#include <errno.h>
+#include <fcntl.h>
 #include <stdarg.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <tiffio.h>
+#include <unistd.h>
 
 #include "internal/vt_input_readers.h"
 #include "internal/vt_input_util.h"
@@ -28,6 +35,8 @@ enum tiff_convert {
 
 struct tiff_input {
     TIFF *tif;
+    int fd;         /* the file libtiff reads through tiff_io_*; -1 when closed */
+    int read_errno; /* errno of the first failed read, 0 if none */
     char name[256];
     char message[160]; /* the last error libtiff reported */
     uint32_t width, height;
@@ -69,9 +78,77 @@ static int tiff_on_warning(TIFF *tif, void *user_data, const char *module, const
     return 1; /* warnings concern tags we do not use or are followed by an error */
 }
 
+/* Why libtiff failed: a failed read of the file (its errno), else libtiff's last message. */
 static const char *tiff_message(const struct tiff_input *t)
 {
+    if (t->read_errno)
+        return strerror(t->read_errno);
     return t->message[0] ? t->message : "corrupt data";
+}
+
+static int tiff_status(const struct tiff_input *t)
+{
+    return t->read_errno ? VTS_ERR_IO : VTS_ERR_BAD_INPUT;
+}
+
+/* ---- libtiff's I/O on t->fd ---- */
+
+/* A failed read returns the bytes read so far, never -1: libtiff 4.5's TIFFReadAndRealloc adds
+ * the result to its offset and clears the rest of its buffer from there (a write one byte before
+ * the buffer after -1, seen by ASan in tool_eio.sh). A short read fails the same way, and
+ * read_errno says why. */
+static tmsize_t tiff_io_read(thandle_t h, void *buf, tmsize_t size)
+{
+    struct tiff_input *t = h;
+    size_t done = 0;
+    while (done < (size_t)size) {
+        ssize_t n = read(t->fd, (char *)buf + done, (size_t)size - done);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n < 0 && !t->read_errno)
+            t->read_errno = errno;
+        if (n <= 0)
+            break; /* an error, or the end of the file: libtiff reports the short read */
+        done += (size_t)n;
+    }
+    return (tmsize_t)done;
+}
+
+static tmsize_t tiff_io_write(thandle_t h, void *buf, tmsize_t size)
+{
+    (void)h, (void)buf, (void)size;
+    errno = EBADF; /* opened for reading */
+    return -1;
+}
+
+static toff_t tiff_io_seek(thandle_t h, toff_t off, int whence)
+{
+    struct tiff_input *t = h;
+    return (toff_t)lseek(t->fd, (off_t)off, whence);
+}
+
+static int tiff_io_close(thandle_t h)
+{
+    (void)h; /* tiff_close() closes t->fd */
+    return 0;
+}
+
+static toff_t tiff_io_size(thandle_t h)
+{
+    struct tiff_input *t = h;
+    struct stat st;
+    return fstat(t->fd, &st) == 0 ? (toff_t)st.st_size : 0;
+}
+
+static int tiff_io_map(thandle_t h, void **base, toff_t *size)
+{
+    (void)h, (void)base, (void)size;
+    return 0; /* never mapped (mode "m") */
+}
+
+static void tiff_io_unmap(thandle_t h, void *base, toff_t size)
+{
+    (void)h, (void)base, (void)size;
 }
 
 static void tiff_close(void *ctx)
@@ -81,6 +158,8 @@ static void tiff_close(void *ctx)
         return;
     if (t->tif)
         TIFFClose(t->tif);
+    if (t->fd >= 0)
+        close(t->fd);
     for (int i = 0; i < 4; i++)
         free(t->chunk[i]);
     free(t);
@@ -128,7 +207,7 @@ static int tiff_check_pixels(struct tiff_input *t, uint32_t *sample, struct vts_
     t->channels = spp;
     if (photometric == PHOTOMETRIC_YCBCR && compression == COMPRESSION_JPEG) {
         if (!TIFFSetField(tif, TIFFTAG_JPEGCOLORMODE, JPEGCOLORMODE_RGB))
-            return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': %s", t->name,
+            return vt_error_set(err, tiff_status(t), "cannot read '%s': %s", t->name,
                                 tiff_message(t));
         photometric = PHOTOMETRIC_RGB;
     }
@@ -237,7 +316,13 @@ static int tiff_open(const char *path, uint64_t max_pixels, struct vt_source *ou
     if (!t)
         return vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", path);
     vt_input_copy_name(t->name, sizeof t->name, path);
-    int rc = VTS_ERR_NOMEM;
+    int rc;
+    t->fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (t->fd < 0) {
+        rc = vt_error_set(err, VTS_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
+        goto out_free;
+    }
+    rc = VTS_ERR_NOMEM;
     TIFFOpenOptions *opts = TIFFOpenOptionsAlloc();
     if (!opts) {
         vt_error_set(err, rc, "cannot read '%s': out of memory", path);
@@ -246,10 +331,13 @@ static int tiff_open(const char *path, uint64_t max_pixels, struct vt_source *ou
     TIFFOpenOptionsSetErrorHandlerExtR(opts, tiff_on_error, t);
     TIFFOpenOptionsSetWarningHandlerExtR(opts, tiff_on_warning, t);
     TIFFOpenOptionsSetMaxSingleMemAlloc(opts, (tmsize_t)VT_INPUT_MAX_BUFFER_BYTES);
-    t->tif = TIFFOpenExt(path, "rm", opts); /* "m": no mmap, or every page read counts as RSS */
+    /* "m": no mmap, or every page read counts as RSS */
+    t->tif = TIFFClientOpenExt(path, "rm", t, tiff_io_read, tiff_io_write, tiff_io_seek,
+                               tiff_io_close, tiff_io_size, tiff_io_map, tiff_io_unmap, opts);
     TIFFOpenOptionsFree(opts);
-    if (!t->tif) {
-        rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': %s", path, tiff_message(t));
+    /* libtiff goes on after some failed reads of the directory (a tag left out): not here */
+    if (!t->tif || t->read_errno) {
+        rc = vt_error_set(err, tiff_status(t), "cannot read '%s': %s", path, tiff_message(t));
         goto out_free;
     }
     uint32_t sample = 0;
@@ -310,9 +398,9 @@ static int tiff_load_chunk(struct tiff_input *t, uint32_t cx, uint32_t cy, uint1
     }
     if (!ok) {
         if (t->layout == TIFF_TILES)
-            return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': tile at %u,%u: %s",
-                                t->name, px, py, tiff_message(t));
-        return vt_error_set(err, VTS_ERR_BAD_INPUT, "cannot read '%s': %s at row %u: %s", t->name,
+            return vt_error_set(err, tiff_status(t), "cannot read '%s': tile at %u,%u: %s", t->name,
+                                px, py, tiff_message(t));
+        return vt_error_set(err, tiff_status(t), "cannot read '%s': %s at row %u: %s", t->name,
                             t->layout == TIFF_STRIPS ? "strip" : "scanline", py, tiff_message(t));
     }
     t->cached[s] = index + 1;
