@@ -9,9 +9,13 @@
  * corner). Faces of different groups never share a chart. A corner without texcoord
  * (VT_CHART_NONE) joins nothing; a face without any texcoord is in no chart.
  *
- * The move of a chart is the integer (du, dv) = (-floor(umin), -floor(vmin)) of its texcoord box:
- * after it the box starts in [0,1). u + du is exact in double precision (an integer added to a
- * double of at least its magnitude), so the move changes no texel. */
+ * The move of a chart is the integer (du, dv) = (-floor(umin), -floor(vmin)) of its texcoord box
+ * (+0.0, never -0.0): after it the box starts in [0,1). u + du is rounded once in double
+ * precision, and is exact whenever the result is not larger in magnitude than u (a chart in u >= 0
+ * moved down: the far repeats of game scenes, u = 2600.3 -> 0.3 exactly), so such a move changes
+ * no texel. A chart that straddles 0 and is moved up by a large du rounds its small values to the
+ * precision of u + du (u = -0.3, du = 700: 699.7 to 2^-43), and a tiny negative umin can round to
+ * a box starting at 1 (-1e-20 + 1 == 1). Non-finite texcoords give non-finite boxes and moves. */
 #ifndef VT_CHART_H
 #define VT_CHART_H
 
@@ -39,8 +43,10 @@ struct vt_chart_mesh {
 };
 
 /* Labels every face with its chart (chart[f], numbered 0.. in order of each chart's first face;
- * VT_CHART_NONE for faces in no chart) and sets *chart_count. Returns 0, VTS_ERR_NOMEM or
- * VTS_ERR_LIMIT (more than 2^32 - 2 charts). Deterministic. */
+ * VT_CHART_NONE for faces in no chart) and sets *chart_count (0 on failure). Returns 0,
+ * VTS_ERR_NOMEM or VTS_ERR_LIMIT (more than 2^32 - 2 charts), with err filled. Deterministic.
+ * Memory: 4 bytes per face and hash tables of about 16 bytes per texcoord corner and 75 bytes per
+ * edge with texcoords at both ends (released before it returns). Thread-safe (no shared state). */
 int vt_chart_label(const struct vt_chart_mesh *m, uint32_t *chart, uint32_t *chart_count,
                    struct vts_error *err);
 
@@ -52,7 +58,8 @@ struct vt_chart_box {
     double du, dv;                 /* the move: integers, -floor(umin), -floor(vmin) */
 };
 
-/* Fills boxes[0 .. chart_count) from the labels of vt_chart_label(). */
+/* Fills boxes[0 .. chart_count) from the labels of vt_chart_label() (boxes over the corners
+ * that have texcoords). */
 void vt_chart_boxes(const struct vt_chart_mesh *m, const uint32_t *chart, uint32_t chart_count,
                     struct vt_chart_box *boxes);
 
