@@ -177,9 +177,12 @@ void vt_chart_boxes(const struct vt_chart_mesh *m, const uint32_t *chart, uint32
             b->vmax = fmax(b->vmax, v);
         }
     }
-    /* 0.0 - floor(x): a move of +0.0, never -0.0, for a box starting in [0, 1) */
+    /* 0.0 - floor(x): a move of +0.0, never -0.0, for a box starting in [0, 1); an axis whose
+     * range lies in [0, 1], bounds included, is not moved (a chart at u = 1 exactly stays the
+     * right edge of one copy) */
     for (uint32_t i = 0; i < chart_count; i++) {
-        boxes[i].du = 0.0 - floor(boxes[i].umin);
-        boxes[i].dv = 0.0 - floor(boxes[i].vmin);
+        struct vt_chart_box *b = &boxes[i];
+        b->du = b->umin >= 0 && b->umax <= 1 ? 0.0 : 0.0 - floor(b->umin);
+        b->dv = b->vmin >= 0 && b->vmax <= 1 ? 0.0 : 0.0 - floor(b->vmin);
     }
 }

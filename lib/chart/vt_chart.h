@@ -10,7 +10,9 @@
  * (VT_CHART_NONE) joins nothing; a face without any texcoord is in no chart.
  *
  * The move of a chart is the integer (du, dv) = (-floor(umin), -floor(vmin)) of its texcoord box
- * (+0.0, never -0.0): after it the box starts in [0,1). u + du is rounded once in double
+ * (+0.0, never -0.0): after it the box starts in [0,1). An axis whose range already lies in
+ * [0,1], bounds included, is not moved (du = 0 for u 1..1: the right edge of one copy stays
+ * there, which matters to a texture that clamps). u + du is rounded once in double
  * precision, and is exact whenever the result is not larger in magnitude than u (a chart in u >= 0
  * moved down: the far repeats of game scenes, u = 2600.3 -> 0.3 exactly), so such a move changes
  * no texel. A chart that straddles 0 and is moved up by a large du rounds its small values to the
@@ -55,7 +57,8 @@ struct vt_chart_box {
     uint32_t group;                /* the material of its faces */
     uint32_t faces;                /* faces in the chart */
     double umin, umax, vmin, vmax; /* over its corners with texcoords, before the move */
-    double du, dv;                 /* the move: integers, -floor(umin), -floor(vmin) */
+    double du, dv;                 /* the move: integers, -floor(umin), -floor(vmin) (0 for an
+                                      axis already inside [0,1]) */
 };
 
 /* Fills boxes[0 .. chart_count) from the labels of vt_chart_label() (boxes over the corners
