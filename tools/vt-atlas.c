@@ -50,11 +50,18 @@ static void usage(FILE *f)
             "of two)\n"
             "      --max-scale S        density scales within 1/S..S, a power of two 1..65536 "
             "(default 4)\n"
-            "      --wrap MODE          UVs outside [0,1]: report (an error, default) | "
-            "replicate\n"
+            "      --wrap MODE          charts (moved by whole repeats) that leave one copy of "
+            "their\n"
+            "                           texture: auto (default: replicate small repeats, split "
+            "large),\n"
+            "                           replicate (copies, cropped), split (one copy that wraps; "
+            "vt-offset\n"
+            "                           cuts the faces on integer UV lines), report (an error)\n"
             "      --max-repeat N       most copies per direction with replicate, 1..65536 "
             "(default 16)\n"
-            "      --missing MODE       missing texture: fail (default) | skip (constant fill)\n"
+            "      --missing MODE       missing texture: warn (default: a warning and the "
+            "material's\n"
+            "                           constant) | fail\n"
             "      --deps FILE          write a make rule 'OUT: every file read' to FILE\n"
             "      --max-textures N     most distinct texture files (default 1048576)\n"
             "      --max-pixels N       most texels per input image (default 2147483648)\n"
@@ -153,16 +160,27 @@ static int parse_option(int c, struct options *o)
         o->place.max_scale = v;
         break;
     case 'w':
-        if (parse_choice(optarg, "report", "replicate", &o->place.wrap_replicate))
-            return vt_usage_error("--wrap must be report or replicate, not '%s'", optarg);
+        if (strcmp(optarg, "auto") == 0)
+            o->place.wrap = VT_ATLAS_WRAP_AUTO;
+        else if (strcmp(optarg, "report") == 0)
+            o->place.wrap = VT_ATLAS_WRAP_REPORT;
+        else if (strcmp(optarg, "replicate") == 0)
+            o->place.wrap = VT_ATLAS_WRAP_REPLICATE;
+        else if (strcmp(optarg, "split") == 0)
+            o->place.wrap = VT_ATLAS_WRAP_SPLIT;
+        else
+            return vt_usage_error("--wrap must be auto, report, replicate or split, not '%s'",
+                                  optarg);
         break;
     case 'r':
         if (vt_parse_u32(optarg, 1, 65536, &o->place.max_repeat))
             return vt_usage_error("--max-repeat must be 1..65536, not '%s'", optarg);
         break;
     case 'm':
-        if (parse_choice(optarg, "fail", "skip", &b))
-            return vt_usage_error("--missing must be fail or skip, not '%s'", optarg);
+        if (strcmp(optarg, "skip") == 0) /* the name before 0.2 */
+            b = true;
+        else if (parse_choice(optarg, "fail", "warn", &b))
+            return vt_usage_error("--missing must be warn or fail, not '%s'", optarg);
         o->scan.missing_skip = b;
         break;
     case 'D':
@@ -205,7 +223,8 @@ static int parse_options(int argc, char **argv, struct options *o)
                                     .gutter = VT_ATLAS_DEFAULT_GUTTER,
                                     .max_scale = 4,
                                     .max_repeat = 16},
-                          .scan = {.max_textures = 1u << 20,
+                          .scan = {.missing_skip = true,
+                                   .max_textures = 1u << 20,
                                    .max_line_bytes = 1u << 20,
                                    .open = open_texture,
                                    .warn = warn},
@@ -316,9 +335,38 @@ static void print_summary(const struct options *o, const struct vt_layout *l,
            l->height, r->pack.tiles_x, r->pack.tiles_y, l->tile_content,
            (unsigned long long)r->pack.tiles_used, (unsigned long long)r->pack.tiles_empty,
            100.0 * r->pack.fill_ratio);
+    char area[96] = "";
+    if (r->whole_area)
+        snprintf(area, sizeof area, "; atlas area %.1f%% of whole textures",
+                 100.0 * (double)l->width * l->height / (double)r->whole_area);
+    printf("charts %u (%u moved by whole repeats); entries: %u fit, %u replicated, %u split "
+           "(vt-offset cuts their faces), %u cropped%s\n",
+           r->charts, r->moved_charts, r->fit, r->replicated, r->split, r->cropped, area);
     if (o->place.density)
         vt_log(VT_LOG_INFO, "target texel density %g texels per world unit^2 (median)",
                r->target_density);
+}
+
+/* -v: what was chosen for each material. */
+static void print_choices(const struct vt_atlas_scene *scene, const struct vt_layout *l,
+                          const struct vt_atlas_place_choice *c)
+{
+    if (vt_log_get_level() < VT_LOG_INFO || !c)
+        return;
+    for (uint32_t i = 0; i < scene->material_count; i++) {
+        const struct vt_atlas_material *m = &scene->materials[i];
+        const struct vt_layout_entry *e = &l->entries[c[i].entry];
+        if (!m->has_uv || m->umax < m->umin) {
+            vt_log(VT_LOG_INFO, "material '%s': %s, entry '%s'", m->name, c[i].how, e->name);
+            continue;
+        }
+        vt_log(VT_LOG_INFO,
+               "material '%s': %s, entry '%s' (%ux%u copies, %ux%u texels held); %u charts, "
+               "u %g..%g v %g..%g as written, u %g..%g v %g..%g moved",
+               m->name, c[i].how, e->name, c[i].repeat_u, c[i].repeat_v, c[i].crop_width,
+               c[i].crop_height, m->charts, m->raw_umin, m->raw_umax, m->raw_vmin, m->raw_vmax,
+               m->umin, m->umax, m->vmin, m->vmax);
+    }
 }
 
 static int scan(const struct options *o, struct vt_atlas_scene *scene, struct vts_error *err)
@@ -354,6 +402,7 @@ static int run(const struct options *o)
     struct vt_layout layout = {0};
     struct vt_atlas_place_report report;
     struct vt_atomic_file deps = {.fd = -1};
+    struct vt_atlas_place_choice *choices = NULL;
     struct vts_error err = {0};
     int rc = scan(o, &scene, &err);
     /* the MTL files and textures are known once scanned: before anything is written */
@@ -361,8 +410,11 @@ static int run(const struct options *o)
         rc = VTS_ERR_BAD_INPUT;
         goto out;
     }
+    if (!rc &&
+        !(choices = calloc(scene.material_count ? scene.material_count : 1, sizeof *choices)))
+        rc = vt_error_set(&err, VTS_ERR_NOMEM, "out of memory");
     if (!rc)
-        rc = vt_atlas_place(&scene, &o->place, &layout, &report, &err);
+        rc = vt_atlas_place_choices(&scene, &o->place, &layout, &report, choices, &err);
     if (!rc && o->deps) {
         rc = vt_atomic_file_create(&deps, o->deps, "tmp", VT_ATOMIC_FILE_SEQUENTIAL, &err);
         if (!rc)
@@ -375,13 +427,15 @@ static int run(const struct options *o)
         if (vt_output_path_resolve(o->output, &json, NULL) == 0 && json.kind == VT_OUTPUT_REGULAR)
             unlink(json.path); /* all or nothing (a device or FIFO stays) */
     }
-    if (!rc)
+    if (!rc) {
+        print_choices(&scene, &layout, choices);
         print_summary(o, &layout, &report, scene.texture_count);
-    else
+    } else
         vt_log(VT_LOG_ERROR, "%s", err.message);
 out:
     if (deps.fd >= 0)
         vt_atomic_file_abort(&deps);
+    free(choices);
     vt_layout_release(&layout);
     vt_atlas_scene_release(&scene);
     if (rc == VTS_ERR_ARG)

@@ -11,7 +11,6 @@
 #include "vt_checked.h"
 #include "vt_error.h"
 
-#define UV_EPS        1e-6
 #define CONSTANT_CELL 4 /* texels of an entry without any texture */
 
 /* ---- paths ---- */
@@ -87,42 +86,121 @@ struct sizing {
     uint32_t w, h;               /* one copy in the atlas */
     uint32_t repeat_u, repeat_v; /* copies */
     int32_t origin_u, origin_v;
+    bool wrap;                               /* one copy that wraps (vt-offset cuts the faces) */
+    uint32_t crop_x, crop_y, crop_w, crop_h; /* texels of the block of copies the entry holds */
 };
 
-static int wrap_range(double lo, double hi, uint32_t max_repeat, int32_t *origin, uint32_t *repeat)
+/* What a texcoord box (moved charts: 0 <= umin, vmin < 1) needs. */
+enum choice { CHOICE_FIT, CHOICE_REPLICATE, CHOICE_SPLIT, CHOICE_REPORT, CHOICE_TOO_MANY };
+
+static enum choice choose(const struct vt_atlas_place_options *o, bool has_box, double umin,
+                          double umax, double vmin, double vmax, uint32_t *ru, uint32_t *rv)
 {
-    double o = floor(lo + UV_EPS), top = ceil(hi - UV_EPS);
-    double r = top - o < 1 ? 1 : top - o;
-    if (o < INT32_MIN || o > INT32_MAX || r > max_repeat)
-        return -1;
-    *origin = (int32_t)o;
-    *repeat = (uint32_t)r;
-    return 0;
+    *ru = *rv = 1;
+    if (!has_box || (umax <= 1 && vmax <= 1))
+        return CHOICE_FIT;
+    double cu = ceil(umax) < 1 ? 1 : ceil(umax), cv = ceil(vmax) < 1 ? 1 : ceil(vmax);
+    bool few = cu <= o->max_repeat && cv <= o->max_repeat;
+    double area = (umax - umin) * (vmax - vmin);
+    enum choice c;
+    switch (o->wrap) {
+    case VT_ATLAS_WRAP_REPORT:
+        return CHOICE_REPORT;
+    case VT_ATLAS_WRAP_SPLIT:
+        return CHOICE_SPLIT;
+    case VT_ATLAS_WRAP_REPLICATE:
+        c = few ? CHOICE_REPLICATE : CHOICE_TOO_MANY;
+        break;
+    default:
+        c = few && area <= VT_ATLAS_REPLICATE_MAX_AREA ? CHOICE_REPLICATE : CHOICE_SPLIT;
+        break;
+    }
+    if (c == CHOICE_REPLICATE) {
+        *ru = (uint32_t)cu;
+        *rv = (uint32_t)cv;
+    }
+    return c;
+}
+
+/* Atlas texels a box costs with choice c, in textures (copies of the whole texture). */
+static double box_cost(enum choice c, double umin, double umax, double vmin, double vmax)
+{
+    if (c == CHOICE_SPLIT)
+        return 1;
+    if (c == CHOICE_FIT && umax - umin <= 0)
+        return 1;
+    return (umax - umin) * (vmax - vmin);
+}
+
+static void set_choice(struct sizing *z, enum choice c, uint32_t ru, uint32_t rv)
+{
+    z->repeat_u = ru;
+    z->repeat_v = rv;
+    z->origin_u = z->origin_v = 0;
+    z->wrap = c == CHOICE_SPLIT;
 }
 
 static int check_wrap(const struct vt_atlas_material *m, const struct vt_atlas_place_options *o,
                       struct sizing *z, struct vts_error *err)
 {
-    z->repeat_u = z->repeat_v = 1;
-    z->origin_u = z->origin_v = 0;
-    if (!z->textured || !m->has_uv)
-        return 0;
-    bool outside =
-        m->umin < -UV_EPS || m->umax > 1 + UV_EPS || m->vmin < -UV_EPS || m->vmax > 1 + UV_EPS;
-    if (!outside)
-        return 0;
-    if (!o->wrap_replicate)
-        return vt_error_set(
-            err, VTS_ERR_BAD_INPUT,
-            "'%s': material '%s' uses u %g..%g, v %g..%g outside [0,1]: use --wrap replicate",
-            m->obj, m->name, m->umin, m->umax, m->vmin, m->vmax);
-    if (wrap_range(m->umin, m->umax, o->max_repeat, &z->origin_u, &z->repeat_u) ||
-        wrap_range(m->vmin, m->vmax, o->max_repeat, &z->origin_v, &z->repeat_v))
-        return vt_error_set(
-            err, VTS_ERR_LIMIT,
-            "'%s': material '%s' uses u %g..%g, v %g..%g: more than --max-repeat %u copies", m->obj,
-            m->name, m->umin, m->umax, m->vmin, m->vmax, o->max_repeat);
+    uint32_t ru, rv;
+    bool box = z->textured && m->has_uv && m->umax >= m->umin;
+    enum choice c = choose(o, box, m->umin, m->umax, m->vmin, m->vmax, &ru, &rv);
+    if (c == CHOICE_REPORT)
+        return vt_error_set(err, VTS_ERR_BAD_INPUT,
+                            "'%s':%llu: material '%s' (u %g..%g, v %g..%g) has charts that leave "
+                            "one copy of its texture (u %g..%g, v %g..%g moved by whole "
+                            "repeats): use --wrap auto, replicate or split",
+                            m->obj, (unsigned long long)m->first_line, m->name, m->raw_umin,
+                            m->raw_umax, m->raw_vmin, m->raw_vmax, m->umin, m->umax, m->vmin,
+                            m->vmax);
+    if (c == CHOICE_TOO_MANY)
+        return vt_error_set(err, VTS_ERR_LIMIT,
+                            "'%s':%llu: material '%s' needs more than --max-repeat %u copies "
+                            "(charts moved by whole repeats cover u %g..%g, v %g..%g): use "
+                            "--wrap auto or split",
+                            m->obj, (unsigned long long)m->first_line, m->name, o->max_repeat,
+                            m->umin, m->umax, m->vmin, m->vmax);
+    set_choice(z, c, ru, rv);
     return 0;
+}
+
+/* The texels [*start, *start + *len) of one axis of a block of copies (n texels each) that a
+ * range [lo, hi] of texcoords reads, with VT_ATLAS_CROP_MARGIN texels around it and aligned to
+ * VT_ATLAS_CROP_ALIGN; flip: rows from the top (v up). */
+static void crop_axis(double lo, double hi, uint32_t n, uint32_t copies, bool flip, uint32_t *start,
+                      uint32_t *len)
+{
+    double total = (double)n * copies;
+    double a = flip ? (copies - hi) * n : lo * n, b = flip ? (copies - lo) * n : hi * n;
+    a = floor(a) - VT_ATLAS_CROP_MARGIN;
+    b = ceil(b) + VT_ATLAS_CROP_MARGIN;
+    a = a < 0 ? 0 : a;
+    b = b > total ? total : b;
+    uint64_t s = (uint64_t)a / VT_ATLAS_CROP_ALIGN * VT_ATLAS_CROP_ALIGN;
+    uint64_t e =
+        ((uint64_t)b + VT_ATLAS_CROP_ALIGN - 1) / VT_ATLAS_CROP_ALIGN * VT_ATLAS_CROP_ALIGN;
+    if (e > (uint64_t)total)
+        e = (uint64_t)total;
+    if (e <= s) {
+        s = 0;
+        e = (uint64_t)total;
+    }
+    *start = (uint32_t)s;
+    *len = (uint32_t)(e - s);
+}
+
+/* The crop of a sized entry whose charts cover the box (the whole block without one). */
+static void set_crop(struct sizing *z, bool has_box, double umin, double umax, double vmin,
+                     double vmax)
+{
+    z->crop_x = z->crop_y = 0;
+    z->crop_w = z->w * z->repeat_u;
+    z->crop_h = z->h * z->repeat_v;
+    if (!has_box || z->wrap || !z->textured)
+        return;
+    crop_axis(umin, umax, z->w, z->repeat_u, false, &z->crop_x, &z->crop_w);
+    crop_axis(vmin, vmax, z->h, z->repeat_v, true, &z->crop_y, &z->crop_h);
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -231,8 +309,8 @@ static bool same_content(const struct vt_atlas_material *a, const struct vt_atla
     return true;
 }
 
-/* Adds material m (sized by zm) to g when the union of their UV ranges needs at most
- * max_repeat copies per direction and no more copies than the two would apart. */
+/* Adds material m (sized by zm) to g when the union of their boxes costs no more atlas texels
+ * than the two apart (and, replicated, stays within max_repeat copies). */
 static bool try_join(struct group *g, const struct vt_atlas_material *m, const struct sizing *zm,
                      const struct vt_atlas_place_options *o)
 {
@@ -243,20 +321,21 @@ static bool try_join(struct group *g, const struct vt_atlas_material *m, const s
         umin = fmin(umin, g->umin), umax = fmax(umax, g->umax);
         vmin = fmin(vmin, g->vmin), vmax = fmax(vmax, g->vmax);
     }
-    int32_t ou = 0, ov = 0;
-    uint32_t ru = 1, rv = 1;
-    bool outside = umin < -UV_EPS || umax > 1 + UV_EPS || vmin < -UV_EPS || vmax > 1 + UV_EPS;
-    if (outside && (wrap_range(umin, umax, o->max_repeat, &ou, &ru) ||
-                    wrap_range(vmin, vmax, o->max_repeat, &ov, &rv)))
+    uint32_t ru, rv, gu, gv, mu, mv;
+    enum choice c = choose(o, true, umin, umax, vmin, vmax, &ru, &rv);
+    if (c == CHOICE_REPORT || c == CHOICE_TOO_MANY)
         return false;
-    if ((uint64_t)ru * rv >
-            (uint64_t)g->z.repeat_u * g->z.repeat_v + (uint64_t)zm->repeat_u * zm->repeat_v ||
-        (uint64_t)g->z.w * ru > UINT32_MAX || (uint64_t)g->z.h * rv > UINT32_MAX)
+    enum choice cg = choose(o, g->has_uv, g->umin, g->umax, g->vmin, g->vmax, &gu, &gv);
+    enum choice cm = choose(o, true, m->umin, m->umax, m->vmin, m->vmax, &mu, &mv);
+    double apart = box_cost(cg, g->umin, g->umax, g->vmin, g->vmax) +
+                   box_cost(cm, m->umin, m->umax, m->vmin, m->vmax);
+    if (g->has_uv && box_cost(c, umin, umax, vmin, vmax) > apart)
+        return false;
+    if ((uint64_t)g->z.w * ru > UINT32_MAX || (uint64_t)g->z.h * rv > UINT32_MAX)
         return false;
     g->has_uv = true;
     g->umin = umin, g->umax = umax, g->vmin = vmin, g->vmax = vmax;
-    g->z.origin_u = ou, g->z.origin_v = ov;
-    g->z.repeat_u = ru, g->z.repeat_v = rv;
+    set_choice(&g->z, c, ru, rv);
     return true;
 }
 
@@ -399,6 +478,11 @@ static int fill_layout(const struct vt_atlas_scene *scene, const struct vt_atlas
         e->height = z->h;
         e->repeat_u = z->repeat_u;
         e->repeat_v = z->repeat_v;
+        e->crop_x = z->crop_x;
+        e->crop_y = z->crop_y;
+        e->crop_width = z->crop_w;
+        e->crop_height = z->crop_h;
+        e->wrap = z->wrap;
         e->origin_u = z->origin_u;
         e->origin_v = z->origin_v;
         e->scale = z->scale;
@@ -480,9 +564,37 @@ static void prepare_sizes(const struct vt_atlas_scene *scene, struct sizing *z)
     }
 }
 
+/* Atlas texels had every entry held its whole block of copies (0 when that does not pack). */
+static uint64_t whole_area(const struct group *groups, uint32_t ng,
+                           const struct vt_atlas_place_options *o)
+{
+    struct vt_atlas_rect *r = calloc(ng, sizeof *r);
+    if (!r)
+        return 0;
+    for (uint32_t i = 0; i < ng; i++) {
+        r[i].width = groups[i].z.w * groups[i].z.repeat_u;
+        r[i].height = groups[i].z.h * groups[i].z.repeat_v;
+    }
+    struct vt_atlas_pack_options po = {
+        .tile_content = o->tile_content, .max_edge = 1u << 24, .gutter = o->gutter};
+    struct vt_atlas_pack_stats st;
+    struct vts_error e = {0};
+    uint64_t area = vt_atlas_pack(r, ng, &po, &st, &e) ? 0 : (uint64_t)st.width * st.height;
+    free(r);
+    return area;
+}
+
 int vt_atlas_place(const struct vt_atlas_scene *scene, const struct vt_atlas_place_options *o,
                    struct vt_layout *layout, struct vt_atlas_place_report *report,
                    struct vts_error *err)
+{
+    return vt_atlas_place_choices(scene, o, layout, report, NULL, err);
+}
+
+int vt_atlas_place_choices(const struct vt_atlas_scene *scene,
+                           const struct vt_atlas_place_options *o, struct vt_layout *layout,
+                           struct vt_atlas_place_report *report,
+                           struct vt_atlas_place_choice *choices, struct vts_error *err)
 {
     memset(layout, 0, sizeof *layout);
     memset(report, 0, sizeof *report);
@@ -528,18 +640,45 @@ int vt_atlas_place(const struct vt_atlas_scene *scene, const struct vt_atlas_pla
     if (rc)
         goto out;
     report->materials = n;
+    for (uint32_t i = 0; i < n; i++) {
+        report->charts += scene->materials[i].charts;
+        report->moved_charts += scene->materials[i].moved_charts;
+    }
     for (uint32_t i = 0; i < ng; i++) {
-        const struct sizing *g = &groups[i].z;
-        rects[i].width = g->w * g->repeat_u;
-        rects[i].height = g->h * g->repeat_v;
+        struct group *gr = &groups[i];
+        struct sizing *g = &gr->z;
+        if (!grid)
+            set_crop(g, gr->has_uv && gr->umax >= gr->umin, gr->umin, gr->umax, gr->vmin, gr->vmax);
+        else
+            set_crop(g, false, 0, 0, 0, 0);
+        rects[i].width = g->crop_w;
+        rects[i].height = g->crop_h;
         report->scaled += g->scale != 1;
         report->replicated += g->repeat_u * g->repeat_v > 1;
         report->constant += !g->textured;
-        if (groups[i].count > 1) {
-            report->shared += groups[i].count;
+        report->split += g->wrap;
+        report->fit += g->textured && !g->wrap && g->repeat_u * g->repeat_v == 1;
+        report->cropped +=
+            (uint64_t)g->crop_w * g->crop_h < (uint64_t)g->w * g->repeat_u * g->h * g->repeat_v;
+        if (gr->count > 1) {
+            report->shared += gr->count;
             report->shared_cells++;
         }
+        if (choices)
+            for (uint32_t mi = gr->first; mi != NO_GROUP; mi = next_member[mi])
+                choices[mi] = (struct vt_atlas_place_choice){.how = !g->textured ? "constant"
+                                                                    : g->wrap    ? "split"
+                                                                    : g->repeat_u * g->repeat_v > 1
+                                                                        ? "replicate"
+                                                                        : "fit",
+                                                             .entry = i,
+                                                             .repeat_u = g->repeat_u,
+                                                             .repeat_v = g->repeat_v,
+                                                             .crop_width = g->crop_w,
+                                                             .crop_height = g->crop_h};
     }
+    if (!grid && report->cropped)
+        report->whole_area = whole_area(groups, ng, o);
     if (grid) {
         rects[0].width = z[0].w * o->grid_cols;
         rects[0].height = z[0].h * o->grid_rows;

@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 
 #include "internal/vt_strmap.h"
+#include "vt_chart.h"
 #include "vt_checked.h"
 #include "vt_error.h"
 #include "vt_obj.h"
@@ -86,7 +87,7 @@ static int missing_texture(const char *path, const char *where, int e,
     if (!o->missing_skip || e != ENOENT)
         return vt_error_set(err, VTS_ERR_IO, "%s", msg);
     if (o->warn) {
-        strncat(msg, " (skipped)", sizeof msg - strlen(msg) - 1);
+        strncat(msg, " (skipped: the material's constant)", sizeof msg - strlen(msg) - 1);
         o->warn(o->warn_user, msg);
     }
     *index = -1;
@@ -180,8 +181,8 @@ static int add_material(struct vt_atlas_scene *s, const char *name, uint32_t *in
     }
     for (unsigned k = 0; k < VT_ATLAS_KIND_COUNT; k++)
         m->texture[k] = -1;
-    m->umin = m->vmin = INFINITY;
-    m->umax = m->vmax = -INFINITY;
+    m->umin = m->vmin = m->raw_umin = m->raw_vmin = INFINITY;
+    m->umax = m->vmax = m->raw_umax = m->raw_vmax = -INFINITY;
     *index = s->material_count++;
     return 0;
 }
@@ -199,7 +200,99 @@ struct obj_ctx {
     const char *last_name;
     bool have_last;
     uint32_t first_new; /* materials from here on were first used by this OBJ */
+    /* the OBJ's faces with a material, for the charts (vt_chart.h) */
+    uint64_t *face_start; /* face_count + 1 */
+    uint32_t *corner_pos, *corner_tex, *face_group;
+    uint32_t face_count;
+    size_t face_cap, start_cap, corner_cap, tex_cap;
+    uint64_t corner_count;
 };
+
+/* Keeps face f (material index mat) for the charts. */
+static int keep_face(struct obj_ctx *c, const struct vt_obj_face *f, uint32_t mat,
+                     struct vts_error *err)
+{
+    size_t corners;
+    if (c->face_count == UINT32_MAX - 1 ||
+        !vt_size_add((size_t)c->corner_count, f->corner_count, &corners))
+        return vt_error_set(err, VTS_ERR_LIMIT, "'%s':%llu: too many faces", c->obj_path,
+                            (unsigned long long)f->line);
+    if (grow((void **)&c->face_group, &c->face_cap, (size_t)c->face_count + 1,
+             sizeof *c->face_group) ||
+        grow((void **)&c->face_start, &c->start_cap, (size_t)c->face_count + 2,
+             sizeof *c->face_start) ||
+        grow((void **)&c->corner_pos, &c->corner_cap, corners, sizeof *c->corner_pos) ||
+        grow((void **)&c->corner_tex, &c->tex_cap, corners, sizeof *c->corner_tex))
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the faces of '%s'", c->obj_path);
+    if (c->face_count == 0)
+        c->face_start[0] = 0;
+    for (uint32_t i = 0; i < f->corner_count; i++) {
+        c->corner_pos[c->corner_count + i] = f->corners[i].v;
+        c->corner_tex[c->corner_count + i] =
+            f->corners[i].vt == VT_OBJ_NONE ? VT_CHART_NONE : f->corners[i].vt;
+    }
+    c->corner_count = corners;
+    c->face_group[c->face_count++] = mat;
+    c->face_start[c->face_count] = c->corner_count;
+    return 0;
+}
+
+/* The charts of the OBJ's faces: each material's box becomes the union of its charts' boxes,
+ * each moved by whole repeats to start in [0,1). */
+static int chart_faces(struct obj_ctx *c, const struct vt_obj *obj, struct vts_error *err)
+{
+    if (c->face_count == 0)
+        return 0;
+    uint32_t nt = vt_obj_texcoord_count(obj), nc = 0;
+    const double *t3 = vt_obj_texcoords(obj);
+    size_t uv_bytes;
+    if (!vt_size_mul3(nt ? nt : 1, 2, sizeof(double), &uv_bytes))
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the charts of '%s'",
+                            c->obj_path);
+    double *uv = malloc(uv_bytes);
+    uint32_t *chart = malloc((size_t)c->face_count * sizeof *chart);
+    struct vt_chart_box *boxes = NULL;
+    int rc = 0;
+    if (!uv || !chart) {
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the charts of '%s'", c->obj_path);
+        goto out;
+    }
+    for (uint32_t i = 0; i < nt; i++) {
+        uv[2 * (size_t)i] = t3[3 * (size_t)i];
+        uv[2 * (size_t)i + 1] = t3[3 * (size_t)i + 1];
+    }
+    struct vt_chart_mesh m = {.face_count = c->face_count,
+                              .face_start = c->face_start,
+                              .pos = c->corner_pos,
+                              .tex = c->corner_tex,
+                              .group = c->face_group,
+                              .uv = uv,
+                              .position_count = vt_obj_position_count(obj),
+                              .texcoord_count = nt};
+    if ((rc = vt_chart_label(&m, chart, &nc, err)) != 0)
+        goto out;
+    boxes = malloc((nc ? nc : 1) * sizeof *boxes);
+    if (!boxes) {
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the charts of '%s'", c->obj_path);
+        goto out;
+    }
+    vt_chart_boxes(&m, chart, nc, boxes);
+    for (uint32_t i = 0; i < nc; i++) {
+        const struct vt_chart_box *b = &boxes[i];
+        struct vt_atlas_material *mt = &c->scene->materials[b->group];
+        mt->umin = fmin(mt->umin, b->umin + b->du);
+        mt->umax = fmax(mt->umax, b->umax + b->du);
+        mt->vmin = fmin(mt->vmin, b->vmin + b->dv);
+        mt->vmax = fmax(mt->vmax, b->vmax + b->dv);
+        mt->charts++;
+        mt->moved_charts += b->du != 0 || b->dv != 0;
+    }
+out:
+    free(uv);
+    free(chart);
+    free(boxes);
+    return rc;
+}
 
 static int on_mtllib(void *user, const struct vt_obj *obj, const char *mtl_path, uint64_t line,
                      struct vts_error *err)
@@ -274,13 +367,14 @@ static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_fac
             continue;
         }
         m->has_uv = true;
-        m->umin = fmin(m->umin, uv[3 * t]);
-        m->umax = fmax(m->umax, uv[3 * t]);
-        m->vmin = fmin(m->vmin, uv[3 * t + 1]);
-        m->vmax = fmax(m->vmax, uv[3 * t + 1]);
+        m->raw_umin = fmin(m->raw_umin, uv[3 * t]);
+        m->raw_umax = fmax(m->raw_umax, uv[3 * t]);
+        m->raw_vmin = fmin(m->raw_vmin, uv[3 * t + 1]);
+        m->raw_vmax = fmax(m->raw_vmax, uv[3 * t + 1]);
     }
-    if (!all_uv)
-        return 0;
+    int rc = keep_face(c, f, c->last, err);
+    if (rc || !all_uv)
+        return rc;
     for (uint32_t i = 1; i + 1 < f->corner_count; i++) {
         const struct vt_obj_corner *a = &f->corners[0], *b = &f->corners[i],
                                    *d = &f->corners[i + 1];
@@ -376,6 +470,8 @@ int vt_atlas_scene_scan_obj(struct vt_atlas_scene *scene, const char *obj_path,
     int rc = add_dep(scene, obj_path, &c.obj_path, err);
     if (!rc)
         rc = vt_obj_read(obj, obj_path, &cb, err);
+    if (!rc)
+        rc = chart_faces(&c, obj, err);
     for (uint32_t i = c.first_new; !rc && i < scene->material_count; i++)
         rc = resolve_material(&c, &scene->materials[i], err);
     vt_obj_destroy(obj);
@@ -385,6 +481,10 @@ int vt_atlas_scene_scan_obj(struct vt_atlas_scene *scene, const char *obj_path,
     }
     free(c.mtls);
     free(c.mtl_paths);
+    free(c.face_start);
+    free(c.corner_pos);
+    free(c.corner_tex);
+    free(c.face_group);
     return rc;
 }
 

@@ -32,7 +32,13 @@ struct vt_atlas_material {
     double fill[VT_ATLAS_KIND_COUNT][4];  /* constant of each layer when it has no texture */
     int32_t texture[VT_ATLAS_KIND_COUNT]; /* index into textures (one per file), or -1 */
     bool has_uv;                          /* some face corner has a texcoord */
-    double umin, umax, vmin, vmax;        /* texcoord range of its faces */
+    double umin, umax, vmin, vmax;        /* union of its charts' texcoord boxes, each chart
+                                             moved by whole repeats to start in [0,1)
+                                             (lib/chart/vt_chart.h): what the atlas must hold */
+    double raw_umin, raw_umax;            /* texcoord range of its faces as written (for */
+    double raw_vmin, raw_vmax;            /* messages) */
+    uint32_t charts;                      /* charts of its faces (over every OBJ) */
+    uint32_t moved_charts;                /* of those, charts moved by a non-zero repeat */
     double uv_area, world_area;           /* summed over its triangles with texcoords */
 };
 

@@ -29,6 +29,11 @@ int main(int argc, char **argv)
                e->cell_width, e->cell_height);
         if (e->cell_left || e->cell_top)
             printf(" at %u,%u", vt_layout_cell_x(e), vt_layout_cell_y(e));
+        if ((uint64_t)e->crop_width * e->crop_height <
+            (uint64_t)e->width * e->repeat_u * e->height * e->repeat_v)
+            printf(" crop %u,%u %ux%u", e->crop_x, e->crop_y, e->crop_width, e->crop_height);
+        if (e->wrap)
+            printf(" wrap");
         printf(" align %u scale %g group %u\n", e->alignment, e->scale, e->group);
         if (e->alias_count) { /* each alias must find this entry */
             printf("  aliases");

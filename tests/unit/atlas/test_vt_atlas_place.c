@@ -13,7 +13,8 @@ static char tex_a[] = "tex/a.png", tex_n[] = "tex/n.png", tex_c[] = "tex/c.png";
 static char id_a[] = "1:1", id_n[] = "1:2", id_c[] = "1:3";
 
 /* A material named name with the given diffuse and normal textures (-1: none), UVs in
- * [u0,u1] x [v0,v1] and the fills of an MTL without constants. */
+ * [u0,u1] x [v0,v1] once its charts are moved by whole repeats (u0, v0 in [0,1)) and the fills of
+ * an MTL without constants. */
 static struct vt_atlas_material material(char *name, int32_t diffuse, int32_t normal, double u0,
                                          double u1, double v0, double v1)
 {
@@ -25,6 +26,11 @@ static struct vt_atlas_material material(char *name, int32_t diffuse, int32_t no
                                   .umax = u1,
                                   .vmin = v0,
                                   .vmax = v1,
+                                  .raw_umin = u0 - 1, /* as written: one repeat lower */
+                                  .raw_umax = u1 - 1,
+                                  .raw_vmin = v0,
+                                  .raw_vmax = v1,
+                                  .first_line = 7,
                                   .uv_area = 1,
                                   .world_area = 1};
     for (unsigned k = 0; k < VT_ATLAS_KIND_COUNT; k++) {
@@ -58,13 +64,14 @@ static void check_valid(struct vt_layout *l)
     VT_CHECK_STR_EQ(err.message, "");
 }
 
-/* red and alias: one file, no other layer -> one entry; blue wraps; plain is a constant. */
+/* red and alias: one file, no other layer -> one entry; blue wraps (charts moved to u 0..2,
+ * v 0..3); plain is a constant. */
 static void place_shares_entries_and_copies_wrapped_uvs(void)
 {
     struct vt_atlas_texture textures[] = {{tex_a, id_a, 128, 64, 3}, {tex_n, id_n, 256, 256, 3}};
     char red[] = "red", alias[] = "alias", blue[] = "blue", plain[] = "plain";
     struct vt_atlas_material materials[] = {
-        material(red, 0, -1, 0, 1, 0, 1), material(blue, 0, 1, -1, 1, 0, 3),
+        material(red, 0, -1, 0, 1, 0, 1), material(blue, 0, 1, 0, 2, 0, 3),
         material(plain, -1, -1, 0, 1, 0, 1), material(alias, 0, -1, 0.25, 0.75, 0, 1)};
     materials[2].fill[VT_ATLAS_DIFFUSE][0] = 0.2;
     struct vt_atlas_scene scene = {
@@ -74,20 +81,40 @@ static void place_shares_entries_and_copies_wrapped_uvs(void)
     struct vt_atlas_place_report r;
     struct vts_error err = {0};
 
+    o.wrap = VT_ATLAS_WRAP_REPORT;
     VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), VTS_ERR_BAD_INPUT);
-    VT_CHECK_STR_EQ(err.message, "'scene.obj': material 'blue' uses u -1..1, v 0..3 outside [0,1]: "
-                                 "use --wrap replicate");
+    VT_CHECK_STR_EQ(err.message,
+                    "'scene.obj':7: material 'blue' (u -1..1, v 0..3) has charts that leave one "
+                    "copy of its texture (u 0..2, v 0..3 moved by whole repeats): use --wrap "
+                    "auto, replicate or split");
     vt_layout_release(&l);
 
-    o.wrap_replicate = true;
+    o.wrap = VT_ATLAS_WRAP_REPLICATE;
     o.max_repeat = 2;
     VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), VTS_ERR_LIMIT);
-    VT_CHECK_STR_EQ(err.message,
-                    "'scene.obj': material 'blue' uses u -1..1, v 0..3: more than --max-repeat 2 "
-                    "copies");
+    VT_CHECK_STR_EQ(err.message, "'scene.obj':7: material 'blue' needs more than --max-repeat 2 "
+                                 "copies (charts moved by whole repeats cover u 0..2, v 0..3): "
+                                 "use --wrap auto or split");
     vt_layout_release(&l);
 
+    /* auto: 2 x 3 copies cost 6 textures, more than VT_ATLAS_REPLICATE_MAX_AREA: split */
+    o.wrap = VT_ATLAS_WRAP_AUTO;
     o.max_repeat = 16;
+    err = (struct vts_error){0};
+    VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), 0);
+    VT_CHECK_INT_EQ(r.split, 1);
+    VT_CHECK_INT_EQ(r.replicated, 0);
+    if (l.entry_count == 3) {
+        VT_CHECK(l.entries[1].wrap);
+        VT_CHECK_INT_EQ(l.entries[1].repeat_u, 1);
+        VT_CHECK_INT_EQ(l.entries[1].repeat_v, 1);
+        VT_CHECK_INT_EQ(l.entries[1].crop_width, 256);
+        VT_CHECK(!l.entries[0].wrap);
+        check_valid(&l);
+    }
+    vt_layout_release(&l);
+
+    o.wrap = VT_ATLAS_WRAP_REPLICATE;
     err = (struct vts_error){0};
     VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), 0);
     VT_CHECK_STR_EQ(err.message, "");
@@ -119,13 +146,59 @@ static void place_shares_entries_and_copies_wrapped_uvs(void)
         VT_CHECK_INT_EQ(e1->width, 256); /* its largest texture */
         VT_CHECK_INT_EQ(e1->repeat_u, 2);
         VT_CHECK_INT_EQ(e1->repeat_v, 3);
-        VT_CHECK_INT_EQ(e1->origin_u, -1);
+        VT_CHECK_INT_EQ(e1->origin_u, 0);
         VT_CHECK_INT_EQ(e1->origin_v, 0);
+        VT_CHECK(!e1->wrap);
+        VT_CHECK_INT_EQ(e1->crop_width, 512); /* the whole block: u 0..2 */
+        VT_CHECK_INT_EQ(e1->crop_height, 768);
         VT_CHECK_STR_EQ(e1->textures[1].path, "../tex/n.png");
         VT_CHECK_INT_EQ(e1->textures[1].width, 256);
         VT_CHECK_STR_EQ(e2->name, "plain");
         VT_CHECK_INT_EQ(e2->width, 4);
         VT_CHECK(e2->textures[0].path == NULL && e2->textures[0].fill[0] == 0.2);
+        check_valid(&l);
+    }
+    vt_layout_release(&l);
+}
+
+/* A texture used in its left half (u 0..0.5) and a chart repeating 1.5 times (u 0.25..1.75):
+ * each entry holds only the texels its charts use, plus VT_ATLAS_CROP_MARGIN, aligned to
+ * VT_ATLAS_CROP_ALIGN; the summary compares with whole textures. */
+static void place_crops_to_the_texels_used(void)
+{
+    struct vt_atlas_texture textures[] = {{tex_a, id_a, 1024, 1024, 3}, {tex_n, id_n, 256, 256, 3}};
+    char half[] = "half", rep[] = "rep";
+    struct vt_atlas_material materials[] = {material(half, 0, -1, 0, 0.5, 0, 1),
+                                            material(rep, 1, -1, 0.25, 1.75, 0.5, 0.75)};
+    struct vt_atlas_scene scene = {
+        .materials = materials, .material_count = 2, .textures = textures, .texture_count = 2};
+    struct vt_atlas_place_options o = place_options();
+    struct vt_layout l;
+    struct vt_atlas_place_report r;
+    struct vts_error err = {0};
+    VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), 0);
+    VT_CHECK_STR_EQ(err.message, "");
+    VT_CHECK_INT_EQ(r.cropped, 2);
+    VT_CHECK_INT_EQ(r.replicated, 1);
+    VT_CHECK_INT_EQ(r.fit, 1);
+    VT_CHECK(r.whole_area > (uint64_t)l.width * l.height); /* 18 tiles of 256^2 against 14 */
+    printf("cropped atlas %ux%u, whole textures %llu texels\n", l.width, l.height,
+           (unsigned long long)r.whole_area);
+    if (l.entry_count == 2) {
+        const struct vt_layout_entry *h = &l.entries[0], *p = &l.entries[1];
+        VT_CHECK_INT_EQ(h->crop_x, 0);
+        VT_CHECK_INT_EQ(h->crop_width, 520); /* 512 + 4, aligned to 8 */
+        VT_CHECK_INT_EQ(h->crop_y, 0);
+        VT_CHECK_INT_EQ(h->crop_height, 1024);
+        VT_CHECK_INT_EQ(p->repeat_u, 2);
+        VT_CHECK_INT_EQ(p->crop_x, 56);      /* texel 64, minus 4, aligned down to 8 */
+        VT_CHECK_INT_EQ(p->crop_width, 400); /* to texel 448 + 4, aligned up to 456 */
+        VT_CHECK_INT_EQ(p->crop_y, 56);      /* rows from the top: v 0.75 is row 64 */
+        VT_CHECK_INT_EQ(p->crop_height, 80); /* to row 128 + 4, aligned up to 136 */
+        double au, av;
+        vt_layout_map_uv(&l, p, 0.25, 0.75, &au, &av); /* the used region's top-left corner */
+        VT_CHECK(fabs(au * l.width - (p->x + 8)) < 1e-9);
+        VT_CHECK(fabs((1 - av) * l.height - (p->y + 8)) < 1e-9);
         check_valid(&l);
     }
     vt_layout_release(&l);
@@ -239,6 +312,7 @@ static void place_makes_paths_relative_to_the_output(void)
 int main(void)
 {
     VT_RUN(place_shares_entries_and_copies_wrapped_uvs);
+    VT_RUN(place_crops_to_the_texels_used);
     VT_RUN(place_evens_out_texel_density);
     VT_RUN(place_lays_grid_pieces_edge_to_edge);
     VT_RUN(place_makes_paths_relative_to_the_output);

@@ -169,9 +169,15 @@ static void scene_shares_files_and_measures_uvs(void)
              blue->fill[VT_ATLAS_SPECULAR][2] == 0.5);
     VT_CHECK(red->fill[VT_ATLAS_NORMAL][0] == 0.5 && red->fill[VT_ATLAS_NORMAL][2] == 1);
     /* UV ranges and areas. */
-    VT_CHECK(blue->has_uv && blue->umin == -1 && blue->umax == 1 && blue->vmin == 0 &&
-             blue->vmax == 3);
+    VT_CHECK(blue->has_uv && blue->raw_umin == -1 && blue->raw_umax == 1 && blue->raw_vmin == 0 &&
+             blue->raw_vmax == 3);
+    /* one chart, moved by one repeat in u: u 0..2, v 0..3 */
+    VT_CHECK(blue->umin == 0 && blue->umax == 2 && blue->vmin == 0 && blue->vmax == 3);
+    VT_CHECK_INT_EQ(blue->charts, 1);
+    VT_CHECK_INT_EQ(blue->moved_charts, 1);
     VT_CHECK(red->umin == 0 && red->umax == 1 && red->vmin == 0 && red->vmax == 1);
+    VT_CHECK_INT_EQ(red->charts, 1); /* its two faces share vt 1, 2 and 3 */
+    VT_CHECK_INT_EQ(red->moved_charts, 0);
     VT_CHECK(fabs(red->world_area - 6) < 1e-12 && fabs(red->uv_area - 1.5) < 1e-12);
     /* An undefined material: grey, one warning naming the OBJ line of its first face. */
     VT_CHECK(!nowhere->defined && nowhere->fill[VT_ATLAS_DIFFUSE][0] == 0.8);
@@ -212,8 +218,9 @@ static void scene_missing_texture_fails_or_is_skipped(void)
     err = (struct vts_error){0};
     VT_CHECK_INT_EQ(vt_atlas_scene_scan_obj(&s, "scene.obj", &o, &err), 0);
     VT_CHECK_INT_EQ(w.count, 1);
-    VT_CHECK_STR_EQ(
-        w.last, "'scene.mtl':16: map_Kd 'tex/missing.png': No such file or directory (skipped)");
+    VT_CHECK_STR_EQ(w.last,
+                    "'scene.mtl':16: map_Kd 'tex/missing.png': No such file or directory (skipped: "
+                    "the material's constant)");
     VT_CHECK_INT_EQ(s.material_count, 2);
     VT_CHECK_INT_EQ(s.texture_count, 1);
     if (s.material_count == 2) {
