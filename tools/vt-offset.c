@@ -1,6 +1,7 @@
 /* vt-offset: rewrites the texture coordinates of an OBJ scene onto the atlas of a layout
  * (atlas.json), writing OUT.obj and OUT.mtl with one material that names the store. Reference:
  * docs/cli/vt-offset.md; the engine is lib/offset/vt_offset.c. */
+#include <errno.h>
 #include <limits.h>
 #include <stdlib.h>
 #include <string.h>
@@ -207,6 +208,10 @@ static int add_mtllibs(struct path_list *l, const char *obj_path)
         for (char *tok = strtok(s, " \t"); tok && rc == 0; tok = strtok(NULL, " \t"))
             rc = path_list_add(l, vt_obj_resolve_path(obj_path, tok));
     }
+    if (rc == 0 && ferror(f)) { /* a read error is not the end of the file */
+        vt_log(VT_LOG_ERROR, "cannot read '%s': %s", obj_path, strerror(errno));
+        rc = 1;
+    }
     free(line);
     fclose(f);
     return rc;
@@ -220,10 +225,15 @@ static int check_outputs(const struct options *o, const char *mtl_path)
     struct path_list l = {0};
     int status = VT_EXIT_BAD_INPUT;
     if (path_list_add(&l, strdup(o->out_path)) || path_list_add(&l, strdup(o->obj_path)) ||
-        path_list_add(&l, strdup(o->layout_path)) || add_mtllibs(&l, o->obj_path)) {
+        path_list_add(&l, strdup(o->layout_path))) {
         vt_log(VT_LOG_ERROR, "out of memory");
         goto out;
     }
+    int rc = add_mtllibs(&l, o->obj_path);
+    if (rc < 0)
+        vt_log(VT_LOG_ERROR, "out of memory");
+    if (rc)
+        goto out;
     const char *const *inputs = (const char *const *)l.paths;
     if ((status = vt_check_output(o->out_path, inputs + 1, l.count - 1)) < 0)
         status = vt_check_output(mtl_path, inputs, l.count);
@@ -274,10 +284,20 @@ static void report(const struct options *o, const char *mtl_path, const struct v
 {
     vt_log(
         VT_LOG_WARN,
-        "wrote '%s' and '%s': %llu vt on the atlas (%llu duplicated for faces of other materials, %llu unused kept), %llu of %llu faces renumbered",
+        "wrote '%s' and '%s': %llu vt on the atlas (%llu duplicated for other materials or moves, %llu unused kept), %llu of %llu faces renumbered",
         o->out_path, mtl_path, (unsigned long long)s->vt_rewritten,
         (unsigned long long)s->vt_duplicated, (unsigned long long)s->vt_unused,
         (unsigned long long)s->faces_rewritten, (unsigned long long)s->faces);
+    if (s->charts_moved || s->faces_cut || s->faces_split)
+        vt_log(
+            VT_LOG_WARN,
+            "%llu charts (%llu moved by whole repeats); %llu faces cut on integer UV lines into %llu pieces, %llu faces split next to cuts: %llu faces added, %llu v, %llu vt, %llu vn appended",
+            (unsigned long long)s->charts, (unsigned long long)s->charts_moved,
+            (unsigned long long)s->faces_cut, (unsigned long long)s->pieces,
+            (unsigned long long)s->faces_split,
+            (unsigned long long)(s->faces_written - s->faces_cut - s->faces_split),
+            (unsigned long long)s->positions_added, (unsigned long long)s->vt_added,
+            (unsigned long long)s->vn_added);
     vt_log(
         VT_LOG_WARN,
         "worst round-off on the %ux%u atlas: %.2g texel as written (%u decimals), %.2g texel as float32",

@@ -9,7 +9,8 @@
  * statements that matter (vt, f, usemtl, mtllib) are checked with its rules and messages.
  *
  * Modules: vt_offset_src.c (raw logical lines), vt_offset_tok.c (tokens), vt_offset_run.c (state
- * shared by the passes, buffered output), vt_offset_scan.c (pass 1), vt_offset_write.c (pass 2);
+ * shared by the passes, buffered output), vt_offset_scan.c (pass 1), vt_offset_mesh.c (charts,
+ * moves, cuts and keys between the passes), vt_offset_write.c (pass 2);
  * this file holds the public functions and the driver. */
 #include "vt_offset.h"
 
@@ -19,6 +20,7 @@
 
 #include "internal/vt_offset_impl.h"
 #include "internal/vt_offset_src.h"
+#include "vt_chart.h"
 #include "vt_error.h"
 #include "vt_uv_text.h"
 
@@ -55,6 +57,7 @@ static int run_pass(struct vt_offset_run *r, const char *path, const void *mem, 
     const unsigned char *line = NULL;
     size_t n = 0;
     r->mat = VT_OFFSET_MAT_NONE;
+    r->mat_group = VT_CHART_NONE;
     while ((rc = vt_offset_src_next(&r->src, &line, &n, err)) == 1) {
         rc = pass == 1 ? vt_offset_scan_line(r, line, n, err)
                        : vt_offset_write_line(r, line, n, err);
@@ -63,7 +66,8 @@ static int run_pass(struct vt_offset_run *r, const char *path, const void *mem, 
     }
     if (rc == 0 && pass == 1)
         r->stats.lines = r->src.physical;
-    if (rc == 0 && pass == 2 && (r->in_vt != r->nvt || r->src.physical != r->stats.lines))
+    if (rc == 0 && pass == 2 &&
+        (r->in_vt != r->nvt || r->in_face != r->faces.count || r->src.physical != r->stats.lines))
         rc = vt_offset_run_changed_error(r, err);
     vt_offset_src_close(&r->src);
     return rc;
@@ -83,13 +87,14 @@ static int rewrite(const char *path, const void *mem, size_t size, const struct 
         return vt_error_set(err, VTS_ERR_ARG, "vt_offset_rewrite: bad arguments");
     struct vt_offset_run r = {0};
     r.layout = layout;
+    r.name = path;
     r.opt = opt;
     r.out = out;
     r.digits = opt->digits ? opt->digits : vt_offset_default_digits(layout);
     r.stats.digits = r.digits;
     int rc = run_pass(&r, path, mem, size, 1, err);
     if (rc == 0)
-        rc = vt_offset_scan_number_outputs(&r, err);
+        rc = vt_offset_mesh_resolve(&r, path, mem, size, err);
     if (rc == 0) {
         r.obuf = malloc(VT_OFFSET_OUT_CHUNK);
         if (!r.obuf)
@@ -110,6 +115,7 @@ static int rewrite(const char *path, const void *mem, size_t size, const struct 
         rc = vt_offset_run_flush(&r, err);
     if (rc == 0 && stats)
         *stats = r.stats;
+    vt_offset_mesh_release(&r);
     free(r.uv);
     free(r.first);
     free(r.head);

@@ -1,19 +1,28 @@
 /* The texture coordinate rewriter of vt-offset: puts the `vt` of an OBJ scene onto an atlas
- * (struct vt_layout) in double precision, streaming. Behaviour and reasons: docs/cli/vt-offset.md.
+ * (struct vt_layout) in double precision, streaming the text. Behaviour and reasons:
+ * docs/cli/vt-offset.md and docs/real-scenes.md.
  *
- * Two passes over the OBJ text. Pass 1 counts v/vn, parses every `vt` and every face, checks each
- * index, the material of each face that has texture coordinates (it must be in the layout) and
- * that each coordinate lies in the UV range its material covers, and records for every `vt` the
- * materials of the faces that use it. Pass 2 copies the text line by line:
- *   - a `vt` used by faces is replaced by its atlas coordinate for the first material that uses
- *     it, and one more `vt` line follows it for each other material (so indices stay backward);
- *     a `vt` no face uses is copied unchanged;
- *   - `f` (and `l`) lines whose texture indices change are rewritten with the new indices, in the
- *     same style (positive or negative), the position and normal parts untouched;
+ * Pass 1 counts v/vn, parses every `vt` and every face, checks each index and the material of
+ * each face that has texture coordinates (it must be in the layout), and keeps the faces' indices.
+ * Then (lib/chart) the faces of each material are grouped into charts, as vt-atlas groups them,
+ * and each chart is moved by whole repeats so that its UV box starts in [0,1); on a "wrap" entry
+ * every face crossing an integer UV line is cut there, each piece moved into [0,1], and the faces
+ * next to a cut get its points as extra corners (no T-junctions). Every written coordinate is
+ * checked against the UV range its entry covers. When there are cuts, one more pass reads the v
+ * and vn that new vertices interpolate. Pass 2 copies the text line by line:
+ *   - a `vt` used by kept faces is replaced by its atlas coordinate for the first (entry, move)
+ *     that uses it, and one more `vt` line follows it for each other (entry, move) (so indices
+ *     stay backward); a `vt` no kept face uses is copied unchanged;
+ *   - `f` (and `l`) lines whose indices change are rewritten with the new indices, in the same
+ *     style (positive or negative); position and normal indices change only when new lines were
+ *     inserted before their lines;
+ *   - a cut or split face is replaced by the new `v` lines it is the first to use, one `vn` and
+ *     one `vt` per corner of its pieces, and one `f` line per piece (positive indices);
  *   - `usemtl X` becomes `usemtl <material>`; the first `mtllib` names the new MTL, later ones are
  *     turned into comments ("# " before them); without any, an mtllib line is written first;
  *   - every other line is copied byte for byte, CRLF and '\' continuations included.
- * Memory: about 28 bytes per `vt` plus 8 per extra material of a shared one; never the text. */
+ * Memory: about 28 bytes per `vt` plus 8 per extra copy, 24 bytes per face and 12 per face
+ * corner (the charts), 8 per v and vn when faces are cut; never the text. */
 #ifndef VT_OFFSET_H
 #define VT_OFFSET_H
 
@@ -64,6 +73,15 @@ struct vt_offset_stats {
     uint64_t faces;            /* f statements */
     uint64_t faces_rewritten;  /* f and l statements whose texture indices changed */
     uint64_t faces_without_vt; /* f statements without any texture index (copied unchanged) */
+    uint64_t charts;           /* charts of the faces with texcoords (lib/chart) */
+    uint64_t charts_moved;     /* of those, moved by whole repeats */
+    uint64_t faces_cut;        /* faces of wrap entries cut on integer UV lines */
+    uint64_t faces_split;      /* faces next to a cut that got the cut's points as corners */
+    uint64_t pieces;           /* faces written for the cut faces */
+    uint64_t faces_written;    /* f lines written for cut and split faces */
+    uint64_t positions_added;  /* v lines appended (points on cut edges and inside faces) */
+    uint64_t vt_added;         /* vt lines written for cut and split faces */
+    uint64_t vn_added;         /* vn lines written for cut and split faces */
     unsigned digits;           /* decimal places used */
     double max_error;     /* worst |written text read back as double - exact double|, in level-0
                              texels of the atlas (u errors times width, v errors times height) */

@@ -86,6 +86,25 @@ uint32_t vt_offset_run_material(const struct vt_offset_run *r, const char *name)
     return e ? (uint32_t)(e - r->layout->entries) : VT_OFFSET_MAT_MISSING;
 }
 
+uint32_t vt_offset_run_name_slot(const struct vt_offset_run *r, const char *name)
+{
+    const struct vt_layout *l = r->layout;
+    size_t lo = 0, hi = l->name_count;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        const struct vt_layout_name *n = &l->by_name[mid];
+        const struct vt_layout_entry *e = &l->entries[n->entry];
+        int c = strcmp(name, n->alias ? e->aliases[n->alias - 1] : e->name);
+        if (c == 0)
+            return (uint32_t)mid;
+        if (c < 0)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return VT_CHART_NONE;
+}
+
 /* True when every layer of e is a constant fill (a material without textures): its texture
  * coordinates do not matter, and every one is mapped to the centre of its cell so that bilinear
  * filtering never reaches the neighbouring cells. */

@@ -81,25 +81,8 @@ static int pass1_vt(struct vt_offset_run *r, const unsigned char *cur, const uns
     return 0;
 }
 
-/* Checks that vt i lies in what material m covers. */
-static int check_covered(struct vt_offset_run *r, uint32_t i, uint32_t m, struct vts_error *err)
-{
-    const struct vt_layout_entry *e = &r->layout->entries[m];
-    if (vt_offset_run_constant_entry(r->layout, e))
-        return 0;
-    double u = r->uv[2 * (size_t)i], v = r->uv[2 * (size_t)i + 1];
-    if (vt_layout_uv_covered(e, u, v))
-        return 0;
-    return vt_error_set(
-        err, VTS_ERR_BAD_INPUT,
-        "'%s':%llu: vt %lu (%.9g %.9g) is outside the UV range of material '%s' in '%s' (u %ld..%ld, v %ld..%ld)",
-        r->src.name, (unsigned long long)r->src.line, (unsigned long)i + 1, u, v, e->name,
-        r->opt->layout_name, (long)e->origin_u, (long)e->origin_u + (long)e->repeat_u,
-        (long)e->origin_v, (long)e->origin_v + (long)e->repeat_v);
-}
-
-/* Records that the current material uses vt i. */
-static int use_vt(struct vt_offset_run *r, uint32_t i, struct vts_error *err)
+/* A face corner with texcoords needs a material the layout has. */
+static int check_material(struct vt_offset_run *r, struct vts_error *err)
 {
     uint32_t m = r->mat;
     if (m == VT_OFFSET_MAT_NONE)
@@ -111,44 +94,12 @@ static int use_vt(struct vt_offset_run *r, uint32_t i, struct vts_error *err)
                             "'%s':%llu: material '%s' (usemtl on line %llu) is not in '%s'",
                             r->src.name, (unsigned long long)r->src.line, r->mat_name,
                             (unsigned long long)r->mat_line, r->opt->layout_name);
-    if (r->first[i] == m)
-        return 0;
-    if (r->first[i] == VT_OFFSET_NONE) {
-        int rc = check_covered(r, i, m, err);
-        if (rc == 0)
-            r->first[i] = m;
-        return rc;
-    }
-    uint32_t prev = VT_OFFSET_NONE;
-    for (uint32_t k = r->head[i]; k != VT_OFFSET_NONE; prev = k, k = r->extra[k].next)
-        if (r->extra[k].mat == m)
-            return 0;
-    int rc = check_covered(r, i, m, err);
-    if (rc < 0)
-        return rc;
-    if (r->extra_count == r->extra_cap) {
-        if (r->extra_cap >= UINT32_MAX / 2)
-            return vt_error_set(err, VTS_ERR_LIMIT, "'%s': too many shared texcoords", r->src.name);
-        uint32_t cap = r->extra_cap ? r->extra_cap * 2 : 256;
-        struct vt_offset_extra *grown = realloc(r->extra, (size_t)cap * sizeof *grown);
-        if (!grown)
-            return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory for shared texcoords",
-                                r->src.name);
-        r->extra = grown;
-        r->extra_cap = cap;
-    }
-    uint32_t at = r->extra_count++;
-    r->extra[at] = (struct vt_offset_extra){m, VT_OFFSET_NONE};
-    if (prev == VT_OFFSET_NONE)
-        r->head[i] = at;
-    else
-        r->extra[prev].next = at;
     return 0;
 }
 
-/* One face corner: v, v/vt, v//vn or v/vt/vn, checked like vt_obj; *vt gets the 0-based texture
- * index or VT_OFFSET_NONE. */
-static int pass1_corner(struct vt_offset_run *r, const struct vt_offset_tok *t, uint32_t *vt,
+/* One face corner: v, v/vt, v//vn or v/vt/vn, checked like vt_obj; out[0..2] get the 0-based
+ * position, texture and normal indices in out (VT_OFFSET_NONE when missing). */
+static int pass1_corner(struct vt_offset_run *r, const struct vt_offset_tok *t, uint32_t out[3],
                         struct vts_error *err)
 {
     static const char *const names[3] = {"vertex", "texture", "normal"};
@@ -156,7 +107,7 @@ static int pass1_corner(struct vt_offset_run *r, const struct vt_offset_tok *t, 
     const uint64_t counts[3] = {r->nv, r->nvt, r->nvn};
     char text[64];
     const unsigned char *s = t->s;
-    *vt = VT_OFFSET_NONE;
+    out[0] = out[1] = out[2] = VT_OFFSET_NONE;
     for (int kind = 0; kind < 3; kind++) {
         const unsigned char *e = memchr(s, '/', (size_t)(t->e - s));
         if (!e)
@@ -179,8 +130,7 @@ static int pass1_corner(struct vt_offset_run *r, const struct vt_offset_tok *t, 
                     "'%s':%llu: %s index %lld in '%s' out of range (%llu %s defined)", r->src.name,
                     (unsigned long long)r->src.line, names[kind], (long long)idx,
                     vt_offset_tok_text(t, text), (unsigned long long)counts[kind], plural[kind]);
-            if (kind == 1)
-                *vt = (uint32_t)abs_idx;
+            out[kind] = (uint32_t)abs_idx;
         }
         if (e == t->e)
             return 0;
@@ -194,19 +144,29 @@ static int pass1_face(struct vt_offset_run *r, const unsigned char *cur, const u
                       struct vts_error *err)
 {
     struct vt_offset_tok t;
-    uint64_t corners = 0;
+    uint32_t corners = 0;
     bool any_vt = false;
     while (vt_offset_tok_next(&cur, end, &t)) {
-        uint32_t vt;
-        int rc = pass1_corner(r, &t, &vt, err);
+        uint32_t idx[3];
+        int rc = pass1_corner(r, &t, idx, err);
         if (rc < 0)
             return rc;
-        if (vt != VT_OFFSET_NONE) {
+        if (idx[1] != VT_OFFSET_NONE && !any_vt) {
             any_vt = true;
-            rc = use_vt(r, vt, err);
-            if (rc < 0)
+            if ((rc = check_material(r, err)) < 0)
                 return rc;
         }
+        if (corners == r->corner_cap) {
+            uint32_t cap = r->corner_cap ? 2 * r->corner_cap : 64;
+            uint32_t *grown = cap > (1u << 28) ? NULL : realloc(r->corner, cap * 3 * sizeof *grown);
+            if (!grown)
+                return vt_error_set(err, VTS_ERR_NOMEM, "'%s':%llu: out of memory for a face",
+                                    r->src.name, (unsigned long long)r->src.line);
+            r->corner = grown;
+            r->corner_cap = cap;
+        }
+        for (int k = 0; k < 3; k++)
+            r->corner[3 * (size_t)corners + k] = idx[k];
         corners++;
     }
     if (corners < 3)
@@ -215,7 +175,7 @@ static int pass1_face(struct vt_offset_run *r, const unsigned char *cur, const u
     r->stats.faces++;
     if (!any_vt)
         r->stats.faces_without_vt++;
-    return 0;
+    return vt_offset_mesh_add_face(r, r->corner, corners, err);
 }
 
 int vt_offset_scan_line(struct vt_offset_run *r, const unsigned char *line, size_t n,
@@ -246,6 +206,7 @@ int vt_offset_scan_line(struct vt_offset_run *r, const unsigned char *line, size
         r->mat_name = copy;
         r->mat_line = r->src.line;
         r->mat = vt_offset_run_material(r, name);
+        r->mat_group = vt_offset_run_name_slot(r, name);
         return 0;
     }
     case VT_OFFSET_KW_MTLLIB: {
@@ -262,27 +223,4 @@ int vt_offset_scan_line(struct vt_offset_run *r, const unsigned char *line, size
     default:
         return 0;
     }
-}
-
-/* Output indices: vt i's first copy is new_index[i], its k-th extra material new_index[i] + k. */
-int vt_offset_scan_number_outputs(struct vt_offset_run *r, struct vts_error *err)
-{
-    size_t bytes;
-    if (!vt_size_mul((size_t)r->nvt + 1, sizeof(uint32_t), &bytes))
-        return vt_error_set(err, VTS_ERR_LIMIT, "'%s': too many texcoords", r->src.name);
-    r->new_index = malloc(bytes);
-    if (!r->new_index)
-        return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory for texcoords", r->src.name);
-    uint64_t next = 0;
-    for (uint32_t i = 0; i < r->nvt; i++) {
-        r->new_index[i] = (uint32_t)next;
-        next++;
-        for (uint32_t k = r->head[i]; k != VT_OFFSET_NONE; k = r->extra[k].next)
-            next++;
-        if (next > UINT32_MAX - 1)
-            return vt_error_set(err, VTS_ERR_LIMIT,
-                                "'%s': more than %lu texcoords once shared ones are duplicated",
-                                r->src.name, (unsigned long)UINT32_MAX - 1);
-    }
-    return 0;
 }

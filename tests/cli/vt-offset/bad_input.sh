@@ -6,7 +6,7 @@ printf 'v 0 0 0\nvt 0 0\nusemtl a\nf 1/1 1/1 1/1\n' >ok.obj
 printf 'v 0 0 0\nvt 0 0\nusemtl a\nf 1/1 1/2 1/1\n' >range.obj
 printf 'v 0 0 0\nvt 0.5 nan\nusemtl a\nf 1/1 1/1 1/1\n' >nan.obj
 printf 'v 0 0 0\nvt 0 0\nusemtl b\nf 1/1 1/1 1/1\n' >material.obj
-printf 'v 0 0 0\nvt 0 1.25\nusemtl a\nf 1/1 1/1 1/1\n' >outside.obj
+printf 'v 0 0 0\nvt 0 0.5\nvt 0 1.25\nusemtl a\nf 1/1 1/1 1/2\n' >outside.obj # one chart across v = 1
 printf 'v 0 0 0\nvt 0 0\nf 1/1 1/1 1/1\n' >nomaterial.obj
 while read -r args; do
   rc=0; "$VT_OFFSET" $args -o out.obj 2>&1 || rc=$?; echo "exit $rc: $args"

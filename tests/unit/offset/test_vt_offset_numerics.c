@@ -108,6 +108,53 @@ static void keeps_texel_precision_on_a_2_20_atlas(void)
     vt_layout_release(&l);
 }
 
+/* Charts 10^4 repeats away (u 10000.x, v -9999.x) are moved by whole repeats exactly: on a 2^20
+ * atlas every written coordinate is within 1e-3 texel of the exact mapping of the moved value;
+ * a chart straddling nothing keeps one copy of the texture. */
+static void moves_charts_of_ten_thousand_repeats_exactly(void)
+{
+    const uint32_t size = 1u << 20;
+    static const struct spec rects[] = {{"far", 300000, 500000, 4096, 4096, 1, 1, 0, 0}};
+    struct vt_layout l;
+    offset_fixture_layout(&l, size, size, rects, 1);
+    size_t cap = 1 << 20, len = 0;
+    char *text = malloc(cap);
+    len += (size_t)snprintf(text + len, cap - len, "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl far\n");
+    double us[300], vs[300];
+    int n = 0;
+    for (int c = 0; c < 100; c++) { /* 100 charts of one triangle, each at its own repeat */
+        double base_u = 10000 + c, base_v = -9999 - 2 * c;
+        for (int k = 0; k < 3; k++, n++) {
+            us[n] = base_u + (0.1 + 0.8 * ((c * 7 + k * 13) % 97) / 97.0);
+            vs[n] = base_v + (0.1 + 0.8 * ((c * 5 + k * 31) % 89) / 89.0);
+            len += (size_t)snprintf(text + len, cap - len, "vt %.17g %.17g\n", us[n], vs[n]);
+        }
+        len += (size_t)snprintf(text + len, cap - len, "f 1/-3 2/-2 3/-1\n");
+    }
+    VT_CHECK(len < cap);
+    struct membuf out;
+    struct vt_offset_stats s;
+    struct vts_error err = {0};
+    VT_CHECK_INT_EQ(offset_fixture_rewrite(text, &l, 0, &out, &s, &err), 0);
+    VT_CHECK_STR_EQ(err.message, "");
+    VT_CHECK_INT_EQ(s.charts, 100);
+    VT_CHECK_INT_EQ(s.charts_moved, 100);
+    VT_CHECK_INT_EQ(s.faces_cut, 0);
+    double worst = 0;
+    for (int i = 0; i < n; i++) {
+        double u, v, au, av;
+        VT_CHECK(offset_fixture_nth_vt(out.data, i, &u, &v));
+        double mu = us[i] - floor(us[i]), mv = vs[i] - floor(vs[i]); /* exact in double */
+        vt_layout_map_uv(&l, &l.entries[0], mu, mv, &au, &av);
+        worst = fmax(worst, fmax(fabs(u - au), fabs(v - av)) * size);
+    }
+    printf("10^4 repeats on a 2^20 atlas: worst error %.3g texel\n", worst);
+    VT_CHECK(worst < 1e-3);
+    free(out.data);
+    free(text);
+    vt_layout_release(&l);
+}
+
 /* Maps u to an atlas coordinate t texels from the left of a 2^23-wide atlas and returns the
  * rewriter's stats. */
 static struct vt_offset_stats stats_at_texel(double t)
@@ -186,10 +233,11 @@ static void rejects_bad_input_before_writing(void)
                                     "'s.obj':3: face with texture coordinates before any usemtl"));
     VT_CHECK(offset_fixture_expect_error(
         "v 0 0 0\nvt 0 0\nvt 1.5 0.25\nusemtl b\nf 1/1 1/1 1/2\n", &l, VTS_ERR_BAD_INPUT,
-        "'s.obj':5: vt 2 (1.5 0.25) is outside the UV range of material 'b' in 'atlas.json' (u 0..1, v 0..1)"));
+        "'s.obj':5: vt 2 (1.5 0.25) is outside the UV range of material 'b' in 'atlas.json' (u 0..1, v 0..1): rebuild the atlas from this OBJ"));
+    /* a chart one repeat down is moved (valid); one across v = 0 leaves the entry's one copy */
     VT_CHECK(offset_fixture_expect_error(
-        "v 0 0 0\nvt 0 -0.001\nusemtl a\nf 1/1 1/1 1/1\n", &l, VTS_ERR_BAD_INPUT,
-        "'s.obj':4: vt 1 (0 -0.001) is outside the UV range of material 'a' in 'atlas.json' (u 0..1, v 0..1)"));
+        "v 0 0 0\nvt 0 -0.001\nvt 0 0.5\nusemtl a\nf 1/1 1/1 1/2\n", &l, VTS_ERR_BAD_INPUT,
+        "'s.obj':5: vt 2 (0 0.5, moved by 0 1) is outside the UV range of material 'a' in 'atlas.json' (u 0..1, v 0..1): rebuild the atlas from this OBJ"));
     VT_CHECK(offset_fixture_expect_error("v 0 0 0\nf 1 1\n", &l, VTS_ERR_BAD_INPUT,
                                          "'s.obj':2: face with 2 corners (needs 3)"));
     VT_CHECK(offset_fixture_expect_error("v 0 0 0\nmtllib\n", &l, VTS_ERR_BAD_INPUT,
@@ -408,6 +456,7 @@ static void file_and_memory_agree(void)
 int main(void)
 {
     VT_RUN(keeps_texel_precision_on_a_2_20_atlas);
+    VT_RUN(moves_charts_of_ten_thousand_repeats_exactly);
     VT_RUN(warns_exactly_when_float32_loses_an_eighth_of_a_texel);
     VT_RUN(rejects_bad_input_before_writing);
     VT_RUN(random_scenes_agree_with_the_obj_reader);
