@@ -1,7 +1,8 @@
 /* The fuzz target's checks (tests/fuzz/fuzz_cut.c, compiled in with VT_FUZZ_NO_ENTRY) in every
  * build, not only the fuzzer's: on its seeds and kept findings (tests/data/fuzz/fuzz_cut/) and on
  * pseudo-random inputs from a fixed seed. A violated invariant aborts the test.
- * Usage: test_vt_cut_random [DIR] [COUNT] (defaults: the source tree's seeds, 2500 inputs). */
+ * Usage: test_vt_chart_cut_random [DIR] [COUNT] (defaults: the source tree's seeds, 2500
+ * inputs). */
 #include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
