@@ -1,7 +1,7 @@
 /* The fuzz target's checks (tests/fuzz/fuzz_cut.c, compiled in with VT_FUZZ_NO_ENTRY) in every
  * build, not only the fuzzer's: on its seeds and kept findings (tests/data/fuzz/fuzz_cut/) and on
  * pseudo-random inputs from a fixed seed. A violated invariant aborts the test.
- * Usage: test_vt_chart_cut_random [DIR] [COUNT] (defaults: the source tree's seeds, 2500
+ * Usage: test_vt_chart_cut_random [DIR] [COUNT] (defaults: the source tree's seeds, 1000
  * inputs). */
 #include <dirent.h>
 #include <stdio.h>
@@ -55,7 +55,7 @@ static uint64_t next_random(uint64_t *state)
 int main(int argc, char **argv)
 {
     const char *dir = argc > 1 ? argv[1] : VT_CUT_SEEDS_DIR;
-    long count = argc > 2 ? atol(argv[2]) : 2500;
+    long count = argc > 2 ? atol(argv[2]) : 1000;
     int files = replay_dir(dir);
     VT_CHECK(files >= 5);
     fprintf(stderr, "ok   %d seeds of %s\n", files, dir);
