@@ -47,8 +47,9 @@ struct vt_chart_mesh {
 /* Labels every face with its chart (chart[f], numbered 0.. in order of each chart's first face;
  * VT_CHART_NONE for faces in no chart) and sets *chart_count (0 on failure). Returns 0,
  * VTS_ERR_NOMEM or VTS_ERR_LIMIT (more than 2^32 - 2 charts), with err filled. Deterministic.
- * Memory: 4 bytes per face and hash tables of about 16 bytes per texcoord corner and 75 bytes per
- * edge with texcoords at both ends (released before it returns). Thread-safe (no shared state). */
+ * Memory (released before it returns): 4 bytes per face, and hash tables, 3/8 to 3/4 full, of
+ * 16-byte slots for the distinct (texcoord, group) pairs and 56-byte slots for the distinct edges
+ * with texcoords at both ends. Thread-safe (no shared state). */
 int vt_chart_label(const struct vt_chart_mesh *m, uint32_t *chart, uint32_t *chart_count,
                    struct vts_error *err);
 

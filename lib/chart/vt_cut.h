@@ -86,8 +86,9 @@ struct vt_cut_result {
  * or VTS_ERR_LIMIT (more than 2^32 - 1 - position_count new positions, a wrap face spanning more
  * than 2^20 cells, or a wrap face's moved texcoord that is not finite or beyond 2^52 in
  * magnitude), with err filled. Deterministic; thread-safe (no shared state). Time about
- * O(corners + new corners x log(cells per face)); memory: the result and tables of about 40 bytes
- * per new edge point. */
+ * O(corners + new corners x log(cells per face)). Memory: the result (64 bytes per output corner,
+ * 48 per new position) and, while it runs, 16 bytes per edge crossing and hash tables of the cut
+ * edges and grid points. */
 int vt_cut(const struct vt_chart_mesh *m, const uint8_t *wrap, const double *shift,
            struct vt_cut_result *r, struct vts_error *err);
 
