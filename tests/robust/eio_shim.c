@@ -84,7 +84,7 @@ __attribute__((constructor)) static void shim_start(void)
     init();
 }
 
-static void log_line(int fd, const char *fmt, ...)
+__attribute__((format(printf, 2, 3))) static void log_line(int fd, const char *fmt, ...)
 {
     char buf[4200];
     va_list ap;
