@@ -86,7 +86,9 @@ struct sizing {
     uint32_t w, h;               /* one copy in the atlas */
     uint32_t repeat_u, repeat_v; /* copies */
     int32_t origin_u, origin_v;
-    bool wrap;                               /* one copy that wraps (vt-offset cuts the faces) */
+    bool split; /* the split choice: vt-offset cuts the faces */
+    bool wrap;  /* one copy that wraps: split, or a fit entry holding the whole texture of a
+                   material that repeats */
     uint32_t crop_x, crop_y, crop_w, crop_h; /* texels of the block of copies the entry holds */
 };
 
@@ -137,7 +139,7 @@ static void set_choice(struct sizing *z, enum choice c, uint32_t ru, uint32_t rv
     z->repeat_u = ru;
     z->repeat_v = rv;
     z->origin_u = z->origin_v = 0;
-    z->wrap = c == CHOICE_SPLIT;
+    z->split = z->wrap = c == CHOICE_SPLIT;
 }
 
 static int check_wrap(const struct vt_atlas_material *m, const struct vt_atlas_place_options *o,
@@ -651,13 +653,22 @@ int vt_atlas_place_choices(const struct vt_atlas_scene *scene,
             set_crop(g, gr->has_uv && gr->umax >= gr->umin, gr->umin, gr->umax, gr->vmin, gr->vmax);
         else
             set_crop(g, false, 0, 0, 0, 0);
+        /* A fit entry that holds its whole texture wraps too, as the material's texture does
+         * in an engine (MTL maps repeat unless -clamp on): filtering at the texture's edge reads
+         * the opposite edge, not a copy of the edge itself. */
+        bool clamp = false;
+        for (uint32_t mi = gr->first; mi != NO_GROUP; mi = next_member[mi])
+            clamp |= scene->materials[mi].clamp;
+        if (!grid && g->textured && gr->has_uv && !g->wrap && !clamp && g->repeat_u == 1 &&
+            g->repeat_v == 1 && g->crop_w == g->w && g->crop_h == g->h)
+            g->wrap = true;
         rects[i].width = g->crop_w;
         rects[i].height = g->crop_h;
         report->scaled += g->scale != 1;
         report->replicated += g->repeat_u * g->repeat_v > 1;
         report->constant += !g->textured;
-        report->split += g->wrap;
-        report->fit += g->textured && !g->wrap && g->repeat_u * g->repeat_v == 1;
+        report->split += g->split;
+        report->fit += g->textured && !g->split && g->repeat_u * g->repeat_v == 1;
         report->cropped +=
             (uint64_t)g->crop_w * g->crop_h < (uint64_t)g->w * g->repeat_u * g->h * g->repeat_v;
         if (gr->count > 1) {
@@ -667,7 +678,7 @@ int vt_atlas_place_choices(const struct vt_atlas_scene *scene,
         if (choices)
             for (uint32_t mi = gr->first; mi != NO_GROUP; mi = next_member[mi])
                 choices[mi] = (struct vt_atlas_place_choice){.how = !g->textured ? "constant"
-                                                                    : g->wrap    ? "split"
+                                                                    : g->split   ? "split"
                                                                     : g->repeat_u * g->repeat_v > 1
                                                                         ? "replicate"
                                                                         : "fit",

@@ -423,6 +423,7 @@ static int add_maps(struct obj_ctx *c, struct vt_atlas_material *m,
         const struct vt_mtl_map *map = &mm->maps[k];
         if (!map->path || m->texture[kind_of[k]] >= 0)
             continue;
+        m->clamp |= map->clamp;
         char where[VTS_ERROR_MESSAGE_MAX];
         snprintf(where, sizeof where, "'%s':%llu: %s", mtl_path, (unsigned long long)map->line,
                  stmt[k]);

@@ -37,6 +37,7 @@ struct vt_atlas_material {
                                              (lib/chart/vt_chart.h): what the atlas must hold */
     double raw_umin, raw_umax;            /* texcoord range of its faces as written (for */
     double raw_vmin, raw_vmax;            /* messages) */
+    bool clamp;                           /* a map of it says -clamp on (no wrap gutter) */
     uint32_t charts;                      /* charts of its faces (over every OBJ) */
     uint32_t moved_charts;                /* of those, charts moved by a non-zero repeat */
     double uv_area, world_area;           /* summed over its triangles with texcoords */

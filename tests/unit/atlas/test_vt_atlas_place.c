@@ -109,10 +109,19 @@ static void place_shares_entries_and_copies_wrapped_uvs(void)
         VT_CHECK_INT_EQ(l.entries[1].repeat_u, 1);
         VT_CHECK_INT_EQ(l.entries[1].repeat_v, 1);
         VT_CHECK_INT_EQ(l.entries[1].crop_width, 256);
-        VT_CHECK(!l.entries[0].wrap);
+        /* red (and alias) hold the whole of a.png in one copy: the entry wraps, as the
+         * texture repeats in an engine; with -clamp on it would not (below) */
+        VT_CHECK(l.entries[0].wrap);
         check_valid(&l);
     }
     vt_layout_release(&l);
+
+    /* -clamp on in any material sharing the entry: clamped gutters */
+    materials[3].clamp = true;
+    VT_CHECK_INT_EQ(vt_atlas_place(&scene, &o, &l, &r, &err), 0);
+    VT_CHECK(l.entry_count == 3 && !l.entries[0].wrap && l.entries[1].wrap);
+    vt_layout_release(&l);
+    materials[3].clamp = false;
 
     o.wrap = VT_ATLAS_WRAP_REPLICATE;
     err = (struct vts_error){0};
