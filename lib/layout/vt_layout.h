@@ -29,9 +29,10 @@
  * height). Without "crop" in the file the entry holds the whole block (crop 0, 0, width * repeat_u,
  * height * repeat_v), as before.
  *
- * Wrap (vt-atlas --wrap split, and the automatic choice for large repeats): the entry holds one
- * whole copy of a texture the scene repeats; vt-offset cut the faces along the integer UV lines
- * and moved every piece into [0,1]. Its gutter, its cell padding and the tile borders at its edges
+ * Wrap (vt-atlas --wrap split and the automatic choice for large repeats, and every entry that
+ * holds its whole texture for materials without -clamp on): the entry holds one whole copy of a
+ * texture the scene repeats; vt-offset moved every face into its unit cell and cut the faces
+ * that cross integer UV lines, each piece moved into [0,1]. Its gutter, its cell padding and the tile borders at its edges
  * repeat the texture's opposite edge (texel -1 is texel width - 1), and its mip chain is filtered
  * with wrap-around, so that bilinear and trilinear filtering across a cut read what the repeating
  * texture shows there. A wrap entry has repeat 1 and no crop.
