@@ -1,14 +1,17 @@
 /* vt-view --reference-scene: the original OBJ with one plain GL texture per material. */
 #include "vtv_reference.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "vt_error.h"
 #include "vt_image.h"
 #include "vt_image_input.h"
 #include "vt_obj.h"
+#include "tool_common.h"
 #include "vtv_mipmap.h"
 
 /* Triangles of one material, in order of first use: per vertex its position (3 floats) and its
@@ -244,6 +247,11 @@ static int setup_part(struct vtv_reference_scene *s, struct load_ctx *c, const s
     part->kd[3] = 1.0f;
     const char *path = mat ? mat->maps[VT_MTL_MAP_KD].path : NULL;
     part->clamp = path && mat->maps[VT_MTL_MAP_KD].clamp;
+    struct stat file;
+    if (path && stat(path, &file) != 0 && errno == ENOENT) { /* as vt-atlas: the constant */
+        vt_log(VT_LOG_WARN, "'%s': %s: the material's constant", path, strerror(errno));
+        path = NULL;
+    }
     if (!path)
         return 0;
     for (uint32_t i = 0; i < s->texture_count; i++)
