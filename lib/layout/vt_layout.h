@@ -32,10 +32,10 @@
  * Wrap (vt-atlas --wrap split and the automatic choice for large repeats, and every entry that
  * holds its whole texture for materials without -clamp on): the entry holds one whole copy of a
  * texture the scene repeats; vt-offset moved every face into its unit cell and cut the faces
- * that cross integer UV lines, each piece moved into [0,1]. Its gutter, its cell padding and the tile borders at its edges
- * repeat the texture's opposite edge (texel -1 is texel width - 1), and its mip chain is filtered
- * with wrap-around, so that bilinear and trilinear filtering across a cut read what the repeating
- * texture shows there. A wrap entry has repeat 1 and no crop.
+ * that cross integer UV lines, each piece moved into [0,1]. Its gutter, its cell padding and the
+ * tile borders at its edges repeat the texture's opposite edge (texel -1 is texel width - 1), and
+ * its mip chain is filtered with wrap-around, so that bilinear and trilinear filtering across a cut
+ * read what the repeating texture shows there. A wrap entry has repeat 1 and no crop.
  *
  * The entry's cell may start before (x, y) (cell_left/cell_top, "cell_x"/"cell_y" in the file):
  * vt-atlas --gutter leaves texels around a texture that shares a tile, which the compositor

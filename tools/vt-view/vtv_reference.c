@@ -7,11 +7,11 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "tool_common.h"
 #include "vt_error.h"
 #include "vt_image.h"
 #include "vt_image_input.h"
 #include "vt_obj.h"
-#include "tool_common.h"
 #include "vtv_mipmap.h"
 
 /* Triangles of one material, in order of first use: per vertex its position (3 floats) and its
