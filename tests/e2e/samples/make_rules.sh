@@ -45,7 +45,7 @@ hybrid)
 real)
     bin=$6
     flags=${VT_SAMPLE_TEST_FLAGS-}
-    if ! "$bin/vt-tiles" --help 2>&1 | grep -q -- "--layout"; then
+    if ! "$bin/vt-tiles" --help 2>&1 | grep -- "--layout" >/dev/null; then
         echo "SKIP: $bin/vt-tiles has no --layout option yet"
         exit 77
     fi
@@ -137,7 +137,7 @@ wait_past_outputs
 touch "$srcdir/textures/t07.png"
 log=$(m 2>&1) || fail "make after touch: $log"
 echo "$log"
-echo "$log" | grep -q -- "--layout" || fail "vt-tiles did not run"
+grep -q -- "--layout" <<<"$log" || fail "vt-tiles did not run"
 [ "$(date_of "$out/scene.vts")" != "$store_date" ] || fail "store not rebuilt"
 if [ "$(date_of "$out/scene.atlas.json")" = "$atlas_date" ]; then
     # the layout did not change, so the rewritten OBJ must not be made again
@@ -235,7 +235,7 @@ if [ -e "$out/scene.vts" ]; then
     verify_store "$out/scene.vts"
 fi
 log=$(m 2>&1) || fail "make after the interrupt: $log"
-echo "$log" | grep -q -- "--layout" || fail "the store was not rebuilt after the interrupt"
+grep -q -- "--layout" <<<"$log" || fail "the store was not rebuilt after the interrupt"
 verify_store "$out/scene.vts"
 cmp -s "$out/scene.vts" "$work/first.vts" || fail "store after the interrupt differs"
 no_temp_files
@@ -261,9 +261,9 @@ verify_store "$out/scene.png.vts"
 verify_store "$out/scene.gpu.vts"
 if [ "$mode" = real ]; then
     "$bin/vt-info" "$out/scene.gpu.vts" | grep "^layer"
-    "$bin/vt-info" "$out/scene.gpu.vts" | grep -q "^layer 0 'diffuse': bc3" || fail "layer 0 not bc3"
-    "$bin/vt-info" "$out/scene.gpu.vts" | grep -q "^layer 1 'normal': bc1" || fail "layer 1 not bc1"
-    "$bin/vt-info" "$out/scene.gpu.vts" | grep -q "^layer 2 'alpha': png" || fail "layer 2 not kept"
+    "$bin/vt-info" "$out/scene.gpu.vts" | grep "^layer 0 'diffuse': bc3" >/dev/null || fail "layer 0 not bc3"
+    "$bin/vt-info" "$out/scene.gpu.vts" | grep "^layer 1 'normal': bc1" >/dev/null || fail "layer 1 not bc1"
+    "$bin/vt-info" "$out/scene.gpu.vts" | grep "^layer 2 'alpha': png" >/dev/null || fail "layer 2 not kept"
 fi
 no_temp_files
 again=$(m "${dl[@]}" 2>&1) || fail "make: $again"
@@ -276,7 +276,7 @@ fi
 step "7. a changed tool option rebuilds what the tool makes"
 obj_date=$(date_of "$out/scene.vt.obj")
 log=$(m VT_TILES_FLAGS=-j2 2>&1) || fail "make with VT_TILES_FLAGS: $log"
-echo "$log" | grep -q -- "--layout" || fail "vt-tiles did not rerun for new options"
+grep -q -- "--layout" <<<"$log" || fail "vt-tiles did not rerun for new options"
 [ "$(date_of "$out/scene.vt.obj")" = "$obj_date" ] || fail "vt-offset reran for a vt-tiles option"
 no_temp_files
 echo "all make-rule checks passed ($mode tools)"
