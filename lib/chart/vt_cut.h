@@ -16,9 +16,9 @@
  * texcoords) gets the points of that edge as extra corners (it is "split", its shape unchanged).
  * Points inside a face (where two lines cross) are shared by the pieces of that face. Every edge
  * of the output is then shared by exactly the faces that shared the input edge it lies on: no
- * T-junction, no new boundary. (For faces with two corners at one position, faces with two edges
- * in common, and concave n-gons, the edges of zero-area slivers or degenerate bridges can count
- * more: still no T-junction.)
+ * T-junction, no new boundary; an edge inside a face is shared by exactly two of its pieces. (For
+ * faces with two corners at one position and for concave n-gons, the edges of zero-area slivers
+ * or degenerate bridges can count more: still no T-junction.)
  *
  * Polygons with more than three corners are clipped as they are (convex ones exactly; a concave
  * n-gon gives pieces covering it, possibly with overlapping degenerate edges). A piece that lies
