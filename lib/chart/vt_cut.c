@@ -16,18 +16,19 @@ static void cell_range(double lo, double hi, int64_t *a0, int64_t *a1)
     *a1 = hi > lo ? (int64_t)ceil(hi) - 1 : *a0;
 }
 
-/* Zero area in UV: every fan triangle of the face has a zero determinant. */
+/* Zero area in UV: the signed area (the sum of its fan triangles' determinants) is exactly 0. So
+ * for a collinear face (each determinant 0, exactly so along a grid line), and for one folded over
+ * itself so that it encloses nothing, whose pieces would all lie on lines. */
 static bool face_is_flat(const struct vt_cut_ctx *ctx, const struct vt_cut_face *fc)
 {
-    double u0 = vt_cut_face_uv(ctx, fc, 0, 0), v0 = vt_cut_face_uv(ctx, fc, 0, 1);
+    double u0 = vt_cut_face_uv(ctx, fc, 0, 0), v0 = vt_cut_face_uv(ctx, fc, 0, 1), sum = 0;
     for (uint32_t i = 1; i + 1 < fc->n; i++) {
         double e1u = vt_cut_face_uv(ctx, fc, i, 0) - u0, e1v = vt_cut_face_uv(ctx, fc, i, 1) - v0;
         double e2u = vt_cut_face_uv(ctx, fc, i + 1, 0) - u0;
         double e2v = vt_cut_face_uv(ctx, fc, i + 1, 1) - v0;
-        if (e1u * e2v - e1v * e2u != 0)
-            return false;
+        sum += e1u * e2v - e1v * e2u;
     }
-    return true;
+    return sum == 0;
 }
 
 /* The box and cells of a wrap face's moved texcoords; VTS_ERR_LIMIT for a value that is not

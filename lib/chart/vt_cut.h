@@ -16,17 +16,17 @@
  * texcoords) gets the points of that edge as extra corners (it is "split", its shape unchanged).
  * Points inside a face (where two lines cross) are shared by the pieces of that face. Every edge
  * of the output is then shared by exactly the faces that shared the input edge it lies on: no
- * T-junction, no new boundary. (For faces with two corners at one position, faces with two edges
- * in common, and concave n-gons, the edges of zero-area slivers or degenerate bridges can count
- * more: still no T-junction.)
+ * T-junction, no new boundary; an edge inside a face is shared by exactly two of its pieces. (For
+ * faces with two corners at one position and for concave n-gons, the edges of zero-area slivers
+ * or degenerate bridges can count more: still no T-junction.)
  *
  * Polygons with more than three corners are clipped as they are (convex ones exactly; a concave
  * n-gon gives pieces covering it, possibly with overlapping degenerate edges). A piece that lies
  * on one side line of its cell (the face only touches the cell along that line, or one of its
  * edges lies on it) is dropped: for a convex face, exactly its pieces of zero area in UV. A face
- * of zero area in UV keeps its pieces that are more than one point (it may have an area in 3D),
- * and so may lose all only when it is degenerate in 3D too. docs/real-scenes.md states the rules
- * in full. */
+ * of zero area in UV (its signed area exactly 0: collinear, or folded so that it encloses nothing)
+ * keeps its pieces that are more than one point (it may have an area in 3D). docs/real-scenes.md
+ * states the rules in full. */
 #ifndef VT_CUT_H
 #define VT_CUT_H
 

@@ -201,8 +201,9 @@ static bool same_point(const struct vt_cut_pt *a, const struct vt_cut_pt *b)
 
 /* Writes the piece of cell (a, b) (the n points at stack[at]), unless it is degenerate: fewer
  * than 3 corners once repeated points in a row are merged, or all on one side line of the cell
- * (for a convex face: exactly the pieces of zero area). A face of zero area in UV (all its pieces
- * have none, and it may well have an area in 3D) keeps the pieces that are not a single point.
+ * (for a convex face: exactly the pieces of zero area). A face of zero area in UV (collinear, or
+ * folded so that it encloses nothing: its pieces lie on lines, and it may well have an area in 3D)
+ * keeps the pieces that are not a single point.
  * Pieces of zero area that are neither (from a face folded over itself in UV) are kept: vt_cut
  * sees no positions, and dropping them could leave a hole in 3D. */
 static int emit_piece(struct vt_cut_ctx *ctx, const struct vt_cut_face *fc, uint64_t at, uint64_t n,

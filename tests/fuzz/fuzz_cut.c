@@ -3,8 +3,7 @@
  * labelled and cut; the result must pass the checkers of tests/unit/chart/cut_fixture.c: texcoords
  * of wrap faces in [0, 1]^2, each the input's plus an integer vector per polygon; areas kept; 3D
  * positions at random points of triangles; and, when every cut face is a triangle or convex in UV
- * and has distinct positions, and no two changed faces have two edges in common, watertightness by
- * edge counts. A violation aborts.
+ * and has distinct positions, watertightness by edge counts. A violation aborts.
  *
  * Bytes: [flags][positions][faces], then 3 per position (x, y, z: int8), 2 per position (u, v:
  * int8 / 4, plus a fraction byte / 1024 each unless flag 2), then per face a header byte (corners
@@ -57,8 +56,6 @@ static bool convex_in_uv(const struct tmesh *t, uint32_t f)
     return fabs(fabs(turn) - 2 * 3.14159265358979323846) < 1e-6;
 }
 
-/* The result's arrays are consistent: offsets in order and ending at the counts, kept faces
- * without polygons, polygons of 3 corners at least, positions that exist. */
 /* No two corners of the face at one position. A cut face with a repeated position (an edge of
  * zero length in 3D, its texcoords folded over it) gives pieces of zero area in 3D whose edges
  * count twice: no crack, but not the edge counts the watertightness check asks for. */
@@ -71,29 +68,8 @@ static bool distinct_positions(const struct tmesh *t, uint32_t f)
     return true;
 }
 
-static bool has_edge(const struct tmesh *t, uint32_t f, uint32_t a, uint32_t b)
-{
-    uint64_t c0 = t->face_start[f], n = t->face_start[f + 1] - c0;
-    for (uint64_t i = 0; i < n; i++) {
-        uint32_t p = t->pos[c0 + i], q = t->pos[c0 + (i + 1) % n];
-        if ((p == a && q == b) || (p == b && q == a))
-            return true;
-    }
-    return false;
-}
-
-/* Two faces with two edges in common (duplicates, or folded over each other): their cuts can share
- * a segment between two points of those edges, inside both faces, which the watertightness check
- * expects in 2 faces only. */
-static bool share_two_edges(const struct tmesh *t, uint32_t f, uint32_t g)
-{
-    uint64_t c0 = t->face_start[f], n = t->face_start[f + 1] - c0;
-    int shared = 0;
-    for (uint64_t i = 0; i < n && shared < 2; i++)
-        shared += has_edge(t, g, t->pos[c0 + i], t->pos[c0 + (i + 1) % n]);
-    return shared >= 2;
-}
-
+/* The result's arrays are consistent: offsets in order and ending at the counts, kept faces
+ * without polygons, polygons of 3 corners at least, positions that exist. */
 static void check_structure(const struct tmesh *t, const struct vt_cut_result *r)
 {
     if (r->face_poly[0] != 0 || r->face_poly[t->face_count] != r->poly_count ||
@@ -174,9 +150,6 @@ int fuzz_cut_one(const uint8_t *data, size_t size)
             t.tex[t.face_start[f]] != VT_CHART_NONE)
             exact = distinct_positions(&t, f) &&
                     (t.face_start[f + 1] - t.face_start[f] == 3 || convex_in_uv(&t, f));
-    for (uint32_t f = 0; f < t.face_count && exact; f++)
-        for (uint32_t g = f + 1; g < t.face_count && exact && r.changed[f]; g++)
-            exact = !r.changed[g] || !share_two_edges(&t, f, g);
     if (exact && cut_fixture_check_watertight(&t, &r, false, true))
         abort();
     if (cut_fixture_check_points(&t, &r, size, 4, 1e-9, true))

@@ -49,7 +49,7 @@ struct vt_cut_face {
     bool has_uv;     /* a texcoord at every corner */
     bool wrap;       /* a wrap face: moved into its cell(s) */
     bool cut;        /* a wrap face that lines cut */
-    bool flat;       /* zero area in UV (every fan triangle's determinant is 0) */
+    bool flat;       /* zero area in UV (its fan determinants sum to exactly 0) */
     double shift[2]; /* its move (du, dv); 0 without texcoords */
     int64_t cell[4]; /* wrap faces: the cells a0..a1 x b0..b1 of its moved box */
     uint64_t poly_n; /* its polygon with the edge points: ctx->poly[0 .. poly_n) */

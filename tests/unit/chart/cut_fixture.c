@@ -168,29 +168,6 @@ static void add_pair(struct pairs *ps, uint32_t a, uint32_t b)
     ps->p[ps->n++] = make_pair(a, b);
 }
 
-/* Output edges of every face: a kept face's own, a changed face's polygons'. Repeated positions
- * in a row (zero-length edges) are left out. */
-static void output_pairs(const struct tmesh *t, const struct vt_cut_result *r, struct pairs *ps)
-{
-    for (uint32_t f = 0; f < t->face_count; f++) {
-        if (!r->changed[f]) {
-            uint64_t c0 = t->face_start[f], n = t->face_start[f + 1] - c0;
-            for (uint64_t i = 0; i < n; i++)
-                if (t->pos[c0 + i] != t->pos[c0 + (i + 1) % n])
-                    add_pair(ps, t->pos[c0 + i], t->pos[c0 + (i + 1) % n]);
-            continue;
-        }
-        for (uint64_t q = r->face_poly[f]; q < r->face_poly[f + 1]; q++) {
-            uint64_t c0 = r->poly_start[q], n = r->poly_start[q + 1] - c0;
-            for (uint64_t i = 0; i < n; i++) {
-                uint32_t a = r->corners[c0 + i].pos, b = r->corners[c0 + (i + 1) % n].pos;
-                if (a != b)
-                    add_pair(ps, a, b);
-            }
-        }
-    }
-}
-
 /* The input edge a new edge point lies on, or false for an input position or an inner point. */
 static bool edge_of_point(const struct tmesh *t, const struct vt_cut_result *r, uint32_t p,
                           struct pair *e)
@@ -204,32 +181,90 @@ static bool edge_of_point(const struct tmesh *t, const struct vt_cut_result *r, 
     return true;
 }
 
-/* The faces the output edge e should have: those of the input edge it lies on, else 2. */
-static uint64_t expected_faces(const struct tmesh *t, const struct vt_cut_result *r,
-                               const struct pairs *in, struct pair e)
+/* Output position p lies on input edge e: one of its ends, or a new point on it. */
+static bool on_edge(const struct tmesh *t, const struct vt_cut_result *r, uint32_t p, struct pair e)
 {
-    struct pair ea, eb;
-    bool pa = edge_of_point(t, r, e.a, &ea), pb = edge_of_point(t, r, e.b, &eb);
-    bool ia = e.a < t->position_count, ib = e.b < t->position_count;
-    struct pair on;
-    if (ia && ib)
-        on = e;
-    else if (ia && pb && (eb.a == e.a || eb.b == e.a))
-        on = eb;
-    else if (ib && pa && (ea.a == e.b || ea.b == e.b))
-        on = ea;
-    else if (pa && pb && compare_pairs(&ea, &eb) == 0)
-        on = ea;
-    else
-        return 2;
-    uint64_t c = count_pair(in->p, in->n, on);
-    return c || !(ia && ib) ? c : 2; /* two input positions without an input edge: a chord */
+    struct pair pe;
+    if (p < t->position_count)
+        return p == e.a || p == e.b;
+    return edge_of_point(t, r, p, &pe) && compare_pairs(&pe, &e) == 0;
+}
+
+/* The edge of input face f that output edge (a, b) lies on (both ends on it), or false. */
+static bool own_edge(const struct tmesh *t, const struct vt_cut_result *r, uint32_t f, uint32_t a,
+                     uint32_t b, struct pair *e)
+{
+    uint64_t c0 = t->face_start[f], n = t->face_start[f + 1] - c0;
+    for (uint64_t i = 0; i < n; i++) {
+        *e = make_pair(t->pos[c0 + i], t->pos[c0 + (i + 1) % n]);
+        if (on_edge(t, r, a, *e) && on_edge(t, r, b, *e))
+            return true;
+    }
+    return false;
+}
+
+/* One use of an output edge: the pair, and the input edge of its own face it lies on (on.a ==
+ * VT_CHART_NONE: inside the face, then face says which). */
+struct use {
+    struct pair e, on;
+    uint32_t face;
+};
+
+static int compare_uses(const void *pa, const void *pb)
+{
+    const struct use *x = pa, *y = pb;
+    int c = compare_pairs(&x->e, &y->e);
+    if (c)
+        return c;
+    if (x->on.a == VT_CHART_NONE || y->on.a == VT_CHART_NONE) {
+        if ((x->on.a == VT_CHART_NONE) != (y->on.a == VT_CHART_NONE))
+            return x->on.a == VT_CHART_NONE ? 1 : -1;
+        return x->face < y->face ? -1 : x->face > y->face;
+    }
+    return 0;
+}
+
+struct uses {
+    struct use *u;
+    uint64_t n, cap;
+};
+
+static void add_use(const struct tmesh *t, const struct vt_cut_result *r, struct uses *us,
+                    uint32_t f, uint32_t a, uint32_t b)
+{
+    if (a == b)
+        return; /* zero length */
+    us->u = grow(us->u, &us->cap, us->n + 1, sizeof *us->u);
+    struct use *u = &us->u[us->n++];
+    u->e = make_pair(a, b);
+    u->face = f;
+    if (!own_edge(t, r, f, a, b, &u->on))
+        u->on = (struct pair){VT_CHART_NONE, VT_CHART_NONE};
+}
+
+/* Every edge of every output polygon (a kept face's own), with where it lies. */
+static void output_uses(const struct tmesh *t, const struct vt_cut_result *r, struct uses *us)
+{
+    for (uint32_t f = 0; f < t->face_count; f++) {
+        if (!r->changed[f]) {
+            uint64_t c0 = t->face_start[f], n = t->face_start[f + 1] - c0;
+            for (uint64_t i = 0; i < n; i++)
+                add_use(t, r, us, f, t->pos[c0 + i], t->pos[c0 + (i + 1) % n]);
+            continue;
+        }
+        for (uint64_t q = r->face_poly[f]; q < r->face_poly[f + 1]; q++) {
+            uint64_t c0 = r->poly_start[q], n = r->poly_start[q + 1] - c0;
+            for (uint64_t i = 0; i < n; i++)
+                add_use(t, r, us, f, r->corners[c0 + i].pos, r->corners[c0 + (i + 1) % n].pos);
+        }
+    }
 }
 
 int cut_fixture_check_watertight(const struct tmesh *t, const struct vt_cut_result *r, bool closed,
                                  bool verbose)
 {
-    struct pairs in = {0}, out = {0};
+    struct pairs in = {0};
+    struct uses out = {0};
     for (uint32_t f = 0; f < t->face_count; f++) {
         uint64_t c0 = t->face_start[f], n = t->face_start[f + 1] - c0;
         /* a face that vanished (zero area, cut_fixture_check_pieces() checks) has no edges left */
@@ -238,28 +273,31 @@ int cut_fixture_check_watertight(const struct tmesh *t, const struct vt_cut_resu
         for (uint64_t i = 0; i < n; i++)
             add_pair(&in, t->pos[c0 + i], t->pos[c0 + (i + 1) % n]);
     }
-    output_pairs(t, r, &out);
+    output_uses(t, r, &out);
     if (in.n)
         qsort(in.p, (size_t)in.n, sizeof *in.p, compare_pairs);
     if (out.n)
-        qsort(out.p, (size_t)out.n, sizeof *out.p, compare_pairs);
+        qsort(out.u, (size_t)out.n, sizeof *out.u, compare_uses);
     int bad = 0;
     for (uint64_t i = 0; i < out.n;) {
         uint64_t j = i;
-        while (j < out.n && compare_pairs(&out.p[j], &out.p[i]) == 0)
+        while (j < out.n && compare_uses(&out.u[j], &out.u[i]) == 0)
             j++;
-        uint64_t want = expected_faces(t, r, &in, out.p[i]);
+        const struct use *u = &out.u[i];
+        bool inside = u->on.a == VT_CHART_NONE;
+        uint64_t want = inside ? 2 : count_pair(in.p, in.n, u->on);
         if (j - i != want || (closed && j - i < 2)) {
             if (verbose && bad < 5)
-                fprintf(stderr, "watertight: edge %u-%u has %llu faces, %llu expected\n",
-                        out.p[i].a, out.p[i].b, (unsigned long long)(j - i),
+                fprintf(stderr, "watertight: edge %u-%u %s%u has %llu faces, %llu expected\n",
+                        u->e.a, u->e.b, inside ? "inside face " : "on input edge ",
+                        inside ? u->face : u->on.a, (unsigned long long)(j - i),
                         (unsigned long long)want);
             bad++;
         }
         i = j;
     }
     free(in.p);
-    free(out.p);
+    free(out.u);
     return bad;
 }
 

@@ -41,11 +41,13 @@ uint32_t tmesh_shift_charts(struct tmesh *t);
 void cut_fixture_position(const struct tmesh *t, const struct vt_cut_result *r, uint32_t p,
                           double out[3]);
 
-/* Every output edge (two position indices, undirected, over kept faces and output polygons) is
- * used by exactly as many output faces as input faces use the input edge it lies on (both its
- * ends on it: an input position is on its edges, a new edge point on its edge), or by 2 when it
- * lies on none (inside a face); closed: also no output edge used once. A changed face without
- * output polygons (it had no area: cut_fixture_check_pieces()) counts for no input edge. */
+/* Watertightness by edge counts. Every output edge (two position indices, undirected, over kept
+ * faces and output polygons) that lies on an input edge of its own face (both its ends on it: an
+ * input position is on its edges, a new edge point on its edge) is used by exactly as many output
+ * faces as input faces use that edge; any other edge of a face's polygons lies inside the face
+ * and is used exactly twice by that face's polygons. closed: also no output edge used once. A
+ * changed face without output polygons (it had no area: cut_fixture_check_pieces()) counts for
+ * no input edge. */
 int cut_fixture_check_watertight(const struct tmesh *t, const struct vt_cut_result *r, bool closed,
                                  bool verbose);
 
