@@ -30,11 +30,15 @@
 
 #include "internal/vt_bc_encode.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #define BC_TEXELS          16
 #define BC_ALPHA_OPAQUE    128 /* BC1: alpha below this is stored as transparent */
 #define BC_POWER_FAST      4   /* power iterations for the principal axis */
 #define BC_POWER_BEST      8
-#define BC_REFINE_BEST     6 /* least-squares rounds per start (fast: 1) */
+#define BC_REFINE_BEST     2 /* least-squares rounds per start (fast: 1) */
 #define BC_SEARCH_PASSES   8 /* +-1 endpoint search passes at most (best) */
 #define BC_ALPHA_REFINE    4
 #define BC_ALPHA_SEARCH    8
@@ -96,6 +100,10 @@ static void bc_tables_init(void)
 struct bc_colour_texels {
     int rgb[BC_TEXELS][3];
     uint32_t weight[BC_TEXELS];
+    /* the same, laid out for the error loop: channel planes, weight 0 and index 3 forced for
+     * transparent texels */
+    _Alignas(16) int16_t plane[3][BC_TEXELS];
+    uint32_t eval_weight[BC_TEXELS], eval_force[BC_TEXELS];
     uint32_t transparent; /* bit i: texel i is stored as transparent (index 3, 3-colour mode) */
     bool four_only;
 };
@@ -131,28 +139,55 @@ static uint64_t bc_colour_eval(const struct bc_colour_texels *t, unsigned c0, un
             pal[3][k] = 0;
         }
     }
-    int entries = four ? 4 : 3;
-    uint64_t error = 0;
-    uint32_t idx = 0;
-    for (int i = 0; i < BC_TEXELS; i++) {
-        if (t->transparent >> i & 1) {
-            idx |= 3u << (2 * i);
-            continue;
+    /* the 3-colour mode has no fourth colour for an opaque texel: key INT32_MAX never wins */
+    _Alignas(16) uint32_t key[BC_TEXELS];
+    /* key = distance << 2 | index: one branch-free minimum gives both. Integer only: the SSE2
+     * path and the portable one give the same keys. */
+#if defined(__SSE2__)
+    const __m128i zero = _mm_setzero_si128();
+    for (int half = 0; half < 2; half++) {
+        __m128i r = _mm_load_si128((const __m128i *)&t->plane[0][8 * half]);
+        __m128i g = _mm_load_si128((const __m128i *)&t->plane[1][8 * half]);
+        __m128i b = _mm_load_si128((const __m128i *)&t->plane[2][8 * half]);
+        __m128i m_lo = _mm_set1_epi32(INT32_MAX), m_hi = m_lo;
+        for (int k = 0; k < 4; k++) {
+            __m128i dr = _mm_sub_epi16(r, _mm_set1_epi16((int16_t)pal[k][0]));
+            __m128i dg = _mm_sub_epi16(g, _mm_set1_epi16((int16_t)pal[k][1]));
+            __m128i db = _mm_sub_epi16(b, _mm_set1_epi16((int16_t)pal[k][2]));
+            __m128i rg_lo = _mm_unpacklo_epi16(dr, dg), rg_hi = _mm_unpackhi_epi16(dr, dg);
+            __m128i b_lo = _mm_unpacklo_epi16(db, zero), b_hi = _mm_unpackhi_epi16(db, zero);
+            __m128i d_lo = _mm_add_epi32(_mm_madd_epi16(rg_lo, rg_lo), _mm_madd_epi16(b_lo, b_lo));
+            __m128i d_hi = _mm_add_epi32(_mm_madd_epi16(rg_hi, rg_hi), _mm_madd_epi16(b_hi, b_hi));
+            __m128i tag = _mm_set1_epi32(k == 3 && !four ? INT32_MAX : k);
+            d_lo = _mm_or_si128(_mm_slli_epi32(d_lo, 2), tag);
+            d_hi = _mm_or_si128(_mm_slli_epi32(d_hi, 2), tag);
+            __m128i lt_lo = _mm_cmplt_epi32(d_lo, m_lo), lt_hi = _mm_cmplt_epi32(d_hi, m_hi);
+            m_lo = _mm_or_si128(_mm_and_si128(lt_lo, d_lo), _mm_andnot_si128(lt_lo, m_lo));
+            m_hi = _mm_or_si128(_mm_and_si128(lt_hi, d_hi), _mm_andnot_si128(lt_hi, m_hi));
         }
-        const int *x = t->rgb[i];
-        uint32_t best_d = UINT32_MAX;
-        unsigned best_k = 0;
-        for (int k = 0; k < entries; k++) {
-            int dr = x[0] - pal[k][0], dg = x[1] - pal[k][1], db = x[2] - pal[k][2];
-            uint32_t d = (uint32_t)(dr * dr + dg * dg + db * db);
-            if (d < best_d)
-                best_d = d, best_k = (unsigned)k;
-        }
-        idx |= best_k << (2 * i);
-        error += (uint64_t)best_d * t->weight[i];
-        if (error >= bound)
-            return UINT64_MAX;
+        _mm_store_si128((__m128i *)&key[8 * half], m_lo);
+        _mm_store_si128((__m128i *)&key[8 * half + 4], m_hi);
     }
+#else
+    for (int i = 0; i < BC_TEXELS; i++) {
+        uint32_t m = INT32_MAX;
+        for (int k = 0; k < 4; k++) {
+            int32_t dr = t->plane[0][i] - pal[k][0], dg = t->plane[1][i] - pal[k][1],
+                    db = t->plane[2][i] - pal[k][2];
+            uint32_t d = (uint32_t)(dr * dr + dg * dg + db * db) << 2 | (uint32_t)k;
+            d = k == 3 && !four ? INT32_MAX : d;
+            m = d < m ? d : m;
+        }
+        key[i] = m;
+    }
+#endif
+    uint32_t error = 0, idx = 0;
+    for (int i = 0; i < BC_TEXELS; i++) {
+        idx |= ((key[i] & 3) | t->eval_force[i]) << (2 * i);
+        error += (key[i] >> 2) * t->eval_weight[i]; /* < 16 * 195075 * 256 < 2^32 */
+    }
+    if (error >= bound)
+        return UINT64_MAX;
     *indices = idx;
     return error;
 }
@@ -264,6 +299,18 @@ static void bc_colour_search(const struct bc_colour_texels *t, struct bc_colour_
                     improved |= e ? bc_colour_try(t, best->c0, c, three, best)
                                   : bc_colour_try(t, c, best->c1, three, best);
                 }
+            }
+        }
+        /* both endpoints of one channel together (a shift of the line) */
+        for (int ch = 0; ch < 3; ch++) {
+            for (int d = -1; d <= 1; d += 2) {
+                int v0 = (int)(best->c0 >> shift[ch] & mask[ch]) + d;
+                int v1 = (int)(best->c1 >> shift[ch] & mask[ch]) + d;
+                if (v0 < 0 || v0 > (int)mask[ch] || v1 < 0 || v1 > (int)mask[ch])
+                    continue;
+                unsigned n0 = (best->c0 & ~(mask[ch] << shift[ch])) | (unsigned)v0 << shift[ch];
+                unsigned n1 = (best->c1 & ~(mask[ch] << shift[ch])) | (unsigned)v1 << shift[ch];
+                improved |= bc_colour_try(t, n0, n1, three, best);
             }
         }
         if (!improved)
@@ -409,8 +456,14 @@ void vt_bc_encode_colour_block(const unsigned char *rgba, unsigned flags, unsign
         for (int ch = 0; ch < 3; ch++)
             t.rgb[i][ch] = x[ch];
         t.weight[i] = (flags & VT_BC_ENCODE_WEIGHT_BY_ALPHA) ? x[3] + 1u : 1u;
+        for (int ch = 0; ch < 3; ch++)
+            t.plane[ch][i] = x[ch];
+        t.eval_weight[i] = t.weight[i];
+        t.eval_force[i] = 0;
         if (!t.four_only && x[3] < BC_ALPHA_OPAQUE) {
             t.transparent |= 1u << i;
+            t.eval_weight[i] = 0;
+            t.eval_force[i] = 3;
             continue;
         }
         if (first < 0)
@@ -440,14 +493,18 @@ void vt_bc_encode_colour_block(const unsigned char *rgba, unsigned flags, unsign
         bc_put_colour(&best, dst);
         return;
     }
-    unsigned d0, d1;
-    bc_axis_endpoints(&ax, 0, &d0, &d1);
+    /* the refinement has local minima: several starts along the axis, each refined a little */
+    static const double insets[] = {0, 1.0 / 16, 1.0 / 32, 1.0 / 8, 3.0 / 16, 1.0 / 4};
     for (int mode = 0; mode < 2; mode++) {
         bool three = mode == 1;
         if (three ? !may_three : !may_four)
             continue;
-        bc_colour_refine(&t, c0, c1, three, BC_REFINE_BEST, &best);
-        bc_colour_refine(&t, d0, d1, three, BC_REFINE_BEST, &best);
+        /* the 3-colour mode wins on few blocks of a photo: two starts */
+        size_t starts = three ? 2 : sizeof insets / sizeof insets[0];
+        for (size_t s = 0; s < starts; s++) {
+            bc_axis_endpoints(&ax, insets[s], &c0, &c1);
+            bc_colour_refine(&t, c0, c1, three, BC_REFINE_BEST, &best);
+        }
     }
     bc_colour_search(&t, &best);
     unsigned n0, n1;
@@ -481,15 +538,13 @@ static uint64_t bc_alpha_eval(const int *alpha, unsigned a0, unsigned a1, uint64
     }
     uint64_t error = 0, idx = 0;
     for (int i = 0; i < BC_TEXELS; i++) {
-        int best_d = 1 << 30;
-        unsigned best_k = 0;
+        uint32_t m = UINT32_MAX; /* distance << 3 | index, branch-free minimum */
         for (int k = 0; k < 8; k++) {
-            int d = bc_abs(alpha[i] - pal[k]);
-            if (d < best_d)
-                best_d = d, best_k = (unsigned)k;
+            uint32_t key = (uint32_t)bc_abs(alpha[i] - pal[k]) << 3 | (uint32_t)k;
+            m = key < m ? key : m;
         }
-        idx |= (uint64_t)best_k << (3 * i);
-        error += (uint64_t)(best_d * best_d);
+        idx |= (uint64_t)(m & 7) << (3 * i);
+        error += (uint64_t)(m >> 3) * (m >> 3);
         if (error >= bound)
             return UINT64_MAX;
     }
