@@ -95,7 +95,7 @@ struct encoder {
 static const struct encoder encoders[] = {
     {"ours best", VT_CODEC_BC_BEST},
     {"libsquish cluster fit", VT_CODEC_BC_REF_SQUISH},
-    {"ours fast", VT_CODEC_BC_FAST},
+    {"ours fast", VT_CODEC_BC_OURS_FAST},
     {"stb_dxt", VT_CODEC_BC_REF_STB_DXT},
 };
 #define N_ENCODERS (sizeof encoders / sizeof encoders[0])
@@ -129,7 +129,7 @@ static void report(const char *title, const double psnr[N_ENCODERS], const doubl
     for (size_t e = 0; e < N_ENCODERS; e++) {
         printf("  %-22s %6.2f dB %8.2f MP/s per core", encoders[e].label, psnr[e], mps[e]);
         if (e % 2 == 0)
-            printf("   ours/%s: %+.2f dB, %.1fx speed", encoders[e + 1].label,
+            printf("   ours/%s: %+.3f dB, %.1fx speed", encoders[e + 1].label,
                    psnr[e] - psnr[e + 1], mps[e] / mps[e + 1]);
         printf("\n");
     }
