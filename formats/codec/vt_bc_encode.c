@@ -35,14 +35,14 @@
 #include <emmintrin.h>
 #endif
 
-#define BC_TEXELS          16
-#define BC_ALPHA_OPAQUE    128 /* BC1: alpha below this is stored as transparent */
-#define BC_POWER_FAST      4   /* power iterations for the principal axis */
-#define BC_POWER_BEST      8
-#define BC_REFINE_BEST     4 /* least-squares rounds per start (fast: 1) */
-#define BC_SEARCH_PASSES   8 /* +-1 endpoint search passes at most (best) */
-#define BC_ALPHA_REFINE    4
-#define BC_ALPHA_SEARCH    8
+#define BC_TEXELS        16
+#define BC_ALPHA_OPAQUE  128 /* BC1: alpha below this is stored as transparent */
+#define BC_POWER_FAST    4   /* power iterations for the principal axis */
+#define BC_POWER_BEST    8
+#define BC_REFINE_BEST   4 /* least-squares rounds per start (fast: 1) */
+#define BC_SEARCH_PASSES 8 /* +-1 endpoint search passes at most (best) */
+#define BC_ALPHA_REFINE  4
+#define BC_ALPHA_SEARCH  8
 
 /* ---- tables, built once ---- */
 
@@ -211,7 +211,8 @@ static bool bc_colour_try(const struct bc_colour_texels *t, unsigned c0, unsigne
     return true;
 }
 
-static bool bc_colour_is_three(const struct bc_colour_texels *t, const struct bc_colour_candidate *c)
+static bool bc_colour_is_three(const struct bc_colour_texels *t,
+                               const struct bc_colour_candidate *c)
 {
     return !t->four_only && c->c0 <= c->c1;
 }
@@ -266,8 +267,8 @@ static bool bc_colour_solve(const struct bc_colour_texels *t, const struct bc_co
 }
 
 /* From (c0, c1): least-squares rounds while the error falls; the result goes into *best. */
-static void bc_colour_refine(const struct bc_colour_texels *t, unsigned c0, unsigned c1,
-                             bool three, int rounds, struct bc_colour_candidate *best)
+static void bc_colour_refine(const struct bc_colour_texels *t, unsigned c0, unsigned c1, bool three,
+                             int rounds, struct bc_colour_candidate *best)
 {
     struct bc_colour_candidate chain = {0, 0, 0, UINT64_MAX};
     bc_colour_try(t, c0, c1, three, &chain);
@@ -398,7 +399,8 @@ static void bc_colour_axis(const struct bc_colour_texels *t, int iterations, str
 
 static void bc_axis_endpoints(const struct bc_axis *ax, double inset, unsigned *c0, unsigned *c1)
 {
-    double range = ax->tmax - ax->tmin, hi = ax->tmax - range * inset, lo = ax->tmin + range * inset;
+    double range = ax->tmax - ax->tmin, hi = ax->tmax - range * inset,
+           lo = ax->tmin + range * inset;
     double e0[3], e1[3];
     for (int ch = 0; ch < 3; ch++) {
         e0[ch] = ax->mean[ch] + ax->dir[ch] * hi;

@@ -114,14 +114,15 @@ static FILE *md;
 
 static void report(const char *title, const double psnr[N_ENCODERS], const double mps[N_ENCODERS])
 {
-    fprintf(md,
-            "\n%s\n\n| encoder | PSNR dB | MP/s per core | vs reference: dB | vs reference: speed |\n"
-            "|---|---:|---:|---:|---:|\n",
-            title);
+    fprintf(
+        md,
+        "\n%s\n\n| encoder | PSNR dB | MP/s per core | vs reference: dB | vs reference: speed |\n"
+        "|---|---:|---:|---:|---:|\n",
+        title);
     for (size_t e = 0; e < N_ENCODERS; e++) {
         if (e % 2 == 0)
-            fprintf(md, "| %s | %.2f | %.2f | %+.2f | %.1fx |\n", encoders[e].label, psnr[e], mps[e],
-                    psnr[e] - psnr[e + 1], mps[e] / mps[e + 1]);
+            fprintf(md, "| %s | %.2f | %.2f | %+.2f | %.1fx |\n", encoders[e].label, psnr[e],
+                    mps[e], psnr[e] - psnr[e + 1], mps[e] / mps[e + 1]);
         else
             fprintf(md, "| %s | %.2f | %.2f | | |\n", encoders[e].label, psnr[e], mps[e]);
     }

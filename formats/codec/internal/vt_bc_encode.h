@@ -6,7 +6,7 @@
 #define VT_BC_ENCODE_H
 
 enum vt_bc_encode_flags {
-    VT_BC_ENCODE_BEST = 1 << 0,            /* refinement and endpoint search; else one pass */
+    VT_BC_ENCODE_BEST = 1 << 0,             /* refinement and endpoint search; else one pass */
     VT_BC_ENCODE_FOUR_COLOUR_ONLY = 1 << 1, /* BC3's colour half: never the 3-colour mode */
     VT_BC_ENCODE_WEIGHT_BY_ALPHA = 1 << 2,  /* colour error of a texel weighted by alpha + 1 */
 };

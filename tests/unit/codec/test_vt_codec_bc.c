@@ -407,7 +407,6 @@ static void bc_solid_colours_in_rgb565_decode_exactly(void)
     VT_CHECK_INT_EQ(bc3_wrong[1], 0);
 }
 
-
 /* ---- our encoder (vt_bc_encode.c) ---- */
 
 /* Encodes one 4x4 RGBA block with codec_name at effort and decodes it into decoded. */
@@ -582,7 +581,8 @@ static void bc_ours_is_deterministic(void)
     /* the same bytes twice, and the bytes pinned: a compiler, flag or platform that changes them
      * (float contraction, another rounding) fails here. Changing the encoder on purpose: print
      * the new values and update them with a note in the commit. */
-    struct vt_image rgb = vt_synth_photo(64, 64, 3, 9, 0.6), rgba = vt_synth_photo(64, 64, 4, 9, 0.6);
+    struct vt_image rgb = vt_synth_photo(64, 64, 3, 9, 0.6),
+                    rgba = vt_synth_photo(64, 64, 4, 9, 0.6);
     const struct vt_image *imgs[2] = {&rgb, &rgba};
     static const char *const names[2] = {"bc1", "bc3"};
     static const int efforts[2] = {VT_CODEC_BC_BEST, VT_CODEC_BC_OURS_FAST};
@@ -617,9 +617,10 @@ static void bc_ours_best_matches_libsquish_cluster_fit(void)
            bc3_squish = round_trip_psnr("bc3", &rgba, VT_CODEC_BC_REF_SQUISH);
     double bc1_fast = round_trip_psnr("bc1", &rgb, VT_CODEC_BC_OURS_FAST),
            bc1_stb = round_trip_psnr("bc1", &rgb, VT_CODEC_BC_REF_STB_DXT);
-    fprintf(stderr,
-            "  bc1 best %.3f dB vs libsquish %.3f; bc3 best %.3f vs %.3f; ours fast %.3f vs stb_dxt %.3f\n",
-            bc1_ours, bc1_squish, bc3_ours, bc3_squish, bc1_fast, bc1_stb);
+    fprintf(
+        stderr,
+        "  bc1 best %.3f dB vs libsquish %.3f; bc3 best %.3f vs %.3f; ours fast %.3f vs stb_dxt %.3f\n",
+        bc1_ours, bc1_squish, bc3_ours, bc3_squish, bc1_fast, bc1_stb);
     /* over all channels, alpha included for bc3 */
     VT_CHECK(bc1_ours >= bc1_squish - 0.05);
     VT_CHECK(bc3_ours >= bc3_squish - 0.05);
