@@ -13,8 +13,19 @@
 struct vt_codec_params {
     int quality;     /* lossy codecs: 1..100, 0 = codec default */
     int effort;      /* png: 1..9 = zlib level, 0 = default (2; 1..3 use the fast SUB filter);
-                        bc: 0 = fast, 1 = best */
+                        bc: enum vt_codec_bc_effort */
     int subsampling; /* jpeg: 420 or 444; 0 = default (420) */
+};
+
+/* bc1 and bc3 effort. The reference encoders are an explicit option for the benchmark
+ * (scripts/bench/bc-encoders) and the tests, which compare ours with them on the same texels
+ * through this table; the tools never ask for them (--mode gives 0 or 1). */
+enum vt_codec_bc_effort {
+    VT_CODEC_BC_FAST = 0,         /* stb_dxt; BC1 blocks with a texel of alpha < 128: ours fast */
+    VT_CODEC_BC_BEST = 1,         /* ours, several starts, refinement + endpoint search */
+    VT_CODEC_BC_REF_STB_DXT = 16, /* stb_dxt 1.12 (libsquish range fit for BC1 cut-outs) */
+    VT_CODEC_BC_REF_SQUISH = 17,  /* libsquish 1.15 cluster fit (BC3: colour by alpha) */
+    VT_CODEC_BC_OURS_FAST = 18,   /* ours, one least-squares step: better than stb_dxt, slower */
 };
 
 struct vt_codec {

@@ -2,13 +2,19 @@
  * then top to bottom), 8 bytes (BC1) or 16 bytes (BC3) each, exactly what glCompressedTexImage2D
  * takes for a tile of that size. The tile edge must be a multiple of 4; the encoder never pads.
  *
- * Encoders (params->effort):
- *   0 fast: stb_dxt (one refinement step). BC1 blocks holding a texel with alpha < 128 go through
- *           libsquish's range fit instead, because stb_dxt has no 3-colour+transparent mode.
- *   1 best: libsquish's cluster fit; for BC3 with colour error weighted by alpha (it counts where
- *           the texel shows). On the photo-like test image (docs/codecs.md) it gains 0.5 dB on
- *           BC1 over fast and 0.45 dB over stb_dxt's two-step STB_DXT_HIGHQUAL mode, which was
- *           measured and left out (+0.08 dB for 1.5x the time), at ~1/90 of the speed.
+ * Encoders (params->effort, enum vt_codec_bc_effort):
+ *   0 fast: stb_dxt 1.12 (STB_DXT_NORMAL); BC1 blocks holding a texel with alpha < 128 go through
+ *           our fast encoder (3-colour + transparent mode, which stb_dxt lacks). Our fast encoder
+ *           for every block (18, principal axis + one least-squares step) gains 0.2 dB over
+ *           stb_dxt but runs at ~0.7-0.9x its speed, so it is not the default yet.
+ *   1 best: ours (vt_bc_encode.c): iterated least squares from four starts along the principal
+ *           axis, both colour modes (BC1), +-1 search of the
+ *           565 endpoints; for BC3 colour error weighted by alpha (it counts where the texel
+ *           shows), alpha refined in both modes. Measured against libsquish's cluster fit in
+ *           docs/accuracy.md (scripts/bench/bc-encoders).
+ *   16, 17: the references, for the benchmark and the tests only: stb_dxt 1.12 (what fast was,
+ *           with libsquish's range fit for BC1 blocks holding a texel of alpha < 128) and
+ *           libsquish 1.15's cluster fit (what best was). 18: our fast encoder on every block.
  * BC1 keeps alpha as one bit: a 4-channel texel with alpha < 128 is stored as the transparent
  * black (0, 0, 0, 0) of the 3-colour mode, every other texel decodes with alpha 255. BC3 stores
  * alpha in its own block (fast: the 8-alpha mode; best: 8- or 6-alpha, whichever fits better).
@@ -31,6 +37,7 @@
 #define STB_DXT_IMPLEMENTATION
 #include <stb/stb_dxt.h>
 
+#include "internal/vt_bc_encode.h"
 #include "internal/vt_codec_impl.h"
 #include "internal/vt_squish_shim.h"
 #include "vt_checked.h"
@@ -38,8 +45,6 @@
 #include "vt_error.h"
 
 #define BC_BLOCK_PX     4
-#define BC_EFFORT_FAST  0
-#define BC_EFFORT_BEST  1
 #define BC_ALPHA_OPAQUE 128 /* BC1: alpha below this is stored as transparent */
 
 /* What tells bc1 from bc3. */
@@ -157,19 +162,42 @@ static bool bc_block_has_transparent_texel(const unsigned char *rgba)
     return false;
 }
 
-/* Encodes one gathered block; returns 0, or -1 when libsquish failed. */
+/* Encodes one gathered block; returns 0, or -1 when libsquish (a reference encoder) failed. */
 static int bc_encode_block(const struct bc_format *fmt, const unsigned char *rgba, int effort,
                            bool rgba_source, unsigned char *dst)
 {
     unsigned squish_flags = fmt->has_alpha_block ? VT_SQUISH_SHIM_BC3 : 0;
-    if (effort == BC_EFFORT_BEST && fmt->has_alpha_block)
-        squish_flags |= VT_SQUISH_SHIM_WEIGHT_BY_ALPHA; /* colour error counts where it shows */
-    if (effort == BC_EFFORT_BEST)
+    switch (effort) {
+    case VT_CODEC_BC_REF_SQUISH:
+        if (fmt->has_alpha_block) /* colour error counts where it shows */
+            squish_flags |= VT_SQUISH_SHIM_WEIGHT_BY_ALPHA;
         return vt_squish_shim_compress_block(rgba, squish_flags | VT_SQUISH_SHIM_CLUSTER_FIT, dst);
-    if (!fmt->has_alpha_block && rgba_source && bc_block_has_transparent_texel(rgba))
-        return vt_squish_shim_compress_block(rgba, squish_flags, dst); /* range fit, 3-colour */
-    stb_compress_dxt_block(dst, rgba, fmt->has_alpha_block, STB_DXT_NORMAL);
-    return 0;
+    case VT_CODEC_BC_REF_STB_DXT:
+        if (!fmt->has_alpha_block && rgba_source && bc_block_has_transparent_texel(rgba))
+            return vt_squish_shim_compress_block(rgba, squish_flags, dst); /* range fit */
+        stb_compress_dxt_block(dst, rgba, fmt->has_alpha_block, STB_DXT_NORMAL);
+        return 0;
+    case VT_CODEC_BC_FAST: /* stb_dxt has no 3-colour + transparent mode: ours for cut-outs */
+        if (!fmt->has_alpha_block && rgba_source && bc_block_has_transparent_texel(rgba)) {
+            vt_bc_encode_colour_block(rgba, 0, dst);
+            return 0;
+        }
+        stb_compress_dxt_block(dst, rgba, fmt->has_alpha_block, STB_DXT_NORMAL);
+        return 0;
+    default: {
+        unsigned flags = effort == VT_CODEC_BC_BEST ? VT_BC_ENCODE_BEST : 0;
+        if (!fmt->has_alpha_block) {
+            vt_bc_encode_colour_block(rgba, flags, dst);
+            return 0;
+        }
+        flags |= VT_BC_ENCODE_FOUR_COLOUR_ONLY;
+        if (effort == VT_CODEC_BC_BEST)
+            flags |= VT_BC_ENCODE_WEIGHT_BY_ALPHA;
+        vt_bc_encode_alpha_block(rgba, flags, dst);
+        vt_bc_encode_colour_block(rgba, flags, dst + 8);
+        return 0;
+    }
+    }
 }
 
 static int bc_encode(const struct bc_format *fmt, const struct vt_image *src,
@@ -181,8 +209,10 @@ static int bc_encode(const struct bc_format *fmt, const struct vt_image *src,
     int rc = bc_image_layout(fmt, src, "source", &payload_bytes, err);
     if (rc < 0)
         return rc;
-    int effort = params ? params->effort : BC_EFFORT_FAST;
-    if (effort != BC_EFFORT_FAST && effort != BC_EFFORT_BEST)
+    int effort = params ? params->effort : VT_CODEC_BC_FAST;
+    if (effort != VT_CODEC_BC_FAST && effort != VT_CODEC_BC_BEST &&
+        effort != VT_CODEC_BC_REF_STB_DXT && effort != VT_CODEC_BC_REF_SQUISH &&
+        effort != VT_CODEC_BC_OURS_FAST)
         return vt_error_set(err, VTS_ERR_ARG,
                             "%s codec: effort %d is neither 0 (fast) nor 1 (best)", fmt->name,
                             effort);
