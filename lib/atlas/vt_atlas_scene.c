@@ -22,23 +22,10 @@ struct vt_atlas_scene_index {
 
 /* ---- the scene's arrays ---- */
 
-/* Makes room for need elements of elem bytes in *p (capacity *cap, doubled as it grows). */
+/* 0 or VTS_ERR_NOMEM: vt_array_grow() from 16 elements. */
 static int grow(void **p, size_t *cap, size_t need, size_t elem)
 {
-    if (need <= *cap)
-        return 0;
-    size_t n = *cap ? *cap : 16, bytes;
-    while (n < need)
-        if (!vt_size_mul(n, 2, &n))
-            return VTS_ERR_NOMEM;
-    if (!vt_size_mul(n, elem, &bytes))
-        return VTS_ERR_NOMEM;
-    void *q = realloc(*p, bytes);
-    if (!q)
-        return VTS_ERR_NOMEM;
-    *p = q;
-    *cap = n;
-    return 0;
+    return vt_array_grow(p, cap, need, elem, 16) ? 0 : VTS_ERR_NOMEM;
 }
 
 static struct vt_atlas_scene_index *index_of(struct vt_atlas_scene *s, struct vts_error *err)

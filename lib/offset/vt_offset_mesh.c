@@ -15,23 +15,10 @@
 #include "vt_error.h"
 #include "vt_uv_text.h"
 
-/* Makes room for need elements of elem bytes in *p (capacity *cap). */
+/* 0 or VTS_ERR_NOMEM: vt_array_grow() from 1024 elements. */
 static int grow(void **p, size_t *cap, size_t need, size_t elem)
 {
-    if (need <= *cap)
-        return 0;
-    size_t n = *cap ? *cap : 1024, bytes;
-    while (n < need)
-        if (!vt_size_mul(n, 2, &n))
-            return VTS_ERR_NOMEM;
-    if (!vt_size_mul(n, elem, &bytes))
-        return VTS_ERR_NOMEM;
-    void *q = realloc(*p, bytes);
-    if (!q)
-        return VTS_ERR_NOMEM;
-    *p = q;
-    *cap = n;
-    return 0;
+    return vt_array_grow(p, cap, need, elem, 1024) ? 0 : VTS_ERR_NOMEM;
 }
 
 int vt_offset_mesh_add_face(struct vt_offset_run *r, const uint32_t *corners, uint32_t corner_count,
