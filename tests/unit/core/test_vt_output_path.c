@@ -385,15 +385,20 @@ static void dash_scratch_files_go_to_tmpdir(void)
     VT_CHECK_STR_CONTAINS(err.message, "for '<stdin>' in '");
     VT_CHECK_STR_CONTAINS(err.message, "missing");
     unsetenv("TMPDIR");
-    /* standard output closed: named in the message */
+    /* standard output closed: named in the message (in dir: a wrong "-" would be a file there) */
+    char cwd[VT_PATH_MAX];
+    VT_CHECK(getcwd(cwd, sizeof cwd) != NULL && chdir(dir) == 0);
     fflush(stdout);
     int saved = dup(STDOUT_FILENO);
     close(STDOUT_FILENO);
     int rc = vt_atomic_file_create(&f, "-", "tmp", VT_ATOMIC_FILE_SEQUENTIAL, &err);
+    vt_atomic_file_abort(&f); /* a no-op unless it wrongly made a file (fd 1 then) */
     VT_CHECK(dup2(saved, STDOUT_FILENO) == STDOUT_FILENO); /* before any check prints */
     close(saved);
+    VT_CHECK(chdir(cwd) == 0);
     VT_CHECK_INT_EQ(rc, VTS_ERR_IO);
     VT_CHECK_STR_CONTAINS(err.message, "cannot open '<stdout>' for writing");
+    VT_CHECK_INT_EQ(count_entries(dir, NULL, 0), 0);
 }
 
 int main(void)
