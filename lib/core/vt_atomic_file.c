@@ -153,9 +153,9 @@ static int create_named_temp(struct vt_atomic_file *f, const char *path, const c
     }
     int e = errno;
     f->temp_path[0] = '\0';
-    if (f->target_path[0] == '\0') /* vt_atomic_file_create_tmp(): no output, a directory */
+    if (strcmp(path, f->target_path) != 0) /* in $TMPDIR: for a device, "-" or no output */
         return vt_error_set(err, VTS_ERR_IO, "cannot create a scratch file for '%s' in '%s': %s",
-                            f->final_path, dir, strerror(e));
+                            shown(f), dir, strerror(e));
     return vt_error_set(err, VTS_ERR_IO, "cannot create a file next to '%s': %s", shown(f),
                         strerror(e));
 }
