@@ -2,11 +2,13 @@
  * structure (empty and shared tiles) and metadata. Reference: docs/cli/vt-convert.md. */
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "tool_common.h"
 #include "vt_atomic_file.h"
 #include "vt_codec.h"
 #include "vt_error.h"
+#include "vt_output_path.h"
 #include "vt_pool.h"
 #include "vt_tile_sink.h"
 #include "vts.h"
@@ -51,7 +53,9 @@ static void usage(void)
         "Re-encode the tiles of a .vts store with another codec. Geometry, empty tiles, shared\n"
         "payloads and metadata are kept; the conversion is added to the metadata as convert.N.\n"
         "\n"
-        "  -o, --output FILE     the store to write (replaced only when complete)\n"
+        "  -o, --output FILE     the store to write (replaced only when complete); - for\n"
+        "                        standard output (not a terminal; spooled in $TMPDIR, then\n"
+        "                        copied)\n"
         "      --codec NAME      raw | png | jpeg | bc1 | bc3 (required)\n"
         "      --quality Q       jpeg quality, integer 1..100 (default 85)\n"
         "      --subsampling S   jpeg chroma subsampling, 420 | 444 (default 420)\n"
@@ -138,6 +142,9 @@ static int validate_options(const struct options *o, const struct vt_codec **cod
 {
     if (!o->in_path)
         return vt_usage_error("missing IN.vts argument");
+    if (vt_output_path_is_stdio(o->in_path))
+        return vt_usage_error("IN cannot be standard input ('-'): name the store (./- for a file "
+                              "named -)");
     if (!o->out_path)
         return vt_usage_error("missing -o OUT.vts");
     if (!o->codec_name)
@@ -457,6 +464,7 @@ int main(int argc, char **argv)
     struct options o;
     const struct vt_codec *codec = NULL;
     vt_tool_init("vt-convert");
+    vt_output_path_use_stdio(); /* -o - */
     vt_atomic_file_cleanup_on_signals();
     int rc = parse_options(argc, argv, &o);
     if (rc >= 0)
@@ -464,9 +472,17 @@ int main(int argc, char **argv)
     rc = validate_options(&o, &codec);
     if (rc != 0)
         return rc;
+    if ((rc = vt_refuse_terminal(o.out_path, STDOUT_FILENO, "a store")) >= 0)
+        return rc;
+    if (vt_output_path_is_stdio(o.out_path))
+        vt_log_alias(VT_PATH_STDIO, VT_STDOUT_NAME);
     /* OUT may be IN itself (documented; scripts/vt.mk converts layer after layer in place): IN is
-     * read through the open store and replaced only by the complete new one. A directory is not. */
-    if ((rc = vt_check_output(o.out_path, NULL, 0)) >= 0)
+     * read through the open store and replaced only by the complete new one. A directory is not,
+     * nor standard output when it is IN (written into, not replaced: the old bytes would stay
+     * past the new store's end). */
+    const char *inputs[] = {o.in_path};
+    size_t input_count = vt_output_path_is_stdio(o.out_path) ? 1 : 0;
+    if ((rc = vt_check_output(o.out_path, inputs, input_count)) >= 0)
         return rc;
     return run(&o, codec);
 }

@@ -1,12 +1,17 @@
 /* vt-info: describes a .vts tile store, verifies its tiles, or extracts a tile or level as PNG.
  * Reference (options, output fields, JSON keys): docs/cli/vt-info.md. */
+#include <errno.h>
 #include <jansson.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include "tool_common.h"
 #include "vt_atomic_file.h"
+#include "vt_output_path.h"
+#include "vt_stdin_spool.h"
 #include "vt_store_stats.h"
 #include "vt_tile_reader.h"
 #include "vts.h"
@@ -49,13 +54,16 @@ static void usage(void)
           "      --tile X,Y       write only tile X,Y (integers, 0..tiles-1 of LEVEL) with its\n"
           "                       border; default: the whole level stitched without borders\n"
           "      --layer N        layer to extract (integer, 0..layers-1; default 0)\n"
-          "  -o, --output FILE    PNG to write (replaced only when complete)\n"
+          "  -o, --output FILE    PNG to write (replaced only when complete); - for standard\n"
+          "                       output (not a terminal)\n"
           "General:\n"
           "  -q, --quiet          print errors only\n"
           "  -v, --verbose        print more (repeatable: info, then debug)\n"
           "  -h, --help           print this help and exit\n"
           "      --version        print the version and exit\n"
           "\n"
+          "STORE - reads the store from standard input (copied to a temporary file first;\n"
+          "'<stdin>' in messages and the summary).\n"
           "Summary: 'shared' counts stored tiles whose payload an earlier tile (in index order)\n"
           "already uses; 'bytes' counts each payload once. Bits per texel = 8 * payload bytes /\n"
           "texels of all stored tiles (payload edge^2 each, borders included, all levels and\n"
@@ -435,10 +443,47 @@ static int run_extract(const struct vts_store *s, const struct options *o)
     return VT_EXIT_OK;
 }
 
+/* A store read from standard input: its spooled copy, mapped (vts_open_memory names it). */
+struct stdin_store {
+    void *map;
+    size_t size;
+};
+
+/* Opens STORE; "-" is standard input, copied to a scratch file and mapped, named '<stdin>'
+ * (the reader seeks). Returns NULL with the message in err. Unmap m after vts_close(). */
+static struct vts_store *open_store(const char *path, struct stdin_store *m, struct vts_error *err)
+{
+    *m = (struct stdin_store){0};
+    if (!vt_output_path_is_stdio(path))
+        return vts_open(path, err);
+    struct vt_stdin_spool spool;
+    struct vts_store *s = NULL;
+    if (vt_stdin_spool_read(&spool, err) != 0)
+        goto out;
+    if ((uint64_t)(size_t)spool.size != spool.size) {
+        vt_error_set(err, VTS_ERR_LIMIT, "'%s' is too large to map", VT_STDIN_NAME);
+        goto out;
+    }
+    void *map = mmap(NULL, (size_t)spool.size, PROT_READ, MAP_PRIVATE, spool.file.fd, 0);
+    if (map == MAP_FAILED) {
+        vt_error_set(err, VTS_ERR_IO, "cannot map '%s': %s", VT_STDIN_NAME, strerror(errno));
+        goto out;
+    }
+    *m = (struct stdin_store){map, (size_t)spool.size};
+    if (!(s = vts_open_memory(map, m->size, VT_STDIN_NAME, err))) {
+        munmap(m->map, m->size);
+        *m = (struct stdin_store){0};
+    }
+out:
+    vt_stdin_spool_release(&spool); /* the mapping keeps the copy until munmap */
+    return s;
+}
+
 static int run(const struct options *o)
 {
     struct vts_error err = {0};
-    struct vts_store *s = vts_open(o->store_path, &err);
+    struct stdin_store mapped;
+    struct vts_store *s = open_store(o->store_path, &mapped, &err);
     int rc;
     if (!s) {
         vt_log(VT_LOG_ERROR, "%s", err.message);
@@ -453,6 +498,8 @@ static int run(const struct options *o)
     else
         rc = run_summary(s, o->json);
     vts_close(s);
+    if (mapped.map)
+        munmap(mapped.map, mapped.size);
     return rc;
 }
 
@@ -460,6 +507,7 @@ int main(int argc, char **argv)
 {
     struct options o;
     vt_tool_init("vt-info");
+    vt_output_path_use_stdio();          /* STORE -, -o - */
     vt_atomic_file_cleanup_on_signals(); /* --extract writes through a temporary file */
     int rc = parse_options(argc, argv, &o);
     if (rc >= 0)
@@ -467,6 +515,11 @@ int main(int argc, char **argv)
     rc = validate_options(&o);
     if (rc != 0)
         return rc;
+    if ((rc = vt_refuse_terminal(o.store_path, STDIN_FILENO, "a store")) >= 0 ||
+        (o.extract && (rc = vt_refuse_terminal(o.out_path, STDOUT_FILENO, "a PNG")) >= 0))
+        return rc;
+    if (o.extract && vt_output_path_is_stdio(o.out_path))
+        vt_log_alias(VT_PATH_STDIO, VT_STDOUT_NAME);
     const char *inputs[] = {o.store_path};
     if (o.extract && (rc = vt_check_output(o.out_path, inputs, 1)) >= 0)
         return rc;

@@ -3,11 +3,13 @@
  * their coarse levels. Reference: docs/cli/vt-merge.md, docs/sharding.md. */
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "tool_common.h"
 #include "vt_atomic_file.h"
 #include "vt_codec.h"
 #include "vt_error.h"
+#include "vt_output_path.h"
 #include "vt_pool.h"
 #include "vt_pyramid.h"
 #include "vt_pyramid_resume.h"
@@ -64,7 +66,9 @@ static void usage(void)
           "Shards of `vt-tiles --shard I/N` (all N of them, in any order) are joined and their\n"
           "coarse levels built: the output is the single-process build, byte for byte.\n"
           "\n"
-          "  -o, --output FILE   the store to write (replaced only when complete)\n"
+          "  -o, --output FILE   the store to write (replaced only when complete); - for\n"
+          "                      standard output (not a terminal; spooled in $TMPDIR, then\n"
+          "                      copied)\n"
           "  -j, --threads N     worker threads for the coarse levels (default: all cores)\n"
           "      --temp-dir DIR  where the coarse levels' pass images go (default: the output's\n"
           "                      directory)\n"
@@ -122,6 +126,10 @@ static int parse_options(int argc, char **argv, struct vt_merge_options *o)
         return vt_usage_error("missing input stores");
     if (!o->out_path)
         return vt_usage_error("missing -o OUT.vts");
+    for (int k = 0; k < o->input_count; k++)
+        if (vt_output_path_is_stdio(o->inputs[k]))
+            return vt_usage_error("an input cannot be standard input ('-'): name the store (./- "
+                                  "for a file named -)");
     return -1;
 }
 
@@ -442,10 +450,15 @@ int main(int argc, char **argv)
 {
     struct vt_merge_options o;
     vt_tool_init("vt-merge");
+    vt_output_path_use_stdio(); /* -o - */
     vt_atomic_file_cleanup_on_signals();
     int rc = parse_options(argc, argv, &o);
     if (rc >= 0)
         return rc;
+    if ((rc = vt_refuse_terminal(o.out_path, STDOUT_FILENO, "a store")) >= 0)
+        return rc;
+    if (vt_output_path_is_stdio(o.out_path))
+        vt_log_alias(VT_PATH_STDIO, VT_STDOUT_NAME);
     if ((rc = vt_check_output(o.out_path, (const char *const *)o.inputs, (size_t)o.input_count)) >=
         0)
         return rc;

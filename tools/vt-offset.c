@@ -14,6 +14,7 @@
 #include "vt_layout.h"
 #include "vt_obj.h"
 #include "vt_offset.h"
+#include "vt_output_path.h"
 #include "vt_uv_text.h"
 #include "vt_version.h"
 
@@ -44,11 +45,14 @@ static void usage(void)
           "Put the texture coordinates (vt) of an OBJ scene onto the atlas of atlas.json (written\n"
           "by vt-atlas), in double precision. Every other line is copied unchanged.\n"
           "\n"
-          "  -o, --output FILE   the OBJ to write (replaced only when complete)\n"
+          "  -o, --output FILE   the OBJ to write (replaced only when complete); - for standard\n"
+          "                      output (needs --mtl)\n"
           "      --mtl FILE      the MTL to write, named by OUT's mtllib line\n"
-          "                      (default: OUT with .mtl instead of .obj)\n"
+          "                      (default: OUT with .mtl instead of .obj; with -o -:\n"
+          "                      required, and the mtllib line names it as given)\n"
           "      --store NAME    the store map_Kd names in the MTL, as written\n"
-          "                      (default: OUT's file name with .vts instead of .obj)\n"
+          "                      (default: OUT's file name with .vts instead of .obj; with -o -,\n"
+          "                      the MTL's with .vts instead of .mtl)\n"
           "      --precision N   decimal places of the written coordinates, 1..17 (default: the\n"
           "                      fewest keeping the round-off under 1e-4 texel of the atlas)\n"
           "  -q, --quiet         print errors only\n"
@@ -105,6 +109,10 @@ static int parse_options(int argc, char **argv, struct options *o)
     o->layout_path = argv[optind + 1];
     if (!o->out_path)
         return vt_usage_error("missing -o OUT.obj");
+    if (vt_output_path_is_stdio(o->mtl_path))
+        return vt_usage_error("--mtl cannot be standard output ('-'): OUT's mtllib line names it");
+    if (vt_output_path_is_stdio(o->out_path) && !o->mtl_path)
+        return vt_usage_error("-o - needs --mtl FILE (the MTL's name derives from OUT's)");
     return -1;
 }
 
@@ -116,11 +124,12 @@ static const char *base_name(const char *path)
     return slash ? slash + 1 : path;
 }
 
-/* path with its ".obj" (any case) replaced by ext, or ext appended; malloc'ed. */
-static char *with_extension(const char *path, const char *ext)
+/* path with its old_ext (".obj", ".mtl"; any case) replaced by ext, or ext appended;
+ * malloc'ed. */
+static char *with_extension(const char *path, const char *old_ext, const char *ext)
 {
     size_t n = strlen(path);
-    if (n > 4 && strcasecmp(path + n - 4, ".obj") == 0 && path[n - 5] != '/')
+    if (n > 4 && strcasecmp(path + n - 4, old_ext) == 0 && path[n - 5] != '/')
         n -= 4;
     char *out = malloc(n + strlen(ext) + 1);
     if (out) {
@@ -130,6 +139,15 @@ static char *with_extension(const char *path, const char *ext)
     return out;
 }
 
+/* --store's default: OUT's file name with .vts instead of .obj; with OUT "-", the MTL's with .vts
+ * instead of .mtl. malloc'ed; NULL when out of memory (or mtl_path NULL). */
+static char *default_store(const char *out_path, const char *mtl_path)
+{
+    if (!vt_output_path_is_stdio(out_path))
+        return with_extension(base_name(out_path), ".obj", ".vts");
+    return mtl_path ? with_extension(base_name(mtl_path), ".mtl", ".vts") : NULL;
+}
+
 static bool same_directory(const char *a, const char *b)
 {
     size_t da = (size_t)(base_name(a) - a), db = (size_t)(base_name(b) - b);
@@ -137,9 +155,12 @@ static bool same_directory(const char *a, const char *b)
 }
 
 /* What OUT.obj's mtllib line says: the MTL's name when both lie in one directory, else its
- * absolute path. malloc'ed, or NULL with a message logged. */
+ * absolute path; with OUT "-" (standard output, no directory), --mtl as given. malloc'ed, or
+ * NULL with a message logged. */
 static char *mtllib_text(const char *out_path, const char *mtl_path)
 {
+    if (vt_output_path_is_stdio(out_path))
+        return strdup(mtl_path);
     if (same_directory(out_path, mtl_path) || mtl_path[0] == '/')
         return strdup(same_directory(out_path, mtl_path) ? base_name(mtl_path) : mtl_path);
     char cwd[PATH_MAX];
@@ -235,8 +256,14 @@ static int check_outputs(const struct options *o, const char *mtl_path)
     if (rc)
         goto out;
     const char *const *inputs = (const char *const *)l.paths;
-    if ((status = vt_check_output(o->out_path, inputs + 1, l.count - 1)) < 0)
-        status = vt_check_output(mtl_path, inputs, l.count);
+    /* With -o -, OUT.mtl is checked against what standard output is, not against paths[0] "-"
+     * (as an input, "-" is standard input). */
+    size_t skip = vt_output_path_is_stdio(o->out_path) ? 1 : 0;
+    status = vt_check_output(o->out_path, inputs + 1, l.count - 1);
+    if (status < 0 && skip)
+        status = vt_check_output(o->out_path, &mtl_path, 1);
+    if (status < 0)
+        status = vt_check_output(mtl_path, inputs + skip, l.count - skip);
 out:
     path_list_release(&l);
     return status;
@@ -320,8 +347,9 @@ static int run(const struct options *o)
     struct vts_error err = {0};
     struct vt_layout layout = {0};
     struct file_sink obj = {.file.fd = -1}, mtl = {.file.fd = -1};
-    char *mtl_path = o->mtl_path ? strdup(o->mtl_path) : with_extension(o->out_path, ".mtl");
-    char *store = o->store ? strdup(o->store) : with_extension(base_name(o->out_path), ".vts");
+    char *mtl_path =
+        o->mtl_path ? strdup(o->mtl_path) : with_extension(o->out_path, ".obj", ".mtl");
+    char *store = o->store ? strdup(o->store) : default_store(o->out_path, mtl_path);
     char *mtllib = mtl_path ? mtllib_text(o->out_path, mtl_path) : NULL;
     int status = VT_EXIT_BAD_INPUT, rc;
     if (!mtl_path || !store || !mtllib) {
@@ -378,7 +406,12 @@ int main(int argc, char **argv)
 {
     struct options o;
     vt_tool_init("vt-offset");
+    vt_output_path_use_stdio(); /* -o - */
     vt_atomic_file_cleanup_on_signals();
     int rc = parse_options(argc, argv, &o);
-    return rc >= 0 ? rc : run(&o);
+    if (rc >= 0)
+        return rc;
+    if (vt_output_path_is_stdio(o.out_path))
+        vt_log_alias(VT_PATH_STDIO, VT_STDOUT_NAME);
+    return run(&o);
 }

@@ -92,6 +92,12 @@ static void reset(struct vt_atomic_file *f)
     f->target_path[0] = '\0';
 }
 
+/* The output's name in messages: "<stdout>" for "-", else final_path as given. */
+static const char *shown(const struct vt_atomic_file *f)
+{
+    return vt_output_path_is_stdio(f->final_path) ? VT_STDOUT_NAME : f->final_path;
+}
+
 /* Records final_path and resolves it into f->target_path and *t. */
 static int resolve(struct vt_atomic_file *f, const char *final_path, struct vt_output_target *t,
                    struct vts_error *err)
@@ -147,7 +153,10 @@ static int create_named_temp(struct vt_atomic_file *f, const char *path, const c
     }
     int e = errno;
     f->temp_path[0] = '\0';
-    return vt_error_set(err, VTS_ERR_IO, "cannot create a file next to '%s': %s", f->final_path,
+    if (strcmp(path, f->target_path) != 0) /* in $TMPDIR: for a device, "-" or no output */
+        return vt_error_set(err, VTS_ERR_IO, "cannot create a scratch file for '%s' in '%s': %s",
+                            shown(f), dir, strerror(e));
+    return vt_error_set(err, VTS_ERR_IO, "cannot create a file next to '%s': %s", shown(f),
                         strerror(e));
 }
 
@@ -191,12 +200,15 @@ static void keep_attributes(int fd, const struct vt_output_target *t)
     }
 }
 
-/* A device, FIFO or socket: open it for writing; stream into it or spool for it. */
+/* A device, FIFO or socket: open it for writing; stream into it or spool for it. "-" is a copy
+ * of file descriptor 1 (closed at commit; standard output itself stays open). */
 static int open_special(struct vt_atomic_file *f, unsigned flags, struct vts_error *err)
 {
-    int fd = open(f->target_path, O_WRONLY | O_CLOEXEC | O_NOCTTY);
+    int fd = vt_output_path_is_stdio(f->target_path)
+                 ? fcntl(STDOUT_FILENO, F_DUPFD_CLOEXEC, 0)
+                 : open(f->target_path, O_WRONLY | O_CLOEXEC | O_NOCTTY);
     if (fd < 0)
-        return vt_error_set(err, VTS_ERR_IO, "cannot open '%s' for writing: %s", f->final_path,
+        return vt_error_set(err, VTS_ERR_IO, "cannot open '%s' for writing: %s", shown(f),
                             strerror(errno));
     if (flags & VT_ATOMIC_FILE_SEQUENTIAL) {
         f->mode = VT_ATOMIC_FILE_STREAM;
@@ -256,6 +268,19 @@ int vt_atomic_file_create_scratch(struct vt_atomic_file *f, const char *final_pa
     return create_unnamed_temp(f, path, err);
 }
 
+int vt_atomic_file_create_tmp(struct vt_atomic_file *f, const char *name, struct vts_error *err)
+{
+    reset(f);
+    char path[VT_PATH_MAX];
+    size_t len = strlen(name);
+    if (len >= sizeof f->final_path)
+        return vt_error_set(err, VTS_ERR_ARG, "name '%s' is too long", name);
+    memcpy(f->final_path, name, len + 1);
+    if (scratch_dir_path(path, sizeof path))
+        return vt_error_set(err, VTS_ERR_ARG, "TMPDIR is too long");
+    return create_unnamed_temp(f, path, err);
+}
+
 /* write() of the whole buffer to a stream, retrying short writes and EINTR. */
 static int write_all(int fd, const void *buf, size_t len, const char *name, struct vts_error *err)
 {
@@ -281,8 +306,8 @@ int vt_atomic_file_pwrite(struct vt_atomic_file *f, const void *buf, size_t len,
             return vt_error_set(err, VTS_ERR_IO,
                                 "cannot write '%s' at byte %llu after byte %llu: it is not a "
                                 "regular file",
-                                f->final_path, off, f->stream_end);
-        int rc = write_all(f->fd, buf, len, f->final_path, err);
+                                shown(f), off, f->stream_end);
+        int rc = write_all(f->fd, buf, len, shown(f), err);
         if (rc == 0)
             f->stream_end += len;
         return rc;
@@ -293,7 +318,7 @@ int vt_atomic_file_pwrite(struct vt_atomic_file *f, const void *buf, size_t len,
         if (n < 0 && errno == EINTR)
             continue;
         if (n <= 0)
-            return vt_error_set(err, VTS_ERR_IO, "cannot write '%s': %s", f->final_path,
+            return vt_error_set(err, VTS_ERR_IO, "cannot write '%s': %s", shown(f),
                                 n < 0 ? strerror(errno) : "no space written");
         p += n;
         len -= (size_t)n;
@@ -321,18 +346,18 @@ static int copy_spool(struct vt_atomic_file *f, struct vts_error *err)
     enum { CHUNK = 1 << 16 };
     unsigned char *buf = malloc(CHUNK);
     if (!buf)
-        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory writing '%s'", f->final_path);
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory writing '%s'", shown(f));
     int rc = 0;
     for (off_t off = 0; rc == 0;) {
         ssize_t n = pread(f->fd, buf, CHUNK, off);
         if (n < 0 && errno == EINTR)
             continue;
         if (n < 0)
-            rc = vt_error_set(err, VTS_ERR_IO, "cannot read back the spool of '%s': %s",
-                              f->final_path, strerror(errno));
+            rc = vt_error_set(err, VTS_ERR_IO, "cannot read back the spool of '%s': %s", shown(f),
+                              strerror(errno));
         if (n <= 0)
             break;
-        rc = write_all(f->device_fd, buf, (size_t)n, f->final_path, err);
+        rc = write_all(f->device_fd, buf, (size_t)n, shown(f), err);
         off += n;
     }
     free(buf);
@@ -345,7 +370,7 @@ static int commit_special(struct vt_atomic_file *f, struct vts_error *err)
     int rc = f->mode == VT_ATOMIC_FILE_SPOOL ? copy_spool(f, err) : 0;
     int out_fd = f->mode == VT_ATOMIC_FILE_SPOOL ? f->device_fd : f->fd;
     if (close(out_fd) != 0 && rc == 0)
-        rc = vt_error_set(err, VTS_ERR_IO, "cannot close '%s': %s", f->final_path, strerror(errno));
+        rc = vt_error_set(err, VTS_ERR_IO, "cannot close '%s': %s", shown(f), strerror(errno));
     if (f->mode == VT_ATOMIC_FILE_SPOOL)
         close(f->fd);
     f->fd = f->device_fd = -1;

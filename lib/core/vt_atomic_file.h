@@ -8,7 +8,10 @@
  * - a directory: refused (VTS_ERR_ARG);
  * - a device, FIFO or socket: never renamed over. Writers that declare VT_ATOMIC_FILE_SEQUENTIAL
  *   write straight into it; others write an unnamed scratch file (in $TMPDIR, or /tmp) that commit
- *   copies into it. Either way, nothing can be taken back once written. */
+ *   copies into it. Either way, nothing can be taken back once written;
+ * - "-", once vt_output_path_use_stdio() was called: standard output, whatever file descriptor 1
+ *   is (a regular file too: written into at its offset, never renamed over), as a device above;
+ *   messages name it '<stdout>'. Before that call, "-" is a file name like any other. */
 #ifndef VT_ATOMIC_FILE_H
 #define VT_ATOMIC_FILE_H
 
@@ -33,7 +36,7 @@ enum vt_atomic_file_mode {
 /* A zeroed struct with fd = -1 is a closed one (vt_atomic_file_abort does nothing). */
 struct vt_atomic_file {
     int fd;                        /* open for read and write; -1 when closed */
-    char final_path[VT_PATH_MAX];  /* as given: the name in messages */
+    char final_path[VT_PATH_MAX];  /* as given: the name in messages ("-": '<stdout>') */
     char temp_path[VT_PATH_MAX];   /* hidden file next to the target: .<name>.<tag>-XXXXXX */
     char target_path[VT_PATH_MAX]; /* final_path with its symbolic links followed */
     enum vt_atomic_file_mode mode; /* set by create, kept after commit and abort */
@@ -54,6 +57,12 @@ int vt_atomic_file_create(struct vt_atomic_file *f, const char *final_path, cons
  * killed; falls back to a hidden named file otherwise. */
 int vt_atomic_file_create_scratch(struct vt_atomic_file *f, const char *final_path,
                                   struct vts_error *err);
+
+/* A scratch file that is never committed and belongs to no output (the spool of standard input):
+ * unnamed (O_TMPFILE) in $TMPDIR, or /tmp, where the file system allows, else a hidden named file
+ * there (temp_path, removed by vt_atomic_file_abort() or a signal). name is its name in messages.
+ * Returns 0, or VTS_ERR_IO / VTS_ERR_ARG with a message naming name and the directory. */
+int vt_atomic_file_create_tmp(struct vt_atomic_file *f, const char *name, struct vts_error *err);
 
 /* Flushes the temporary file to disk, closes it and renames it over the target, then flushes the
  * directory. On failure the temporary file is removed and final_path is untouched. A device or

@@ -37,14 +37,45 @@ static void describe(struct vt_output_target *t, const struct stat *st)
     t->gid = st->st_gid;
 }
 
+/* Set once from main (vt_output_path_use_stdio), read by every path decision after it: whether
+ * "-" is standard input and output is the command line's convention, not the library's. */
+static bool use_stdio;
+
+void vt_output_path_use_stdio(void)
+{
+    use_stdio = true;
+}
+
+bool vt_output_path_is_stdio(const char *path)
+{
+    return use_stdio && path && strcmp(path, VT_PATH_STDIO) == 0;
+}
+
+/* The name of a path in messages: "<stdin>" / "<stdout>" for "-", else the path. */
+static const char *shown(const char *path, bool is_input)
+{
+    if (!vt_output_path_is_stdio(path))
+        return path;
+    return is_input ? VT_STDIN_NAME : VT_STDOUT_NAME;
+}
+
 int vt_output_path_resolve(const char *output, struct vt_output_target *t, struct vts_error *err)
 {
     memset(t, 0, sizeof *t);
+    struct stat st;
+    if (vt_output_path_is_stdio(output)) {
+        /* written into whatever file descriptor 1 is: never renamed over, not even a regular file
+         * (the shell opened it; it may be appended to, or hold what came before) */
+        if (fstat(STDOUT_FILENO, &st) == 0)
+            describe(t, &st);
+        t->kind = VT_OUTPUT_SPECIAL;
+        memcpy(t->path, VT_PATH_STDIO, sizeof VT_PATH_STDIO);
+        return 0;
+    }
     size_t len = strlen(output);
     if (len >= sizeof t->path)
         return vt_error_set(err, VTS_ERR_ARG, "output path '%s' is too long", output);
     memcpy(t->path, output, len + 1);
-    struct stat st;
     if (stat(output, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) {
         /* a device, FIFO or socket is opened, never renamed: keep the path as given, which also
          * works through /proc's links (/dev/stdout -> /proc/self/fd/1 -> "pipe:[N]") */
@@ -111,13 +142,16 @@ int vt_output_path_check(const char *output, const char *const *inputs, size_t i
         bool same = false;
         if (!inputs[i])
             continue;
-        if (stat(inputs[i], &st) == 0)
+        if (vt_output_path_is_stdio(inputs[i])) /* standard input, before it is read */
+            same = fstat(STDIN_FILENO, &st) == 0 && S_ISREG(st.st_mode) &&
+                   t.kind != VT_OUTPUT_NEW && st.st_dev == t.dev && st.st_ino == t.ino;
+        else if (stat(inputs[i], &st) == 0)
             same = t.kind != VT_OUTPUT_NEW && st.st_dev == t.dev && st.st_ino == t.ino;
         else if (t.kind == VT_OUTPUT_NEW && vt_output_path_resolve(inputs[i], &in, NULL) == 0)
             same = strcmp(in.path, t.path) == 0; /* not there yet (another output): one name */
         if (same)
             return vt_error_set(err, VTS_ERR_ARG, "output '%s' is the input '%s' (the same file)",
-                                output, inputs[i]);
+                                shown(output, false), shown(inputs[i], true));
     }
     return 0;
 }

@@ -11,9 +11,15 @@
 
 #define PROGRESS_REDRAW_S 0.2 /* at most 5 redraws per second */
 
+#define LOG_ALIASES     4
+#define LOG_MESSAGE_MAX 4096
+
 /* The only mutable globals of the tools: set once from main, read by every message. */
 static const char *tool_name = "vtpipe";
 static int log_level = VT_LOG_WARN; /* enum vt_log_level; messages above it are dropped */
+static struct {
+    const char *path, *name;
+} log_aliases[LOG_ALIASES]; /* vt_log_alias(); path NULL = unused */
 
 void vt_tool_init(const char *name)
 {
@@ -35,6 +41,44 @@ int vt_log_get_level(void)
     return log_level;
 }
 
+void vt_log_alias(const char *path, const char *name)
+{
+    for (int i = 0; i < LOG_ALIASES; i++)
+        if (!log_aliases[i].path) {
+            log_aliases[i].path = path;
+            log_aliases[i].name = name;
+            return;
+        }
+}
+
+/* The alias whose quoted path starts at s (s[0] is a quote), or -1; *len gets the quoted length. */
+static int alias_at(const char *s, size_t *len)
+{
+    for (int i = 0; i < LOG_ALIASES && log_aliases[i].path; i++) {
+        size_t n = strlen(log_aliases[i].path);
+        if (n > 0 && strncmp(s + 1, log_aliases[i].path, n) == 0 && s[n + 1] == '\'') {
+            *len = n + 2;
+            return i;
+        }
+    }
+    return -1;
+}
+
+/* Writes text to stderr with every quoted alias path replaced by its quoted name. */
+static void put_aliased(const char *text)
+{
+    for (const char *p = text; *p;) {
+        size_t len;
+        int i = *p == '\'' ? alias_at(p, &len) : -1;
+        if (i >= 0) {
+            fprintf(stderr, "'%s'", log_aliases[i].name);
+            p += len;
+        } else {
+            fputc(*p++, stderr);
+        }
+    }
+}
+
 #if defined(__GNUC__) /* lets the compiler check the callers' formats */
 static void log_va(const char *fmt, va_list ap) __attribute__((format(printf, 1, 0)));
 #endif
@@ -42,7 +86,13 @@ static void log_va(const char *fmt, va_list ap) __attribute__((format(printf, 1,
 static void log_va(const char *fmt, va_list ap)
 {
     fprintf(stderr, "%s: ", tool_name);
-    vfprintf(stderr, fmt, ap);
+    if (!log_aliases[0].path) {
+        vfprintf(stderr, fmt, ap);
+    } else {
+        char text[LOG_MESSAGE_MAX];
+        vsnprintf(text, sizeof text, fmt, ap);
+        put_aliased(text);
+    }
     fputc('\n', stderr);
 }
 
@@ -182,6 +232,19 @@ int vt_check_output(const char *output, const char *const *inputs, size_t n)
         return VT_EXIT_BAD_INPUT;
     }
     return -1;
+}
+
+int vt_refuse_terminal(const char *path, int fd, const char *what)
+{
+    if (!vt_output_path_is_stdio(path) || !isatty(fd))
+        return -1;
+    if (fd == STDIN_FILENO)
+        vt_log(VT_LOG_ERROR,
+               "not reading %s from a terminal: redirect standard input or give a file name", what);
+    else
+        vt_log(VT_LOG_ERROR,
+               "not writing %s to a terminal: redirect standard output or give a file name", what);
+    return VT_EXIT_USAGE;
 }
 
 void vt_print_version(FILE *f)

@@ -32,6 +32,11 @@ const char *vt_tool_name(void);
 void vt_log_set_level(int level);
 int vt_log_get_level(void);
 
+/* Messages that name 'path' (in single quotes, as every message names a file) name 'name'
+ * instead, from now on: set once from main for "-" ('<stdout>') and for the spool of standard
+ * input ('<stdin>', vt_stdin_spool.h), whose path means nothing to the user. At most 4. */
+void vt_log_alias(const char *path, const char *name);
+
 /* Prints "<tool>: <message>\n" to stderr when level <= the current level. */
 void vt_log(int level, const char *fmt, ...)
 #if defined(__GNUC__)
@@ -75,6 +80,12 @@ int vt_parse_size(const char *s, uint64_t *out);
  * inputs[0..n) (vt_output_path_check; NULL entries are skipped). Prints "<tool>: <reason>" and
  * returns VT_EXIT_BAD_INPUT, or returns -1 when the output may be written. */
 int vt_check_output(const char *output, const char *const *inputs, size_t n);
+
+/* Before any work, for a binary output (what: "a PNG", "a store") or input: when path is "-"
+ * and fd (STDOUT_FILENO or STDIN_FILENO) is a terminal, prints one line ("<tool>: not writing
+ * a PNG to a terminal: redirect standard output or give a file name") and returns VT_EXIT_USAGE;
+ * else -1. */
+int vt_refuse_terminal(const char *path, int fd, const char *what);
 
 /* Prints "<tool> (vtpipe) <version>" and the .vts format line to f. */
 void vt_print_version(FILE *f);

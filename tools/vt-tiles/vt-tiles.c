@@ -5,12 +5,15 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "tool_common.h"
 #include "vt_atomic_file.h"
 #include "vt_image_input.h"
+#include "vt_output_path.h"
 #include "vt_pool.h"
 #include "vt_shard.h"
+#include "vt_stdin_spool.h"
 #include "vt_tiles_image.h"
 #include "vt_tiles_layout.h"
 #include "vts_writer.h"
@@ -33,8 +36,10 @@ static void usage(FILE *f)
         f,
         "usage: vt-tiles INPUT -o OUT.vts [options]\n"
         "Builds every mip level of INPUT, cut into bordered tiles, into one .vts store.\n"
-        "INPUT: TIFF/BigTIFF (tiled or striped), PNG, JPEG, EXR; other formats through OpenImageIO.\n\n"
-        "  -o, --output FILE        the store to write (replaced atomically)\n"
+        "INPUT: TIFF/BigTIFF (tiled or striped), PNG, JPEG, EXR; other formats through OpenImageIO;\n"
+        "- for standard input (copied to a temporary file first; '<stdin>' in messages).\n\n"
+        "  -o, --output FILE        the store to write (replaced atomically); - for standard\n"
+        "                           output (not a terminal; spooled in $TMPDIR, then copied)\n"
         "      --tile-size N        tile payload edge in texels, 8..16384 (default 256)\n"
         "      --keep payload|content  which edge is the given size: payload (content =\n"
         "                           size - 2*border, default) or content (payload grows)\n"
@@ -238,8 +243,14 @@ static int parse_options(int argc, char **argv, struct options *o)
     if (o->layout) {
         if (optind != argc)
             return vt_usage_error("--layout takes no INPUT ('%s')", argv[optind]);
+        if (vt_output_path_is_stdio(o->layout))
+            return vt_usage_error("--layout cannot be standard input ('-'): it names its textures "
+                                  "relative to its own folder");
         if (o->wrap || o->colour_set || o->shard)
             return vt_usage_error("--wrap, --colour and --shard do not apply to --layout");
+        if (vt_output_path_is_stdio(o->export_atlas))
+            return vt_usage_error("--export-atlas cannot be standard output ('-'): its name "
+                                  "(.png, .tif) gives the format");
         o->input = o->layout;
     } else {
         if (o->layer || o->export_atlas)
@@ -247,6 +258,9 @@ static int parse_options(int argc, char **argv, struct options *o)
         if (optind != argc - 1)
             return vt_usage_error(optind >= argc ? "missing INPUT" : "more than one INPUT");
         o->input = argv[optind];
+        if (o->shard && vt_output_path_is_stdio(o->input))
+            return vt_usage_error("--shard needs INPUT to be a file, not standard input ('-'): "
+                                  "every shard reads it");
     }
     if (!o->output && !(o->layout && o->export_atlas))
         return vt_usage_error("missing -o OUT.vts");
@@ -260,10 +274,24 @@ static int parse_options(int argc, char **argv, struct options *o)
     return -1;
 }
 
-/* vt-tiles INPUT: the single-image build (tools/vt-tiles/vt_tiles_image.c). */
+/* vt-tiles INPUT: the single-image build (tools/vt-tiles/vt_tiles_image.c); INPUT "-" is
+ * standard input, copied to a scratch file first (the readers seek). */
 static int run_image(const struct options *o)
 {
-    struct vt_tiles_image_options io = {.input = o->input,
+    struct vt_stdin_spool spool = {0};
+    if (vt_output_path_is_stdio(o->input)) {
+        struct vts_error err = {0};
+        if (vt_stdin_spool_read(&spool, &err) != 0) {
+            vt_log(VT_LOG_ERROR, "%s", err.message);
+            vt_stdin_spool_release(&spool);
+            return VT_EXIT_BAD_INPUT;
+        }
+        vt_log_alias(spool.path, VT_STDIN_NAME); /* the readers name the copy */
+        vt_log(VT_LOG_DEBUG, "read %llu bytes from '%s'", (unsigned long long)spool.size,
+               spool.path);
+    }
+    struct vt_tiles_image_options io = {.input = spool.open ? spool.path : o->input,
+                                        .input_name = spool.open ? VT_STDIN_NAME : o->input,
                                         .output = o->output,
                                         .codec_name = o->codec_name,
                                         .name = o->name,
@@ -286,7 +314,9 @@ static int run_image(const struct options *o)
                                         .max_store = o->max_store,
                                         .shard = o->shard,
                                         .shard_count = o->shard_count};
-    return vt_tiles_image_run(&io);
+    int status = vt_tiles_image_run(&io);
+    vt_stdin_spool_release(&spool);
+    return status;
 }
 
 /* vt-tiles --layout: the atlas build (tools/vt-tiles/vt_tiles_layout.c). */
@@ -317,12 +347,19 @@ static int run_layout(const struct options *o)
 int main(int argc, char **argv)
 {
     vt_tool_init("vt-tiles");
+    vt_output_path_use_stdio(); /* INPUT -, -o - */
     vt_atomic_file_cleanup_on_signals();
     struct options o;
     int status = parse_options(argc, argv, &o);
     if (status >= 0)
         return status;
-    /* --layout: the layout and its textures are checked once the layout is read */
+    if ((status = vt_refuse_terminal(o.input, STDIN_FILENO, "an image")) >= 0 ||
+        (status = vt_refuse_terminal(o.output, STDOUT_FILENO, "a store")) >= 0)
+        return status;
+    if (vt_output_path_is_stdio(o.output))
+        vt_log_alias(VT_PATH_STDIO, VT_STDOUT_NAME);
+    /* --layout: the layout and its textures are checked once the layout is read; INPUT "-" is
+     * checked before it is read (standard input redirected from the output) */
     const char *inputs[] = {o.input};
     if (!o.layout && (status = vt_check_output(o.output, inputs, 1)) >= 0)
         return status;

@@ -93,7 +93,7 @@ static const struct vt_codec *choose_codec(const struct vt_tiles_image_options *
     else if (codec->fourcc != VTS_CODEC_RAW && codec->fourcc != VTS_CODEC_PNG)
         *out_sample = VTS_SAMPLE_U8;
     if (*out_sample != in->sample)
-        vt_log(VT_LOG_WARN, "'%s': %s samples stored as %s for codec %s", o->input,
+        vt_log(VT_LOG_WARN, "'%s': %s samples stored as %s for codec %s", o->input_name,
                vts_sample_name(in->sample), vts_sample_name(*out_sample), codec->name);
     return codec;
 }
@@ -116,7 +116,7 @@ static int set_metadata(struct vts_writer *w, const struct vt_tiles_image_option
     if (strcmp(codec, "jpeg") != 0) /* the only codec with a quality */
         snprintf(quality, sizeof quality, "-");
     const char *pairs[][2] = {{"tool", "vt-tiles"},        {"tool.version", VT_VERSION_STRING},
-                              {"source", o->input},        {"filter", vt_filter_name(o->filter)},
+                              {"source", o->input_name},   {"filter", vt_filter_name(o->filter)},
                               {"filtering", o->filtering}, {"codec", codec},
                               {"quality", quality},        {"wrap", o->wrap ? "yes" : "no"}};
     for (size_t i = 0; i < sizeof pairs / sizeof pairs[0]; i++) {

@@ -13,7 +13,9 @@
 
 /* The vt-tiles options that apply to a single-image build (validated by vt-tiles' parser). */
 struct vt_tiles_image_options {
-    const char *input, *output; /* INPUT and OUT.vts */
+    const char *input, *output; /* INPUT (a path to open) and OUT.vts */
+    const char *input_name;     /* INPUT in messages and the "source" metadata: "<stdin>" for
+                                   standard input (input is then its spooled copy) */
     const char *codec_name;     /* raw | png | jpeg | bc1 | bc3 | auto */
     const char *name;           /* layer name */
     const char *temp_dir;       /* pass images; NULL: the output's directory */

@@ -13,6 +13,7 @@
 #include "vt_error.h"
 #include "vt_image_input.h"
 #include "vt_layout.h"
+#include "vt_output_path.h"
 #include "vt_png_file.h"
 #include "vt_tiff_file.h"
 #include "vt_tile_sink.h"
@@ -309,9 +310,13 @@ static int check_outputs(const struct layout_run *r)
         for (uint32_t l = 0; l < lay->layer_count; l++)
             inputs[n++] = lay->entries[e].textures[l].resolved; /* NULL for a fill: skipped */
     int status = vt_check_output(r->o->output, inputs, n);
-    inputs[1] = r->o->output;
+    /* "-o -" is standard output, not an input "-": the export against what it is */
+    bool to_stdout = vt_output_path_is_stdio(r->o->output);
+    inputs[1] = to_stdout ? NULL : r->o->output;
     if (status < 0)
         status = vt_check_output(r->o->export_atlas, inputs, n);
+    if (status < 0 && to_stdout && r->o->export_atlas)
+        status = vt_check_output(r->o->output, &r->o->export_atlas, 1);
     free(inputs);
     return status;
 }

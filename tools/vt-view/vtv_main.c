@@ -5,9 +5,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "tool_common.h"
 #include "vt_atomic_file.h"
+#include "vt_output_path.h"
 #include "vtv_app.h"
 
 static const char usage_text[] =
@@ -19,8 +21,8 @@ static const char usage_text[] =
     "  --camera FILE         camera per frame: 2D 'CX CY ZOOM', 3D 'EX EY EZ TX TY TZ FOVY'\n"
     "  --orbit N             3D: N frames around the scene's bounding box\n"
     "  --frames N            frames to render (headless default 30; window: 0 = until closed)\n"
-    "  --screenshot OUT.png  write the last frame\n"
-    "  --stats OUT.json      write per-frame statistics\n"
+    "  --screenshot OUT.png  write the last frame (- for standard output, not a terminal)\n"
+    "  --stats OUT.json      write per-frame statistics (- for standard output)\n"
     "  --feedback-scale 1/K  resolution of the tile-determination pass (default 1/4)\n"
     "  --filtering MODE      bilinear (default) or trilinear\n"
     "  --debug MODE          none (default), levels (colour by level used), tiles (outlines)\n"
@@ -64,9 +66,28 @@ enum {
     OPT_VERSION,
 };
 
+/* "-": standard output for one of --screenshot and --stats (a PNG not to a terminal), never an
+ * input. Returns an exit status, or -1 to go on. */
+static int check_stdio(const struct vtv_options *o)
+{
+    const char *inputs[] = {o->store_path, o->obj_path, o->camera_path, o->reference_scene};
+    for (size_t i = 0; i < sizeof inputs / sizeof inputs[0]; i++)
+        if (vt_output_path_is_stdio(inputs[i]))
+            return vt_usage_error(
+                "inputs cannot be standard input ('-'): name the file (./- for a file named -)");
+    bool shot = vt_output_path_is_stdio(o->screenshot), stats = vt_output_path_is_stdio(o->stats);
+    if (shot && stats)
+        return vt_usage_error("--screenshot and --stats cannot both be standard output ('-')");
+    int status = vt_refuse_terminal(o->screenshot, STDOUT_FILENO, "a PNG");
+    if (status < 0 && (shot || stats))
+        vt_log_alias(VT_PATH_STDIO, VT_STDOUT_NAME);
+    return status;
+}
+
 int main(int argc, char **argv)
 {
     vt_tool_init("vt-view");
+    vt_output_path_use_stdio(); /* --screenshot -, --stats - */
     vt_atomic_file_cleanup_on_signals();
     static const struct option longopts[] = {
         {"headless", no_argument, NULL, OPT_HEADLESS},
@@ -213,11 +234,19 @@ int main(int argc, char **argv)
         o.frames = o.headless ? (o.orbit ? o.orbit : 30) : 0;
     if (o.headless && o.frames == 0)
         return vt_usage_error("--frames 0 needs a window (no --headless)");
-    /* before any work: no output is an input (nor the screenshot the statistics) */
-    const char *inputs[] = {o.store_path, o.obj_path, o.camera_path, o.reference_scene, o.stats};
-    int status = vt_check_output(o.screenshot, inputs, 5);
+    int status = check_stdio(&o);
+    if (status >= 0)
+        return status;
+    /* before any work: no output is an input (nor the screenshot the statistics); --stats - is
+     * standard output, not an input "-" */
+    bool stats_out = vt_output_path_is_stdio(o.stats);
+    const char *inputs[] = {o.store_path, o.obj_path, o.camera_path, o.reference_scene,
+                            stats_out ? NULL : o.stats};
+    status = vt_check_output(o.screenshot, inputs, 5);
     if (status < 0)
         status = vt_check_output(o.stats, inputs, 4);
+    if (status < 0 && stats_out && o.screenshot)
+        status = vt_check_output(o.stats, &o.screenshot, 1);
     if (status >= 0)
         return status;
     return vtv_app_run(&o);

@@ -8,7 +8,8 @@
 #include "vt_error.h"
 #include "vtv_stream.h"
 
-/* rgba: w x h RGBA8 rows, top first. Written atomically. */
+/* rgba: w x h RGBA8 rows, top first. Written atomically; path "-" streams it to standard output
+ * (vt_atomic_file). */
 int vtv_write_screenshot(const char *path, const uint8_t *rgba, uint32_t w, uint32_t h,
                          struct vts_error *err);
 
@@ -23,7 +24,8 @@ struct vtv_run_info {
     const char *physical_format; /* "rgba8", "srgb8_alpha8", "bc" or "none" */
 };
 
-/* Frames without timings first (deterministic under --sync), then "timing_ms". */
+/* Frames without timings first (deterministic under --sync), then "timing_ms". Written
+ * atomically; path "-" streams it to standard output (vt_atomic_file). */
 int vtv_write_stats(const char *path, const struct vtv_run_info *info,
                     const struct vtv_frame_stats *frames, size_t count, struct vts_error *err);
 

@@ -2,7 +2,8 @@
  * as an input (by name, hard link or symbolic link) or a directory is refused; a symbolic link is
  * written through (the link stays, its target is replaced); a FIFO and a character device are
  * written into, never renamed over (streamed, or spooled for a seeking writer); a replaced file
- * keeps its permission bits, owner and group. */
+ * keeps its permission bits, owner and group; once asked for, "-" is standard output (written into
+ * whatever file descriptor 1 is, never a file named "-") and, as an input, standard input. */
 #define _GNU_SOURCE /* makedev */
 #include <dirent.h>
 #include <errno.h>
@@ -267,6 +268,139 @@ static void scratch_files_go_next_to_the_target_or_to_tmpdir(void)
     VT_CHECK_INT_EQ(vt_output_path_scratch_dir("a/b/out.vts", got, 3, &err), VTS_ERR_ARG);
 }
 
+/* Points file descriptor fd at path (opened with flags), returning a copy of the old one. */
+static int redirect(int fd, const char *path, int flags)
+{
+    fflush(stdout);
+    int saved = dup(fd);
+    int to = open(path, flags, 0644);
+    VT_CHECK(saved >= 0 && to >= 0 && dup2(to, fd) == fd);
+    close(to);
+    return saved;
+}
+
+static void restore(int fd, int saved)
+{
+    fflush(stdout);
+    VT_CHECK(dup2(saved, fd) == fd);
+    close(saved);
+}
+
+static void dash_is_a_file_name_until_asked(void)
+{
+    char dir[512], cwd[VT_PATH_MAX];
+    fresh_dir(dir, sizeof dir, "dash_name");
+    VT_CHECK(getcwd(cwd, sizeof cwd) != NULL);
+    VT_CHECK(chdir(dir) == 0);
+    VT_CHECK(!vt_output_path_is_stdio("-"));
+    VT_CHECK_INT_EQ(write_through("-", 0, "a file"), 0); /* what a library user gets */
+    VT_CHECK(holds("-", "a file"));
+    VT_CHECK(chdir(cwd) == 0);
+    vt_output_path_use_stdio(); /* from now on, as in the tools */
+    VT_CHECK(vt_output_path_is_stdio("-") && !vt_output_path_is_stdio("./-") &&
+             !vt_output_path_is_stdio(NULL));
+}
+
+static void dash_is_standard_output_written_into(void)
+{
+    char dir[512], out[600], cwd[VT_PATH_MAX];
+    fresh_dir(dir, sizeof dir, "dash");
+    join(out, sizeof out, dir, "stdout.txt");
+    write_file(out, "before;");
+    struct stat before, after;
+    VT_CHECK(stat(out, &before) == 0);
+    VT_CHECK(getcwd(cwd, sizeof cwd) != NULL);
+    VT_CHECK(chdir(dir) == 0);
+    setenv("TMPDIR", dir, 1);
+    int saved = redirect(STDOUT_FILENO, out, O_WRONLY | O_APPEND);
+    struct vt_output_target t;
+    struct vts_error err = {0};
+    VT_CHECK_INT_EQ(vt_output_path_resolve("-", &t, &err), 0);
+    VT_CHECK_INT_EQ(t.kind, VT_OUTPUT_SPECIAL); /* a regular file behind it: still written into */
+    VT_CHECK_STR_EQ(t.path, "-");
+    VT_CHECK(t.dev == before.st_dev && t.ino == before.st_ino);
+    /* streamed at the file's offset (appended here), then spooled out of order */
+    VT_CHECK_INT_EQ(write_through("-", VT_ATOMIC_FILE_SEQUENTIAL, "streamed;"), 0);
+    struct vt_atomic_file f;
+    VT_CHECK_INT_EQ(vt_atomic_file_create(&f, "-", "tmp", 0, &err), 0);
+    VT_CHECK_INT_EQ(f.mode, VT_ATOMIC_FILE_SPOOL);
+    VT_CHECK_INT_EQ(vt_atomic_file_pwrite(&f, "world", 5, 5, &err), 0);
+    VT_CHECK_INT_EQ(vt_atomic_file_pwrite(&f, "hello", 5, 0, &err), 0);
+    VT_CHECK_INT_EQ(vt_atomic_file_commit(&f, &err), 0);
+    VT_CHECK(write(STDOUT_FILENO, ";still open", 11) == 11); /* fd 1 itself is not closed */
+    /* the output "-" against the file standard output is */
+    const char *inputs[] = {out};
+    VT_CHECK_INT_EQ(vt_output_path_check("-", inputs, 1, &err), VTS_ERR_ARG);
+    VT_CHECK_STR_CONTAINS(err.message, "output '<stdout>' is the input");
+    restore(STDOUT_FILENO, saved);
+    VT_CHECK(holds(out, "before;streamed;helloworld;still open"));
+    VT_CHECK(stat(out, &after) == 0 && after.st_ino == before.st_ino); /* not replaced */
+    VT_CHECK_INT_EQ(count_entries(dir, NULL, 0), 1); /* no file named "-", no spool left */
+    VT_CHECK(chdir(cwd) == 0);
+    unsetenv("TMPDIR");
+}
+
+static void dash_is_standard_input_for_the_check(void)
+{
+    char dir[512], in[600], other[600];
+    fresh_dir(dir, sizeof dir, "dash_in");
+    join(in, sizeof in, dir, "in.png");
+    join(other, sizeof other, dir, "other.vts");
+    write_file(in, "image");
+    const char *inputs[] = {"-"};
+    struct vts_error err = {0};
+    int saved = redirect(STDIN_FILENO, in, O_RDONLY);
+    VT_CHECK_INT_EQ(vt_output_path_check(in, inputs, 1, &err), VTS_ERR_ARG); /* tool - -o X <X */
+    VT_CHECK_STR_CONTAINS(err.message, "output '");
+    VT_CHECK_STR_CONTAINS(err.message, "is the input '<stdin>' (the same file)");
+    VT_CHECK_INT_EQ(vt_output_path_check(other, inputs, 1, &err), 0);
+    restore(STDIN_FILENO, saved);
+    int fds[2]; /* a pipe is read, never destroyed: not compared */
+    VT_CHECK(pipe(fds) == 0);
+    saved = dup(STDIN_FILENO);
+    VT_CHECK(dup2(fds[0], STDIN_FILENO) == STDIN_FILENO);
+    VT_CHECK_INT_EQ(vt_output_path_check(in, inputs, 1, &err), 0);
+    restore(STDIN_FILENO, saved);
+    close(fds[0]);
+    close(fds[1]);
+}
+
+static void dash_scratch_files_go_to_tmpdir(void)
+{
+    char dir[512], got[VT_PATH_MAX], missing[600];
+    fresh_dir(dir, sizeof dir, "dash_tmp");
+    join(missing, sizeof missing, dir, "missing");
+    struct vts_error err = {0};
+    setenv("TMPDIR", dir, 1);
+    VT_CHECK_INT_EQ(vt_output_path_scratch_dir("-", got, sizeof got, &err), 0);
+    VT_CHECK_STR_EQ(got, dir);
+    struct vt_atomic_file f;
+    VT_CHECK_INT_EQ(vt_atomic_file_create_tmp(&f, "<stdin>", &err), 0);
+    VT_CHECK_INT_EQ(vt_atomic_file_pwrite(&f, "abc", 3, 0, &err), 0);
+    VT_CHECK_INT_EQ(count_entries(dir, NULL, 0), f.temp_path[0] ? 1 : 0); /* unnamed if it can */
+    vt_atomic_file_abort(&f);
+    VT_CHECK_INT_EQ(count_entries(dir, NULL, 0), 0);
+    setenv("TMPDIR", missing, 1);
+    VT_CHECK_INT_EQ(vt_atomic_file_create_tmp(&f, "<stdin>", &err), VTS_ERR_IO);
+    VT_CHECK_STR_CONTAINS(err.message, "for '<stdin>' in '");
+    VT_CHECK_STR_CONTAINS(err.message, "missing");
+    unsetenv("TMPDIR");
+    /* standard output closed: named in the message (in dir: a wrong "-" would be a file there) */
+    char cwd[VT_PATH_MAX];
+    VT_CHECK(getcwd(cwd, sizeof cwd) != NULL && chdir(dir) == 0);
+    fflush(stdout);
+    int saved = dup(STDOUT_FILENO);
+    close(STDOUT_FILENO);
+    int rc = vt_atomic_file_create(&f, "-", "tmp", VT_ATOMIC_FILE_SEQUENTIAL, &err);
+    vt_atomic_file_abort(&f); /* a no-op unless it wrongly made a file (fd 1 then) */
+    VT_CHECK(dup2(saved, STDOUT_FILENO) == STDOUT_FILENO); /* before any check prints */
+    close(saved);
+    VT_CHECK(chdir(cwd) == 0);
+    VT_CHECK_INT_EQ(rc, VTS_ERR_IO);
+    VT_CHECK_STR_CONTAINS(err.message, "cannot open '<stdout>' for writing");
+    VT_CHECK_INT_EQ(count_entries(dir, NULL, 0), 0);
+}
+
 int main(void)
 {
     umask(022);
@@ -281,6 +415,10 @@ int main(void)
     VT_RUN(a_character_device_is_written_into_not_replaced);
     VT_RUN(a_replaced_file_keeps_its_mode_owner_and_group);
     VT_RUN(scratch_files_go_next_to_the_target_or_to_tmpdir);
+    VT_RUN(dash_is_a_file_name_until_asked);
+    VT_RUN(dash_is_standard_output_written_into);
+    VT_RUN(dash_is_standard_input_for_the_check);
+    VT_RUN(dash_scratch_files_go_to_tmpdir);
     remove_tree(tmpdir);
     return vt_test_main_result();
 }
