@@ -448,7 +448,6 @@ int vt_offset_mesh_resolve(struct vt_offset_run *r, const char *path, const void
     r->stats.faces_cut = r->cut.faces_cut;
     r->stats.faces_split = r->cut.faces_split;
     r->stats.pieces = r->cut.pieces;
-    r->stats.positions_added = r->cut.vertex_count;
     r->any_changed = r->cut.faces_cut + r->cut.faces_split > 0;
     if ((rc = assign_keys(r, err)) < 0)
         goto out;
