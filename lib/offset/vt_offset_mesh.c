@@ -3,6 +3,7 @@
  * vt with the coverage checks, and the positions and normals new vertices interpolate (see
  * internal/vt_offset_impl.h). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -348,6 +349,18 @@ nomem:
     goto out;
 }
 
+/* lib/chart does not know the file: its messages ("cannot cut face 3 along the UV grid: it spans
+ * 2000000 x 1 cells (at most 1048576)") get the input's name first, as every message of the
+ * rewriter has. */
+static int name_chart_error(const struct vt_offset_run *r, int rc, struct vts_error *err)
+{
+    if (!err)
+        return rc;
+    char reason[sizeof err->message];
+    snprintf(reason, sizeof reason, "%s", err->message);
+    return vt_error_set(err, rc, "'%s': %s", r->name, reason);
+}
+
 int vt_offset_mesh_resolve(struct vt_offset_run *r, const char *path, const void *mem, size_t size,
                            struct vts_error *err)
 {
@@ -383,8 +396,10 @@ int vt_offset_mesh_resolve(struct vt_offset_run *r, const char *path, const void
                               .position_count = (uint32_t)r->nv,
                               .texcoord_count = r->nvt};
     uint32_t nc = 0;
-    if ((rc = vt_chart_label(&m, chart, &nc, err)) < 0)
+    if ((rc = vt_chart_label(&m, chart, &nc, err)) < 0) {
+        rc = name_chart_error(r, rc, err);
         goto out;
+    }
     boxes = malloc(((size_t)nc + 1) * sizeof *boxes);
     if (!boxes) {
         rc = vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory for the charts", r->name);
@@ -413,12 +428,13 @@ int vt_offset_mesh_resolve(struct vt_offset_run *r, const char *path, const void
         shift[2 * (size_t)fi + 1] = ch == VT_CHART_NONE ? 0 : boxes[ch].dv;
         wrap[fi] = ch != VT_CHART_NONE && e < r->layout->entry_count && r->layout->entries[e].wrap;
     }
-    if ((rc = vt_cut(&m, wrap, shift, &r->cut, err)) < 0)
+    if ((rc = vt_cut(&m, wrap, shift, &r->cut, err)) < 0) {
+        rc = name_chart_error(r, rc, err);
         goto out;
+    }
     r->stats.faces_cut = r->cut.faces_cut;
     r->stats.faces_split = r->cut.faces_split;
     r->stats.pieces = r->cut.pieces;
-    r->stats.positions_added = r->cut.vertex_count;
     r->any_changed = r->cut.faces_cut + r->cut.faces_split > 0;
     if ((rc = assign_keys(r, err)) < 0)
         goto out;

@@ -292,6 +292,7 @@ static int pass2_changed(struct vt_offset_run *r, uint32_t fi, const unsigned ch
         if (pos < r->nv || r->new_pos_out[pos - r->nv] != VT_OFFSET_NONE)
             continue;
         r->new_pos_out[pos - r->nv] = (uint32_t)r->out_v++;
+        r->stats.positions_added++; /* only the new positions a piece uses are written */
         rc = put_xyz(r, "v", r->new_pos + 3 * (size_t)(pos - r->nv), eol, err);
     }
     uint64_t first_vn = r->out_vn, first_vt = r->out_vt;
