@@ -23,10 +23,12 @@
  * Polygons with more than three corners are clipped as they are (convex ones exactly; a concave
  * n-gon gives pieces covering it, possibly with overlapping degenerate edges). A piece that lies
  * on one side line of its cell (the face only touches the cell along that line, or one of its
- * edges lies on it) is dropped: for a convex face, exactly its pieces of zero area in UV. A face
- * of zero area in UV (its signed area exactly 0: collinear, or folded so that it encloses nothing)
- * keeps its pieces that are more than one point (it may have an area in 3D). docs/real-scenes.md
- * states the rules in full. */
+ * edges lies on it) is dropped, unless that line is the outer line of the face's cells (no cell
+ * beyond holds that part: a face folded over itself in UV can have an area in 3D there): for a
+ * convex face, exactly its pieces of zero area in UV. A face of zero area in UV (its signed area
+ * exactly 0: collinear, or folded so that it encloses nothing) keeps its pieces that are more than
+ * one point (it may have an area in 3D), and so may lose all only when it is degenerate in 3D
+ * too. docs/real-scenes.md states the rules in full. */
 #ifndef VT_CUT_H
 #define VT_CUT_H
 

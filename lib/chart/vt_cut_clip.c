@@ -170,13 +170,20 @@ static int clip_half(struct vt_cut_ctx *ctx, const struct vt_cut_face *fc, uint6
     return 0;
 }
 
-/* All n points on one side line of cell (a, b): what clipping leaves on the far side of a line that
- * a face only touches, or that one of its edges lies on. */
-static bool on_one_side_line(const struct vt_cut_pt *p, uint64_t n, double a, double b)
+/* All n points on one side line of cell (a, b) that lies inside the face's cells: what clipping
+ * leaves on the far side of a line that a face only touches, or that one of its edges lies on. A
+ * piece on the outer line of the face's cells is kept: no cell beyond holds that part of the face
+ * (a face folded over itself in UV can have an area in 3D there). */
+static bool on_one_side_line(const struct vt_cut_face *fc, const struct vt_cut_pt *p, uint64_t n,
+                             int64_t a, int64_t b)
 {
-    const double line[4] = {a, a + 1, b, b + 1};
+    const double line[4] = {(double)a, (double)a + 1, (double)b, (double)b + 1};
+    const bool inside[4] = {(a > fc->cell[0]), (a < fc->cell[1]), (b > fc->cell[2]),
+                            (b < fc->cell[3])};
     for (int s = 0; s < 4; s++) {
         uint64_t i = 0;
+        if (!inside[s])
+            continue;
         while (i < n && p[i].uv[s / 2] == line[s])
             i++;
         if (i == n)
@@ -201,9 +208,9 @@ static bool same_point(const struct vt_cut_pt *a, const struct vt_cut_pt *b)
 
 /* Writes the piece of cell (a, b) (the n points at stack[at]), unless it is degenerate: fewer
  * than 3 corners once repeated points in a row are merged, or all on one side line of the cell
- * (for a convex face: exactly the pieces of zero area). A face of zero area in UV (collinear, or
- * folded so that it encloses nothing: its pieces lie on lines, and it may well have an area in 3D)
- * keeps the pieces that are not a single point.
+ * that is not the outer line of the face's cells (for a convex face: exactly the pieces of zero
+ * area). A face of zero area in UV (collinear, or folded so that it encloses nothing: its pieces
+ * lie on lines, and it may well have an area in 3D) keeps the pieces that are not a single point.
  * Pieces of zero area that are neither (from a face folded over itself in UV) are kept: vt_cut
  * sees no positions, and dropping them could leave a hole in 3D. */
 static int emit_piece(struct vt_cut_ctx *ctx, const struct vt_cut_face *fc, uint64_t at, uint64_t n,
@@ -218,7 +225,7 @@ static int emit_piece(struct vt_cut_ctx *ctx, const struct vt_cut_face *fc, uint
         kept--;
     if (kept < 3)
         return 0;
-    if (fc->flat ? all_at_one_point(p, kept) : on_one_side_line(p, kept, (double)a, (double)b))
+    if (fc->flat ? all_at_one_point(p, kept) : on_one_side_line(fc, p, kept, a, b))
         return 0;
     for (uint64_t i = 0; i < kept; i++) {
         struct vt_cut_corner c;
