@@ -13,69 +13,6 @@
 
 #define CONSTANT_CELL 4 /* texels of an entry without any texture */
 
-/* ---- paths ---- */
-
-/* Appends the components of path to the stack parts (".." pops, "." and "" are dropped). */
-static size_t push_components(char *path, char **parts, size_t n)
-{
-    for (char *save = NULL, *c = strtok_r(path, "/", &save); c; c = strtok_r(NULL, "/", &save)) {
-        if (strcmp(c, ".") == 0)
-            continue;
-        if (strcmp(c, "..") == 0) {
-            if (n)
-                n--;
-            continue;
-        }
-        parts[n++] = c;
-    }
-    return n;
-}
-
-char *vt_atlas_place_relative_path(const char *output, const char *path)
-{
-    if (path[0] == '/')
-        return strdup(path);
-    char cwd[4096];
-    if (!getcwd(cwd, sizeof cwd))
-        return NULL;
-    /* Each joined path fits in max bytes and has fewer than max components; the result climbs
-     * at most max / 2 directories ("../" each) before b's components. */
-    size_t max, out_bytes, parts_bytes;
-    if (!vt_size_add(strlen(cwd) + 4, strlen(output), &max) ||
-        !vt_size_add(max, strlen(path), &max) || !vt_size_mul(max, 3, &out_bytes) ||
-        !vt_size_mul(max, sizeof(char *), &parts_bytes))
-        return NULL;
-    char *a = malloc(max), *b = malloc(max), *out = malloc(out_bytes);
-    char **pa = malloc(parts_bytes), **pb = malloc(parts_bytes);
-    char *result = NULL;
-    if (!a || !b || !out || !pa || !pb)
-        goto done;
-    snprintf(a, max, "%s/%s", output[0] == '/' ? "" : cwd, output);
-    snprintf(b, max, "%s/%s", cwd, path);
-    size_t na = push_components(a, pa, 0), nb = push_components(b, pb, 0);
-    if (na)
-        na--; /* the output's directory */
-    size_t common = 0;
-    while (common < na && common < nb && strcmp(pa[common], pb[common]) == 0)
-        common++;
-    out[0] = 0;
-    for (size_t i = common; i < na; i++)
-        strcat(out, "../");
-    for (size_t i = common; i < nb; i++) {
-        strcat(out, pb[i]);
-        if (i + 1 < nb)
-            strcat(out, "/");
-    }
-    result = strdup(out);
-done:
-    free(a);
-    free(b);
-    free(out);
-    free(pa);
-    free(pb);
-    return result;
-}
-
 /* ---- per-entry sizes ---- */
 
 struct sizing {
@@ -92,54 +29,12 @@ struct sizing {
     uint32_t crop_x, crop_y, crop_w, crop_h; /* texels of the block of copies the entry holds */
 };
 
-/* What a texcoord box (moved charts: 0 <= umin, vmin < 1) needs. */
-enum choice { CHOICE_FIT, CHOICE_REPLICATE, CHOICE_SPLIT, CHOICE_REPORT, CHOICE_TOO_MANY };
-
-static enum choice choose(const struct vt_atlas_place_options *o, bool has_box, double umin,
-                          double umax, double vmin, double vmax, uint32_t *ru, uint32_t *rv)
-{
-    *ru = *rv = 1;
-    if (!has_box || (umax <= 1 && vmax <= 1))
-        return CHOICE_FIT;
-    double cu = ceil(umax) < 1 ? 1 : ceil(umax), cv = ceil(vmax) < 1 ? 1 : ceil(vmax);
-    bool few = cu <= o->max_repeat && cv <= o->max_repeat;
-    double area = (umax - umin) * (vmax - vmin);
-    enum choice c;
-    switch (o->wrap) {
-    case VT_ATLAS_WRAP_REPORT:
-        return CHOICE_REPORT;
-    case VT_ATLAS_WRAP_SPLIT:
-        return CHOICE_SPLIT;
-    case VT_ATLAS_WRAP_REPLICATE:
-        c = few ? CHOICE_REPLICATE : CHOICE_TOO_MANY;
-        break;
-    default:
-        c = few && area <= VT_ATLAS_REPLICATE_MAX_AREA ? CHOICE_REPLICATE : CHOICE_SPLIT;
-        break;
-    }
-    if (c == CHOICE_REPLICATE) {
-        *ru = (uint32_t)cu;
-        *rv = (uint32_t)cv;
-    }
-    return c;
-}
-
-/* Atlas texels a box costs with choice c, in textures (copies of the whole texture). */
-static double box_cost(enum choice c, double umin, double umax, double vmin, double vmax)
-{
-    if (c == CHOICE_SPLIT)
-        return 1;
-    if (c == CHOICE_FIT && umax - umin <= 0)
-        return 1;
-    return (umax - umin) * (vmax - vmin);
-}
-
-static void set_choice(struct sizing *z, enum choice c, uint32_t ru, uint32_t rv)
+static void set_choice(struct sizing *z, enum vt_atlas_choice c, uint32_t ru, uint32_t rv)
 {
     z->repeat_u = ru;
     z->repeat_v = rv;
     z->origin_u = z->origin_v = 0;
-    z->split = z->wrap = c == CHOICE_SPLIT;
+    z->split = z->wrap = c == VT_ATLAS_CHOICE_SPLIT;
 }
 
 static int check_wrap(const struct vt_atlas_material *m, const struct vt_atlas_place_options *o,
@@ -147,8 +42,9 @@ static int check_wrap(const struct vt_atlas_material *m, const struct vt_atlas_p
 {
     uint32_t ru, rv;
     bool box = z->textured && m->has_uv && m->umax >= m->umin;
-    enum choice c = choose(o, box, m->umin, m->umax, m->vmin, m->vmax, &ru, &rv);
-    if (c == CHOICE_REPORT)
+    enum vt_atlas_choice c =
+        vt_atlas_choose(o->wrap, o->max_repeat, box, m->umin, m->umax, m->vmin, m->vmax, &ru, &rv);
+    if (c == VT_ATLAS_CHOICE_REPORT)
         return vt_error_set(err, VTS_ERR_BAD_INPUT,
                             "'%s':%llu: material '%s' (u %g..%g, v %g..%g) has charts that leave "
                             "one copy of its texture (u %g..%g, v %g..%g moved by whole "
@@ -156,7 +52,7 @@ static int check_wrap(const struct vt_atlas_material *m, const struct vt_atlas_p
                             m->obj, (unsigned long long)m->first_line, m->name, m->raw_umin,
                             m->raw_umax, m->raw_vmin, m->raw_vmax, m->umin, m->umax, m->vmin,
                             m->vmax);
-    if (c == CHOICE_TOO_MANY)
+    if (c == VT_ATLAS_CHOICE_TOO_MANY)
         return vt_error_set(err, VTS_ERR_LIMIT,
                             "'%s':%llu: material '%s' needs more than --max-repeat %u copies "
                             "(charts moved by whole repeats cover u %g..%g, v %g..%g): use "
@@ -165,31 +61,6 @@ static int check_wrap(const struct vt_atlas_material *m, const struct vt_atlas_p
                             m->umin, m->umax, m->vmin, m->vmax);
     set_choice(z, c, ru, rv);
     return 0;
-}
-
-/* The texels [*start, *start + *len) of one axis of a block of copies (n texels each) that a
- * range [lo, hi] of texcoords reads, with VT_ATLAS_CROP_MARGIN texels around it and aligned to
- * VT_ATLAS_CROP_ALIGN; flip: rows from the top (v up). */
-static void crop_axis(double lo, double hi, uint32_t n, uint32_t copies, bool flip, uint32_t *start,
-                      uint32_t *len)
-{
-    double total = (double)n * copies;
-    double a = flip ? (copies - hi) * n : lo * n, b = flip ? (copies - lo) * n : hi * n;
-    a = floor(a) - VT_ATLAS_CROP_MARGIN;
-    b = ceil(b) + VT_ATLAS_CROP_MARGIN;
-    a = a < 0 ? 0 : a;
-    b = b > total ? total : b;
-    uint64_t s = (uint64_t)a / VT_ATLAS_CROP_ALIGN * VT_ATLAS_CROP_ALIGN;
-    uint64_t e =
-        ((uint64_t)b + VT_ATLAS_CROP_ALIGN - 1) / VT_ATLAS_CROP_ALIGN * VT_ATLAS_CROP_ALIGN;
-    if (e > (uint64_t)total)
-        e = (uint64_t)total;
-    if (e <= s) {
-        s = 0;
-        e = (uint64_t)total;
-    }
-    *start = (uint32_t)s;
-    *len = (uint32_t)(e - s);
 }
 
 /* The crop of a sized entry whose charts cover the box (the whole block without one). */
@@ -201,8 +72,8 @@ static void set_crop(struct sizing *z, bool has_box, double umin, double umax, d
     z->crop_h = z->h * z->repeat_v;
     if (!has_box || z->wrap || !z->textured)
         return;
-    crop_axis(umin, umax, z->w, z->repeat_u, false, &z->crop_x, &z->crop_w);
-    crop_axis(vmin, vmax, z->h, z->repeat_v, true, &z->crop_y, &z->crop_h);
+    vt_atlas_crop_axis(umin, umax, z->w, z->repeat_u, false, &z->crop_x, &z->crop_w);
+    vt_atlas_crop_axis(vmin, vmax, z->h, z->repeat_v, true, &z->crop_y, &z->crop_h);
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -324,14 +195,17 @@ static bool try_join(struct group *g, const struct vt_atlas_material *m, const s
         vmin = fmin(vmin, g->vmin), vmax = fmax(vmax, g->vmax);
     }
     uint32_t ru, rv, gu, gv, mu, mv;
-    enum choice c = choose(o, true, umin, umax, vmin, vmax, &ru, &rv);
-    if (c == CHOICE_REPORT || c == CHOICE_TOO_MANY)
+    enum vt_atlas_choice c =
+        vt_atlas_choose(o->wrap, o->max_repeat, true, umin, umax, vmin, vmax, &ru, &rv);
+    if (c == VT_ATLAS_CHOICE_REPORT || c == VT_ATLAS_CHOICE_TOO_MANY)
         return false;
-    enum choice cg = choose(o, g->has_uv, g->umin, g->umax, g->vmin, g->vmax, &gu, &gv);
-    enum choice cm = choose(o, true, m->umin, m->umax, m->vmin, m->vmax, &mu, &mv);
-    double apart = box_cost(cg, g->umin, g->umax, g->vmin, g->vmax) +
-                   box_cost(cm, m->umin, m->umax, m->vmin, m->vmax);
-    if (g->has_uv && box_cost(c, umin, umax, vmin, vmax) > apart)
+    enum vt_atlas_choice cg = vt_atlas_choose(o->wrap, o->max_repeat, g->has_uv, g->umin, g->umax,
+                                              g->vmin, g->vmax, &gu, &gv);
+    enum vt_atlas_choice cm =
+        vt_atlas_choose(o->wrap, o->max_repeat, true, m->umin, m->umax, m->vmin, m->vmax, &mu, &mv);
+    double apart = vt_atlas_box_cost(cg, g->umin, g->umax, g->vmin, g->vmax) +
+                   vt_atlas_box_cost(cm, m->umin, m->umax, m->vmin, m->vmax);
+    if (g->has_uv && vt_atlas_box_cost(c, umin, umax, vmin, vmax) > apart)
         return false;
     if ((uint64_t)g->z.w * ru > UINT32_MAX || (uint64_t)g->z.h * rv > UINT32_MAX)
         return false;

@@ -7,29 +7,11 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "vt_atlas_choice.h"
 #include "vt_atlas_pack.h"
 #include "vt_atlas_scene.h"
 #include "vt_error.h"
 #include "vt_layout.h"
-
-/* Where a material's charts, each moved by whole repeats to start in [0,1) (vt_chart.h), do not
- * fit in one copy of its texture: see docs/real-scenes.md for the rules and their costs. */
-enum vt_atlas_wrap {
-    VT_ATLAS_WRAP_AUTO,      /* replicate when the cropped copies take at most
-                                VT_ATLAS_REPLICATE_MAX_AREA textures and max_repeat copies per
-                                direction, else split (the default) */
-    VT_ATLAS_WRAP_REPORT,    /* an error naming the material */
-    VT_ATLAS_WRAP_REPLICATE, /* copies side by side, cropped to the texels used (max_repeat) */
-    VT_ATLAS_WRAP_SPLIT      /* one copy that wraps; vt-offset cuts the faces on integer lines */
-};
-
-/* The automatic choice replicates while the cropped copies cost at most this many textures. */
-#define VT_ATLAS_REPLICATE_MAX_AREA 2.0
-
-/* Texels kept around the used region of a cropped entry, and the multiple its crop rectangle is
- * aligned to (so that its first mip levels are the texture's own). */
-#define VT_ATLAS_CROP_MARGIN 4
-#define VT_ATLAS_CROP_ALIGN  8
 
 struct vt_atlas_place_options {
     uint32_t tile_content, border, max_edge;
