@@ -16,23 +16,12 @@ rm -rf "$work" && mkdir -p "$work/log" && cd "$work" || exit 1
 fail=0
 err() { echo "FAIL ($group): $*" >&2; fail=1; }
 image() { "$tbin/vt-synth-image" "$@" >/dev/null || exit 1; }
+# shellcheck source=tool_scene.inc
+source "$(dirname "${BASH_SOURCE[0]}")/tool_scene.inc"
 
 # A small scene (three materials, a PNG, a JPEG and a tiled TIFF of 512x512), as in tool_eio.sh.
 make_scene() {
-  image ta.png --format png --size 512x512 --photo --seed 1
-  image tb.jpg --format jpeg --size 512x512 --channels 3 --seed 2
-  image tc.tif --format tiff --size 512x512 --channels 3 --tile 64 --seed 3
-  printf 'newmtl ma\nmap_Kd ta.png\nnewmtl mb\nmap_Kd tb.jpg\nnewmtl mc\nmap_Kd tc.tif\n' >scene.mtl
-  awk 'BEGIN { n = 24; print "mtllib scene.mtl"; base = 0; split("ma mb mc", m, " ")
-    for (k = 1; k <= 3; k++) {
-      print "o part" k; print "usemtl " m[k]
-      for (j = 0; j < n; j++) for (i = 0; i < n; i++) {
-        printf "v %.6f %.6f %.6f\n", i / (n - 1) + 1.5 * k, j / (n - 1), 0.001 * ((i * j) % 7)
-        printf "vt %.6f %.6f\n", i / (n - 1), j / (n - 1) }
-      for (j = 0; j < n - 1; j++) for (i = 0; i < n - 1; i++) {
-        a = base + j * n + i + 1; b = a + 1; c = a + n + 1; d = a + n
-        printf "f %d/%d %d/%d %d/%d %d/%d\n", a, a, b, b, c, c, d, d }
-      base += n * n } }' >scene.obj
+  write_scene 512 ta.png tb.jpg tc.tif
 }
 
 outs=(out.vts)

@@ -33,24 +33,13 @@ err() { echo "FAIL: $*" >&2; fail=1; }
 # ---- inputs ----
 
 image() { "$tbin/vt-synth-image" "$@" >/dev/null || exit 1; }
+# shellcheck source=tool_scene.inc
+source "$(dirname "${BASH_SOURCE[0]}")/tool_scene.inc"
 # A scene of three materials (24x24 quad grids, 145 KB: three 64 KiB chunks of the OBJ reader,
 # ~5000 lines) whose textures are a PNG, a JPEG and a tiled TIFF, 256x256 (--photo writes PNG
 # only); its atlas (64 px tiles).
 make_scene() {
-  image a.png --format png --size 256x256 --photo --seed 1
-  image b.jpg --format jpeg --size 256x256 --channels 3 --seed 2
-  image c.tif --format tiff --size 256x256 --channels 3 --tile 64 --seed 3
-  printf 'newmtl ma\nmap_Kd a.png\nnewmtl mb\nmap_Kd b.jpg\nnewmtl mc\nmap_Kd c.tif\n' >scene.mtl
-  awk 'BEGIN { n = 24; print "mtllib scene.mtl"; base = 0; split("ma mb mc", m, " ")
-    for (k = 1; k <= 3; k++) {
-      print "o part" k; print "usemtl " m[k]
-      for (j = 0; j < n; j++) for (i = 0; i < n; i++) {
-        printf "v %.6f %.6f %.6f\n", i / (n - 1) + 1.5 * k, j / (n - 1), 0.001 * ((i * j) % 7)
-        printf "vt %.6f %.6f\n", i / (n - 1), j / (n - 1) }
-      for (j = 0; j < n - 1; j++) for (i = 0; i < n - 1; i++) {
-        a = base + j * n + i + 1; b = a + 1; c = a + n + 1; d = a + n
-        printf "f %d/%d %d/%d %d/%d %d/%d\n", a, a, b, b, c, c, d, d }
-      base += n * n } }' >scene.obj
+  write_scene 256 a.png b.jpg c.tif
   "$bin/vt-atlas" scene.obj -o atlas.json --tile-size 64 -q || exit 1
 }
 
