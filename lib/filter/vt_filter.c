@@ -11,6 +11,9 @@
 #include <math.h>
 #include <pthread.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "vt_checked.h"
 #include "vt_error.h"
@@ -197,6 +200,7 @@ static float lin_u8[256];   /* sRGB code -> linear */
 static float unorm_u8[256]; /* code / 255 */
 static float thr_u8[256];
 static uint8_t bucket_u8[U8_BUCKETS];
+static float bucket_thr_u8[U8_BUCKETS]; /* thr_u8[bucket_u8[i]]: no load waits for another */
 static float lin_u16[65536];
 static float thr_u16[65536];
 static uint16_t bucket_u16[U16_BUCKETS];
@@ -244,6 +248,8 @@ static void build_u8_tables(void)
     unsigned span = build_encoder(thr_u8, 255, U8_EMIN, U8_MBITS, bucket_u8, false);
     assert(span <= 1);
     (void)span;
+    for (unsigned i = 0; i < U8_BUCKETS; i++)
+        bucket_thr_u8[i] = thr_u8[bucket_u8[i]];
 }
 
 static void build_u16_tables(void)
@@ -251,6 +257,46 @@ static void build_u16_tables(void)
     for (unsigned k = 0; k < 65536; k++)
         lin_u16[k] = (float)srgb_to_linear(k / 65535.0);
     build_encoder(thr_u16, 65535, U16_EMIN, U16_MBITS, bucket_u16, true);
+}
+
+/* encode_srgb_u8() without branches, for loops over many samples: the value is clamped to
+ * [2^-13, 1 - 2^-24] first (NaN to the low end), which gives the same codes (0 below thr[0],
+ * 255 above thr[254]). */
+static inline uint8_t encode_srgb_u8_clamped(float v)
+{
+    v = v >= 0x1p-13f ? v : 0x1p-13f;
+    v = v < 0x1.fffffep-1f ? v : 0x1.fffffep-1f;
+    uint32_t i = (float_bits(v) >> (23 - U8_MBITS)) - ((uint32_t)(127 + U8_EMIN) << U8_MBITS);
+    return (uint8_t)(bucket_u8[i] + (v > bucket_thr_u8[i]));
+}
+
+/* encode_srgb_u8_clamped() over count samples; four at a time with SSE2 (the index arithmetic,
+ * clamps and comparison in vectors; the two table loads per sample stay scalar). */
+static void encode_srgb_u8_run(const float *src, uint8_t *dst, size_t count)
+{
+    size_t i = 0;
+#if defined(__SSE2__)
+    const __m128 lo = _mm_set1_ps(0x1p-13f), hi = _mm_set1_ps(0x1.fffffep-1f);
+    const __m128i first = _mm_set1_epi32((127 + U8_EMIN) << U8_MBITS);
+    for (; i + 4 <= count; i += 4) {
+        /* max(v, lo) is lo for a NaN v, as in the scalar version */
+        __m128 v = _mm_min_ps(_mm_max_ps(_mm_loadu_ps(src + i), lo), hi);
+        __m128i idx = _mm_sub_epi32(_mm_srli_epi32(_mm_castps_si128(v), 23 - U8_MBITS), first);
+        uint32_t k[4];
+        _mm_storeu_si128((__m128i *)k, idx);
+        __m128 thr = _mm_setr_ps(bucket_thr_u8[k[0]], bucket_thr_u8[k[1]], bucket_thr_u8[k[2]],
+                                 bucket_thr_u8[k[3]]);
+        __m128i code =
+            _mm_setr_epi32(bucket_u8[k[0]], bucket_u8[k[1]], bucket_u8[k[2]], bucket_u8[k[3]]);
+        code = _mm_sub_epi32(code, _mm_castps_si128(_mm_cmpgt_ps(v, thr))); /* true is -1 */
+        code = _mm_packs_epi32(code, code);
+        code = _mm_packus_epi16(code, code);
+        int32_t bytes = _mm_cvtsi128_si32(code);
+        memcpy(dst + i, &bytes, 4);
+    }
+#endif
+    for (; i < count; i++)
+        dst[i] = encode_srgb_u8_clamped(src[i]);
 }
 
 static inline unsigned encode_srgb_u8(float v)
@@ -329,6 +375,21 @@ static inline float load_sample(uint32_t sample, const void *src, size_t i, bool
     }
 }
 
+/* dst[i] = table[in[i]], unrolled: the loop is bound by its loads and stores. */
+static void table_lookup(const float *table, const uint8_t *in, float *dst, size_t n)
+{
+    size_t i = 0;
+    for (; i + 8 <= n; i += 8) {
+        float a0 = table[in[i]], a1 = table[in[i + 1]], a2 = table[in[i + 2]];
+        float a3 = table[in[i + 3]], a4 = table[in[i + 4]], a5 = table[in[i + 5]];
+        float a6 = table[in[i + 6]], a7 = table[in[i + 7]];
+        dst[i] = a0, dst[i + 1] = a1, dst[i + 2] = a2, dst[i + 3] = a3;
+        dst[i + 4] = a4, dst[i + 5] = a5, dst[i + 6] = a6, dst[i + 7] = a7;
+    }
+    for (; i < n; i++)
+        dst[i] = table[in[i]];
+}
+
 void vt_filter_to_working(const struct vt_pixel_mode *m, uint32_t sample, const void *src,
                           float *dst, size_t n)
 {
@@ -343,6 +404,10 @@ void vt_filter_to_working(const struct vt_pixel_mode *m, uint32_t sample, const 
         /* the common case (opaque 8-bit colour or data): one table lookup per sample */
         const float *colour = mi.srgb ? lin_u8 : unorm_u8;
         const uint8_t *in = src;
+        if (mi.colour_n == ch || colour == unorm_u8) { /* one table for every channel */
+            table_lookup(colour, in, dst, n * ch);
+            return;
+        }
         for (size_t i = 0; i < n; i++)
             for (uint32_t c = 0; c < ch; c++)
                 dst[i * ch + c] = (c < mi.colour_n ? colour : unorm_u8)[in[i * ch + c]];
@@ -415,6 +480,16 @@ static inline void unpremultiply(const struct mode_info *mi, const float *src, f
 static void from_working_u8(const struct mode_info *mi, const float *src, uint8_t *dst, size_t n)
 {
     uint32_t ch = mi->channels, srgb_n = mi->srgb ? mi->colour_n : 0;
+    if (!mi->premultiply && mi->normal_n == 0 && (srgb_n == ch || srgb_n == 0)) {
+        /* opaque colour or data: every sample encoded alike, no per-texel work */
+        size_t count = n * ch;
+        if (srgb_n)
+            encode_srgb_u8_run(src, dst, count);
+        else
+            for (size_t i = 0; i < count; i++)
+                dst[i] = (uint8_t)(clamp01(src[i]) * 255.0f + 0.5f);
+        return;
+    }
     for (size_t i = 0; i < n; i++) {
         float px[4];
         unpremultiply(mi, src + i * ch, px);
@@ -588,8 +663,21 @@ static void h_edge(const struct axis *a, const float *src_row, float *out, const
     }
 }
 
+/* The dst indices from which on every texel lies past the coarser level's last texel (clamped
+ * edges): they read the same taps as that texel, so they are copies of the first of them (or of
+ * texel rep - 1 when it is the edge texel). dst_n when there are none (or with wrap). */
+static uint32_t axis_replicas(const struct axis *a)
+{
+    if (a->wrap)
+        return a->dst_n;
+    int64_t coarse_last = ((int64_t)a->level + 1) / 2 - 1;
+    return (uint32_t)clamp_i64(coarse_last + 1 - a->dst0, 1, a->dst_n);
+}
+
+/* Horizontal pass of one finer row: edge texels [0, ib) and [ie, rep), interior [ib, ie), copies
+ * of texel rep - 1 from rep on (ib <= ie <= rep). */
 static void h_row(const struct axis *a, const float *w, uint32_t ch, uint32_t ib, uint32_t ie,
-                  const float *src_row, float *out)
+                  uint32_t rep, const float *src_row, float *out)
 {
     for (uint32_t x = 0; x < ib; x++)
         h_edge(a, src_row, out, w, ch, x);
@@ -614,8 +702,10 @@ static void h_row(const struct axis *a, const float *w, uint32_t ch, uint32_t ib
         else
             h_interior(row, o, w, taps, ch, n);
     }
-    for (uint32_t x = ie; x < a->dst_n; x++)
+    for (uint32_t x = ie; x < rep; x++)
         h_edge(a, src_row, out, w, ch, x);
+    for (uint32_t x = rep; x < a->dst_n; x++)
+        memcpy(out + (size_t)x * ch, out + (size_t)(rep - 1) * ch, ch * sizeof(float));
 }
 
 /* out[i] = w[0] * rows[0][i] + w[1] * rows[1][i] + ... in that order. */
@@ -682,9 +772,34 @@ static int check_reduce_args(const struct vt_kernel *k, const struct vt_edges *e
     return 0;
 }
 
-int vt_filter_reduce(const struct vt_kernel *k, const struct vt_edges *edges,
-                     const struct vt_fregion *src, struct vt_fregion *dst, float *scratch,
-                     size_t scratch_floats, struct vts_error *err)
+/* Where the finer rows of a reduction come from: a float region, or stored samples converted
+ * to the working space row by row (into the last row of scratch) just before their horizontal
+ * pass. */
+struct row_source {
+    const struct vt_fregion *src;
+    const struct vt_stored_rows *stored; /* NULL: src->px holds working floats */
+    float *row;                          /* stored: one converted row */
+};
+
+/* Finer row y; a stored row is converted in the texels [x0, x1) the horizontal pass reads. */
+static const float *source_row(const struct row_source *rs, int64_t y, uint32_t x0, uint32_t x1)
+{
+    const struct vt_fregion *src = rs->src;
+    size_t r = (size_t)(y - src->y0);
+    if (!rs->stored)
+        return src->px + r * src->width * src->channels;
+    const struct vt_stored_rows *st = rs->stored;
+    size_t texel = vts_sample_bytes(st->sample) * src->channels;
+    vt_filter_to_working(st->mode, st->sample,
+                         (const unsigned char *)st->px + r * st->stride + x0 * texel,
+                         rs->row + (size_t)x0 * src->channels, x1 - x0);
+    return rs->row;
+}
+
+static int reduce(const struct vt_kernel *k, const struct vt_edges *edges,
+                  const struct vt_fregion *src, const struct vt_stored_rows *stored,
+                  struct vt_fregion *dst, float *scratch, size_t scratch_floats,
+                  struct vts_error *err)
 {
     if (dst->width == 0 || dst->height == 0)
         return 0;
@@ -692,28 +807,43 @@ int vt_filter_reduce(const struct vt_kernel *k, const struct vt_edges *edges,
                       edges->level_w, edges->wrap_x, k->first, k->count};
     struct axis ay = {dst->y0,        dst->height,   src->y0,  src->height,
                       edges->level_h, edges->wrap_y, k->first, k->count};
-    int rc = check_reduce_args(k, edges, src, dst, &ax, &ay, scratch_floats, err);
+    size_t row_extra = stored ? (size_t)src->width * src->channels : 0;
+    if (scratch_floats < row_extra)
+        return vt_error_set(err, VTS_ERR_ARG, "reduce: scratch of %zu floats is too small",
+                            scratch_floats);
+    int rc = check_reduce_args(k, edges, src, dst, &ax, &ay, scratch_floats - row_extra, err);
     if (rc < 0)
         return rc;
+    if (stored && (stored->mode->channels != src->channels || stored->sample < VTS_SAMPLE_U8 ||
+                   stored->sample > VTS_SAMPLE_F32))
+        return vt_error_set(err, VTS_ERR_ARG, "reduce: stored rows of %u channels, region %u",
+                            stored->mode->channels, src->channels);
 
-    uint32_t ch = src->channels, ib, ie;
+    uint32_t ch = src->channels, ib, ie, rep_x = axis_replicas(&ax), rep_y = axis_replicas(&ay);
     axis_interior(&ax, &ib, &ie);
-    size_t src_row_floats = (size_t)src->width * ch, row_floats = (size_t)dst->width * ch;
+    size_t row_floats = (size_t)dst->width * ch;
+    struct row_source rs = {src, stored, scratch + (scratch_floats - row_extra)};
+    /* the finer texels the horizontal pass reads (positions grow with X and t) */
+    uint32_t read0 = (uint32_t)(tap_pos(&ax, ax.dst0, 0) - ax.src0);
+    uint32_t read1 = (uint32_t)(tap_pos(&ax, ax.dst0 + rep_x - 1, k->count - 1) - ax.src0) + 1;
     /* Scratch row r holds the horizontal pass of finer row row0 + r. Rows are filled lazily,
      * in increasing order, just before the first output row that needs them, so the rows in
-     * use stay in cache. */
+     * use stay in cache (and each stored row is converted once). Output rows from rep_y on are
+     * copies of row rep_y - 1 (past the coarser level's edge). */
     int64_t row0 = tap_pos(&ay, ay.dst0, 0), filled = row0;
     for (uint32_t y = 0; y < dst->height; y++) {
         const float *rows[VT_KERNEL_MAX_TAPS];
-        int64_t last = tap_pos(&ay, ay.dst0 + y, k->count - 1);
-        for (; filled <= last; filled++) {
-            const float *src_row = src->px + (size_t)(filled - src->y0) * src_row_floats;
-            h_row(&ax, k->weights, ch, ib, ie, src_row,
-                  scratch + (size_t)(filled - row0) * row_floats);
+        float *out = dst->px + (size_t)y * row_floats;
+        if (y >= rep_y) {
+            memcpy(out, out - row_floats, row_floats * sizeof(float));
+            continue;
         }
+        int64_t last = tap_pos(&ay, ay.dst0 + y, k->count - 1);
+        for (; filled <= last; filled++)
+            h_row(&ax, k->weights, ch, ib, ie, rep_x, source_row(&rs, filled, read0, read1),
+                  scratch + (size_t)(filled - row0) * row_floats);
         for (int t = 0; t < k->count; t++)
             rows[t] = scratch + (size_t)(tap_pos(&ay, ay.dst0 + y, t) - row0) * row_floats;
-        float *out = dst->px + (size_t)y * row_floats;
         if (k->count == 2)
             v_row(rows, k->weights, 2, out, row_floats);
         else if (k->count == 4)
@@ -724,6 +854,30 @@ int vt_filter_reduce(const struct vt_kernel *k, const struct vt_edges *edges,
             v_row(rows, k->weights, k->count, out, row_floats);
     }
     return 0;
+}
+
+int vt_filter_reduce(const struct vt_kernel *k, const struct vt_edges *edges,
+                     const struct vt_fregion *src, struct vt_fregion *dst, float *scratch,
+                     size_t scratch_floats, struct vts_error *err)
+{
+    return reduce(k, edges, src, NULL, dst, scratch, scratch_floats, err);
+}
+
+int vt_filter_reduce_stored(const struct vt_kernel *k, const struct vt_edges *edges,
+                            const struct vt_fregion *src, const struct vt_stored_rows *stored,
+                            struct vt_fregion *dst, float *scratch, size_t scratch_floats,
+                            struct vts_error *err)
+{
+    return reduce(k, edges, src, stored, dst, scratch, scratch_floats, err);
+}
+
+size_t vt_filter_reduce_stored_scratch(const struct vt_kernel *k, const struct vt_fregion *src,
+                                       const struct vt_fregion *dst)
+{
+    size_t n = vt_filter_reduce_scratch(k, src, dst), row;
+    if (!vt_size_mul(src->width, src->channels, &row) || n > SIZE_MAX - row)
+        return SIZE_MAX;
+    return n + row;
 }
 
 void vt_filter_renormalize(struct vt_fregion *r)

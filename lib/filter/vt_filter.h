@@ -85,6 +85,26 @@ int vt_filter_reduce(const struct vt_kernel *k, const struct vt_edges *edges,
 size_t vt_filter_reduce_scratch(const struct vt_kernel *k, const struct vt_fregion *src,
                                 const struct vt_fregion *dst);
 
+/* Stored texels of a region (the input's own samples, before any conversion). */
+struct vt_stored_rows {
+    const void *px;                   /* the region's first row */
+    size_t stride;                    /* bytes between rows */
+    uint32_t sample;                  /* enum vts_sample */
+    const struct vt_pixel_mode *mode; /* how they map to the working space */
+};
+
+/* vt_filter_reduce() from stored texels: src gives the region's position and size (its px is not
+ * read), stored its samples; each finer row is converted (vt_filter_to_working) once, just before
+ * its horizontal pass, into a row of scratch. Gives the same bits as converting the whole region
+ * first and calling vt_filter_reduce(), without a float copy of it. scratch must hold
+ * vt_filter_reduce_stored_scratch(k, src, dst) floats. */
+int vt_filter_reduce_stored(const struct vt_kernel *k, const struct vt_edges *edges,
+                            const struct vt_fregion *src, const struct vt_stored_rows *stored,
+                            struct vt_fregion *dst, float *scratch, size_t scratch_floats,
+                            struct vts_error *err);
+size_t vt_filter_reduce_stored_scratch(const struct vt_kernel *k, const struct vt_fregion *src,
+                                       const struct vt_fregion *dst);
+
 /* Renormalises the xyz of every texel of a normal-map region to unit length (zero vectors
  * become (0,0,1)). */
 void vt_filter_renormalize(struct vt_fregion *r);

@@ -38,23 +38,20 @@ int vt_pyramid_block_scratch_alloc(const struct vt_pyramid_pass *p,
         return rc;
     bool ok = vt_pyramid_read_scratch_alloc(&s->read, big.width) == 0;
     size_t floats = 0;
-    for (uint32_t r = 0; ok && r <= p->depth; r++) {
-        struct vt_fregion reg;
+    for (uint32_t r = 1; ok && r <= p->depth; r++) {
+        struct vt_fregion reg, fine;
         max_region(p, r, &reg);
-        if (r == 0 && !p->source_is_working) /* a band of rows, see reduce_from_native */
-            reg.height = s->band_rows = 2 * VT_PYRAMID_BAND_ROWS + (uint32_t)p->kernel.count;
-        if (r > 0 || !p->source_is_working) {
-            size_t n;
-            ok = vt_size_mul3(reg.width, reg.height, p->channels, &n) &&
-                 (s->w[r].px = malloc(n * sizeof(float))) != NULL;
-        }
-        if (r > 0) {
-            struct vt_fregion fine;
-            max_region(p, r - 1, &fine);
-            size_t need = vt_filter_reduce_scratch(&p->kernel, &fine, &reg);
-            floats = need > floats ? need : floats;
-        }
+        max_region(p, r - 1, &fine);
+        size_t n;
+        ok = vt_size_mul3(reg.width, reg.height, p->channels, &n) &&
+             (s->w[r].px = malloc(n * sizeof(float))) != NULL;
+        /* level 1 of a stored source is reduced from the stored texels, a row at a time */
+        size_t need = r == 1 && !p->source_is_working
+                          ? vt_filter_reduce_stored_scratch(&p->kernel, &fine, &reg)
+                          : vt_filter_reduce_scratch(&p->kernel, &fine, &reg);
+        floats = need > floats ? need : floats;
     }
+    ok = ok && floats != SIZE_MAX;
     s->reduce_floats = floats;
     if (ok && floats)
         ok = (s->reduce_scratch = malloc(floats * sizeof(float))) != NULL;
@@ -68,9 +65,10 @@ int vt_pyramid_block_scratch_alloc(const struct vt_pyramid_pass *p,
 void vt_pyramid_block_scratch_release(const struct vt_pyramid_pass *p,
                                       struct vt_pyramid_block_scratch *s)
 {
+    (void)p;
     vt_image_release(&s->in);
-    /* with a working-space source, w[0] is a view of in (vt_pyramid_block_run) */
-    for (uint32_t r = p->source_is_working ? 1 : 0; r <= VT_PYRAMID_MAX_LEVELS; r++)
+    /* w[0] is a view of in (vt_pyramid_block_run) */
+    for (uint32_t r = 1; r <= VT_PYRAMID_MAX_LEVELS; r++)
         free(s->w[r].px);
     free(s->reduce_scratch);
     vt_image_release(&s->tile_full);
@@ -112,19 +110,22 @@ static void copy_channels(const struct vt_image *src, struct vt_image *dst)
     }
 }
 
+/* Emits t, or the payload scratch when t is NULL (its out channels). */
 static int emit_tile(const struct vt_pyramid_pass *p, unsigned worker,
-                     struct vt_pyramid_block_scratch *s, uint32_t level, uint32_t tx, uint32_t ty,
-                     struct vts_error *err)
+                     struct vt_pyramid_block_scratch *s, const struct vt_image *t, uint32_t level,
+                     uint32_t tx, uint32_t ty, struct vts_error *err)
 {
     const struct vt_pyramid_options *o = p->o;
-    struct vt_image *t = o->out_channels == p->channels ? &s->tile_full : &s->tile;
+    if (!t)
+        t = o->out_channels == p->channels ? &s->tile_full : &s->tile;
     int rc = o->emit(o->user, worker, level, tx, ty, all_transparent(t) ? NULL : t, err);
     if (rc == 0)
         __atomic_add_fetch(p->done, 1, __ATOMIC_RELAXED);
     return rc;
 }
 
-/* Payload of tile (tx, ty) of the pass's base level, straight from the source texels. */
+/* Payload of tile (tx, ty) of the pass's base level, straight from the source texels: a view of
+ * the block when they are the payload's samples and channels, no copy. */
 static int emit_base_tile(const struct vt_pyramid_pass *p, unsigned worker,
                           struct vt_pyramid_block_scratch *s, int64_t rx0, int64_t ry0, uint32_t tx,
                           uint32_t ty, struct vts_error *err)
@@ -135,7 +136,10 @@ static int emit_base_tile(const struct vt_pyramid_pass *p, unsigned worker,
     int64_t y = (int64_t)ty * o->tile_content_px - o->border_px - ry0;
     struct vt_image v = vt_pyramid_view(&s->block, x, y, pp, pp);
     if (o->out_sample == p->sample) {
-        copy_channels(&v, &s->tile_full);
+        if (o->out_channels == p->channels)
+            return emit_tile(p, worker, s, &v, p->base, tx, ty, err);
+        copy_channels(&v, &s->tile);
+        return emit_tile(p, worker, s, NULL, p->base, tx, ty, err);
     } else {
         float row[4 * 1024];
         for (uint32_t r = 0; r < pp; r++)
@@ -148,7 +152,7 @@ static int emit_base_tile(const struct vt_pyramid_pass *p, unsigned worker,
     }
     if (o->out_channels != p->channels)
         copy_channels(&s->tile_full, &s->tile);
-    return emit_tile(p, worker, s, p->base, tx, ty, err);
+    return emit_tile(p, worker, s, NULL, p->base, tx, ty, err);
 }
 
 /* Payload of tile (tx, ty) of a reduced level from its working region. */
@@ -166,7 +170,7 @@ static int emit_working_tile(const struct vt_pyramid_pass *p, unsigned worker,
     }
     if (o->out_channels != p->channels)
         copy_channels(&s->tile_full, &s->tile);
-    return emit_tile(p, worker, s, level, tx, ty, err);
+    return emit_tile(p, worker, s, NULL, level, tx, ty, err);
 }
 
 /* ---- blocks ---- */
@@ -251,49 +255,6 @@ void vt_pyramid_block_region(const struct vt_pyramid_pass *p, uint32_t bx, uint3
     out->channels = p->channels;
 }
 
-static int64_t clamp_to(int64_t v, int64_t size, bool wrap)
-{
-    return wrap ? v : (v < 0 ? 0 : (v >= size ? size - 1 : v));
-}
-
-/* Reduces the native block `in` (region r0 of the base level) into s->w[1], converting to the
- * working space only the rows each band of VT_PYRAMID_BAND_ROWS coarser rows reads. Gives the
- * same bits as converting the whole block first (the reduction does not depend on how it is split),
- * with a working buffer of a few rows instead of the whole block. */
-static int reduce_from_native(const struct vt_pyramid_pass *p, struct vt_pyramid_block_scratch *s,
-                              const struct vt_image *in, const struct vt_fregion *r0,
-                              const struct vt_edges *edges, struct vts_error *err)
-{
-    const struct vt_kernel *k = &p->kernel;
-    struct vt_fregion *dst = &s->w[1];
-    int64_t coarse_h = vt_pyramid_level_extent(p->h, 1);
-    for (uint32_t row = 0; row < dst->height; row += VT_PYRAMID_BAND_ROWS) {
-        uint32_t rows =
-            dst->height - row < VT_PYRAMID_BAND_ROWS ? dst->height - row : VT_PYRAMID_BAND_ROWS;
-        int64_t a = dst->y0 + row, b = a + rows; /* coarser rows [a, b) */
-        int64_t lo = clamp_to(2 * clamp_to(a, coarse_h, edges->wrap_y) + k->first, edges->level_h,
-                              edges->wrap_y);
-        int64_t hi =
-            clamp_to(2 * clamp_to(b - 1, coarse_h, edges->wrap_y) + k->first + k->count - 1,
-                     edges->level_h, edges->wrap_y) +
-            1;
-        if (lo < r0->y0 || hi > r0->y0 + r0->height || hi - lo > (int64_t)s->band_rows)
-            return vt_error_set(err, VTS_ERR_ARG, "band rows %lld..%lld outside the block",
-                                (long long)lo, (long long)hi);
-        struct vt_fregion band = {r0->x0,      lo,        r0->width, (uint32_t)(hi - lo),
-                                  p->channels, s->w[0].px};
-        vt_filter_to_working(&p->mode, p->sample, vt_image_at(in, 0, (uint32_t)(lo - r0->y0)),
-                             band.px, (size_t)band.width * band.height);
-        struct vt_fregion out = {dst->x0,       a,
-                                 dst->width,    rows,
-                                 dst->channels, dst->px + (size_t)row * dst->width * dst->channels};
-        int rc = vt_filter_reduce(k, edges, &band, &out, s->reduce_scratch, s->reduce_floats, err);
-        if (rc)
-            return rc;
-    }
-    return 0;
-}
-
 int vt_pyramid_block_run(const struct vt_pyramid_pass *p, struct vt_pyramid_block_scratch *s,
                          struct vt_source *src, unsigned worker, uint32_t bx, uint32_t by,
                          struct vts_error *err)
@@ -310,8 +271,10 @@ int vt_pyramid_block_run(const struct vt_pyramid_pass *p, struct vt_pyramid_bloc
         rc = emit_level_tiles(p, worker, s, 0, bx, by, r0.x0, r0.y0, err);
     if (rc || (p->depth == 0 && !p->next && !p->carry))
         return rc;
-    if (p->source_is_working) /* pass images are already in the working space */
-        s->w[0] = (struct vt_fregion){r0.x0, r0.y0, r0.width, r0.height, p->channels, in->pixels};
+    /* pass images are already in the working space; a stored block is read through stored */
+    s->w[0] = (struct vt_fregion){r0.x0,     r0.y0,       r0.width,
+                                  r0.height, p->channels, p->source_is_working ? in->pixels : NULL};
+    struct vt_stored_rows stored = {in->pixels, in->stride, p->sample, &p->mode};
     for (uint32_t r = 1; rc == 0 && r <= p->depth; r++) {
         float *px = s->w[r].px;
         vt_pyramid_block_region(p, bx, by, r, &s->w[r]);
@@ -319,7 +282,8 @@ int vt_pyramid_block_run(const struct vt_pyramid_pass *p, struct vt_pyramid_bloc
         struct vt_edges edges = {vt_pyramid_level_extent(p->w, r - 1),
                                  vt_pyramid_level_extent(p->h, r - 1), p->o->wrap, p->o->wrap};
         if (r == 1 && !p->source_is_working)
-            rc = reduce_from_native(p, s, in, &r0, &edges, err);
+            rc = vt_filter_reduce_stored(&p->kernel, &edges, &s->w[0], &stored, &s->w[1],
+                                         s->reduce_scratch, s->reduce_floats, err);
         else
             rc = vt_filter_reduce(&p->kernel, &edges, &s->w[r - 1], &s->w[r], s->reduce_scratch,
                                   s->reduce_floats, err);

@@ -19,10 +19,10 @@
 struct vt_pyramid_block_scratch {
     struct vt_image in;                             /* allocation for block + margin */
     struct vt_image block;                          /* the current block: a tight view of in */
-    struct vt_fregion w[VT_PYRAMID_MAX_LEVELS + 1]; /* working regions per relative level */
+    struct vt_fregion w[VT_PYRAMID_MAX_LEVELS + 1]; /* working regions per relative level (w[0]:
+                                                       geometry of the block, a view of in) */
     float *reduce_scratch;
     size_t reduce_floats;
-    uint32_t band_rows;              /* rows of the w[0] band buffer (native sources) */
     struct vt_image tile_full, tile; /* payload in out sample: source channels / out channels */
     struct vt_pyramid_read_scratch read;
 };

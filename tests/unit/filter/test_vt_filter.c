@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include "vt_filter.h"
@@ -332,6 +333,155 @@ static void every_kernel_is_independent_of_the_region_split(void)
 {
     for (uint32_t ch = 3; ch <= 4; ch++)
         kernels_split_identically(ch);
+}
+
+/* ---- reductions from stored texels ---- */
+
+/* Random stored samples of a sample type (u16 and f16 bit patterns of finite values in [0, 1]). */
+static void fill_stored(uint32_t sample, unsigned char *p, size_t count)
+{
+    for (size_t i = 0; i < count; i++) {
+        if (sample == VTS_SAMPLE_U8) {
+            p[i] = (unsigned char)rng_u32();
+        } else if (sample == VTS_SAMPLE_U16) {
+            uint16_t v = (uint16_t)rng_u32();
+            memcpy(p + 2 * i, &v, 2);
+        } else if (sample == VTS_SAMPLE_F16) {
+            uint16_t v = (uint16_t)(rng_u32() % 0x3c01); /* +0 .. 1.0 */
+            memcpy(p + 2 * i, &v, 2);
+        } else {
+            float v = rng_unit();
+            memcpy(p + 4 * i, &v, 4);
+        }
+    }
+}
+
+/* One case: a w x h level of stored samples at (sx0, sy0) (the region the reduction reads: the
+ * whole level, or with wrap a larger window), reduced into dst at (dx0, dy0) of dw x dh, through
+ * vt_filter_reduce_stored and through vt_filter_to_working + vt_filter_reduce. Returns the number
+ * of differing bytes; *bad_check gets the same comparison against a wrong kernel (must differ). */
+static size_t stored_case(const struct vt_pixel_mode *m, uint32_t sample, enum vt_filter_kind kind,
+                          bool wrap, uint32_t w, uint32_t h, int64_t dx0, int64_t dy0, uint32_t dw,
+                          uint32_t dh, size_t *wrong)
+{
+    struct vt_kernel k, other;
+    vt_kernel_init(&k, kind);
+    vt_kernel_init(&other, kind == VT_FILTER_BOX ? VT_FILTER_TRIANGLE : VT_FILTER_BOX);
+    uint32_t ch = m->channels, m_src = vt_kernel_margin(&k) + 2;
+    /* the source window: all the level (clamped), or the level and a margin read modulo it */
+    int64_t sx0 = wrap ? 2 * dx0 - m_src : 0, sy0 = wrap ? 2 * dy0 - m_src : 0;
+    uint32_t sw = wrap ? 2 * dw + 2 * m_src : w, sh = wrap ? 2 * dh + 2 * m_src : h;
+    size_t sb = vts_sample_bytes(sample), texel = sb * ch;
+    unsigned char *level = malloc((size_t)w * h * texel);
+    unsigned char *win = malloc((size_t)sw * sh * texel);
+    fill_stored(sample, level, (size_t)w * h * ch);
+    for (uint32_t y = 0; y < sh; y++)
+        for (uint32_t x = 0; x < sw; x++) {
+            int64_t X = ((sx0 + x) % w + w) % w, Y = ((sy0 + y) % h + h) % h;
+            memcpy(win + ((size_t)y * sw + x) * texel, level + ((size_t)Y * w + (size_t)X) * texel,
+                   texel);
+        }
+    struct vt_fregion src, ref_dst, got_dst, bad_dst;
+    float *conv = region_alloc(&src, sx0, sy0, sw, sh, ch);
+    vt_filter_to_working(m, sample, win, conv, (size_t)sw * sh);
+    region_alloc(&ref_dst, dx0, dy0, dw, dh, ch);
+    region_alloc(&got_dst, dx0, dy0, dw, dh, ch);
+    region_alloc(&bad_dst, dx0, dy0, dw, dh, ch);
+    struct vt_edges e = {w, h, wrap, wrap};
+    VT_CHECK_INT_EQ(reduce(&k, &e, &src, &ref_dst), 0);
+    VT_CHECK_INT_EQ(reduce(&other, &e, &src, &bad_dst), 0);
+    struct vt_stored_rows st = {win, (size_t)sw * texel, sample, m};
+    size_t n = vt_filter_reduce_stored_scratch(&k, &src, &got_dst);
+    VT_CHECK(n >= vt_filter_reduce_scratch(&k, &src, &got_dst) + (size_t)sw * ch);
+    float *scratch = malloc(n * sizeof(float));
+    struct vt_fregion geometry = src;
+    geometry.px = NULL; /* not read */
+    VT_CHECK_INT_EQ(vt_filter_reduce_stored(&k, &e, &geometry, &st, &got_dst, scratch, n, NULL), 0);
+    /* one float short of the scratch it needs is refused */
+    VT_CHECK_INT_EQ(vt_filter_reduce_stored(&k, &e, &geometry, &st, &got_dst, scratch, n - 1, NULL),
+                    VTS_ERR_ARG);
+    size_t bytes = (size_t)dw * dh * ch * sizeof(float), diff = 0;
+    const unsigned char *a = (const void *)ref_dst.px, *b = (const void *)got_dst.px,
+                        *c = (const void *)bad_dst.px;
+    *wrong = 0;
+    for (size_t i = 0; i < bytes; i++) {
+        diff += a[i] != b[i];
+        *wrong += a[i] != c[i];
+    }
+    free(level);
+    free(win);
+    free(scratch);
+    free(src.px);
+    free(ref_dst.px);
+    free(got_dst.px);
+    free(bad_dst.px);
+    return diff;
+}
+
+/* vt_filter_reduce_stored gives the bits of converting first, for every sample type, colour
+ * mode, kernel and edge rule, with dst regions inside, across and wholly past the level's edges
+ * (texels past a clamped edge repeat the edge texel). A wrong kernel fails the same comparison. */
+static void stored_reduce_gives_the_bits_of_convert_then_reduce(void)
+{
+    const struct vt_pixel_mode modes[] = {
+        {3, VTS_COLOUR_SRGB, false},
+        {4, VTS_COLOUR_SRGB, true},
+        {1, VTS_COLOUR_DATA, false},
+        {2, VTS_COLOUR_LINEAR, true},
+        {3, VTS_COLOUR_NORMAL, false},
+        {4, VTS_COLOUR_SRGB, false}, /* 4 colour channels, no alpha */
+    };
+    const uint32_t samples[] = {VTS_SAMPLE_U8, VTS_SAMPLE_U16, VTS_SAMPLE_F16, VTS_SAMPLE_F32};
+    const uint32_t w = 37, h = 22, cw = (w + 1) / 2, chh = (h + 1) / 2;
+    /* dst regions: the whole coarser level; inside; across every edge by far; wholly past */
+    const int64_t regions[][4] = {
+        {0, 0, cw, chh}, {3, 2, 7, 5}, {-5, -4, cw + 14, chh + 11}, {cw + 2, chh + 1, 6, 4}};
+    size_t diff = 0, wrong_cases = 0, cases = 0;
+    for (size_t mi = 0; mi < sizeof modes / sizeof modes[0]; mi++)
+        for (size_t si = 0; si < 4; si++)
+            for (int kind = 0; kind < 4; kind++)
+                for (int wrap = 0; wrap < 2; wrap++)
+                    for (size_t r = 0; r < 4; r++) {
+                        size_t wrong = 0;
+                        diff +=
+                            stored_case(&modes[mi], samples[si], (enum vt_filter_kind)kind, wrap, w,
+                                        h, regions[r][0], regions[r][1], (uint32_t)regions[r][2],
+                                        (uint32_t)regions[r][3], &wrong);
+                        wrong_cases += wrong == 0;
+                        cases++;
+                    }
+    VT_CHECK_INT_EQ(diff, 0);
+    VT_CHECK_INT_EQ(wrong_cases, 0); /* a wrong kernel always shows */
+    VT_CHECK_INT_EQ(cases, 6 * 4 * 4 * 2 * 4);
+}
+
+/* Clamped edges: every texel of a region past the coarser level's edge equals the edge texel
+ * (here against the double reference: the copies are the texel, not a recomputation). */
+static void texels_past_a_clamped_edge_repeat_the_edge_texel(void)
+{
+    const uint32_t w = 11, h = 9, ch = 3;
+    struct vt_fregion src, dst, edge;
+    float *px = region_alloc(&src, 0, 0, w, h, ch);
+    for (size_t i = 0; i < (size_t)w * h * ch; i++)
+        px[i] = rng_unit();
+    struct vt_kernel k;
+    vt_kernel_init(&k, VT_FILTER_LANCZOS3);
+    struct vt_edges e = {w, h, false, false};
+    region_alloc(&dst, 4, 3, 9, 7, ch);  /* from inside to far past the 6 x 5 coarser level */
+    region_alloc(&edge, 5, 4, 1, 1, ch); /* its last texel */
+    VT_CHECK_INT_EQ(reduce(&k, &e, &src, &dst), 0);
+    VT_CHECK_INT_EQ(reduce(&k, &e, &src, &edge), 0);
+    int bad = 0;
+    for (uint32_t y = 1; y < dst.height; y++)
+        for (uint32_t x = 1; x < dst.width; x++)
+            bad +=
+                memcmp(dst.px + ((size_t)y * dst.width + x) * ch, edge.px, ch * sizeof(float)) != 0;
+    VT_CHECK_INT_EQ(bad, 0);
+    /* and the texels at x = 4 (inside) differ from the edge's column */
+    VT_CHECK(memcmp(dst.px + (size_t)1 * dst.width * ch, edge.px, ch * sizeof(float)) != 0);
+    free(px);
+    free(dst.px);
+    free(edge.px);
 }
 
 /* ---- colour ---- */
@@ -795,6 +945,8 @@ int main(int argc, char **argv)
     VT_RUN(odd_level_edge_texel_repeats_the_last_finer_texel);
     VT_RUN(every_kernel_matches_a_double_reference);
     VT_RUN(every_kernel_is_independent_of_the_region_split);
+    VT_RUN(stored_reduce_gives_the_bits_of_convert_then_reduce);
+    VT_RUN(texels_past_a_clamped_edge_repeat_the_edge_texel);
     VT_RUN(srgb_checkerboard_reduces_to_188);
     VT_RUN(transparent_half_leaves_no_dark_fringe);
     VT_RUN(u8_round_trips_are_exact);
