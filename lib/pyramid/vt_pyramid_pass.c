@@ -17,7 +17,8 @@ struct pass_run {
     struct vt_pyramid_block_scratch *scratch; /* one per worker */
     unsigned threads;
     uint64_t total;
-    uint32_t row, next_bx, bx0, bx1; /* the block row running, the next block, the blocks run */
+    uint32_t row, row1;         /* the block row of the next job, the end of the rows run */
+    uint32_t next_bx, bx0, bx1; /* the next job's block in its row, the blocks of a row */
 };
 
 static void scratch_free(struct pass_run *run)
@@ -41,12 +42,18 @@ static int scratch_alloc(struct pass_run *run, struct vts_error *err)
     return 0;
 }
 
+/* Jobs are blocks in row-major order: of one block row for a sequential source (the band holds
+ * that row's texels), of all rows [row, row1) otherwise (no wait at the end of each row). */
 static bool next_block(void *ctx, uint64_t *job)
 {
     struct pass_run *run = ctx;
-    if (run->next_bx >= run->bx1)
-        return false;
-    *job = run->next_bx++;
+    if (run->next_bx >= run->bx1) {
+        if (run->row + 1 >= run->row1)
+            return false;
+        run->row++;
+        run->next_bx = run->bx0;
+    }
+    *job = (uint64_t)run->row << 32 | run->next_bx++;
     return true;
 }
 
@@ -54,8 +61,8 @@ static int run_block(void *ctx, unsigned worker, uint64_t job, struct vts_error 
 {
     struct pass_run *run = ctx;
     struct vt_source *src = run->sequential ? &run->band.source : run->sources[worker];
-    return vt_pyramid_block_run(run->p, &run->scratch[worker], src, worker, (uint32_t)job, run->row,
-                                err);
+    return vt_pyramid_block_run(run->p, &run->scratch[worker], src, worker, (uint32_t)job,
+                                (uint32_t)(job >> 32), err);
 }
 
 static int report_progress(void *ctx)
@@ -110,10 +117,12 @@ int vt_pyramid_pass_run(struct vt_pyramid_pass *p, struct vt_source *const *sour
         vt_pyramid_read_band_init(&run.band, sources[0]);
     int rc = scratch_alloc(&run, err);
     static const struct vt_pool_fns fns = {next_block, run_block, report_progress};
-    for (uint32_t by = by0; rc == 0 && by < by1; by++) {
+    /* a sequential source: one pool run per block row, the band moved down between them */
+    for (uint32_t by = by0; rc == 0 && by < by1; by = sequential ? by + 1 : by1) {
         if (sequential)
             rc = move_band(&run, by, err);
         run.row = by;
+        run.row1 = sequential ? by + 1 : by1;
         run.next_bx = run.bx0;
         if (rc == 0)
             rc = vt_pool_run(threads, &fns, &run, err);

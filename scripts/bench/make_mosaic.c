@@ -1,7 +1,7 @@
 /* Builds a large real-content test image for benchmarks: a mosaic of 256x256 crops, at native
  * resolution, of real photographs (randomly chosen, positioned and flipped, seeded), written as a
- * tiled (256x256, deflate) RGB TIFF. Benchmark tool, not part of vtpipe.
- * usage: make_mosaic OUT.tif SIZE PHOTO.png...   (photos: 8-bit PNG, at least 256x256) */
+ * tiled (256x256, deflate; -u: uncompressed) RGB TIFF. Benchmark tool, not part of vtpipe.
+ * usage: make_mosaic [-u] OUT.tif SIZE PHOTO.png...   (photos: 8-bit PNG, at least 256x256) */
 #include <png.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -43,6 +43,9 @@ static uint32_t hash(uint32_t v)
 
 int main(int argc, char **argv)
 {
+    int raw = argc > 1 && strcmp(argv[1], "-u") == 0;
+    argc -= raw;
+    argv += raw;
     if (argc < 4)
         return 2;
     uint32_t size = (uint32_t)strtoul(argv[2], NULL, 10);
@@ -62,8 +65,9 @@ int main(int argc, char **argv)
     TIFFSetField(t, TIFFTAG_BITSPERSAMPLE, 8);
     TIFFSetField(t, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_RGB);
     TIFFSetField(t, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
-    TIFFSetField(t, TIFFTAG_COMPRESSION, COMPRESSION_ADOBE_DEFLATE);
-    TIFFSetField(t, TIFFTAG_ZIPQUALITY, 1);
+    TIFFSetField(t, TIFFTAG_COMPRESSION, raw ? COMPRESSION_NONE : COMPRESSION_ADOBE_DEFLATE);
+    if (!raw)
+        TIFFSetField(t, TIFFTAG_ZIPQUALITY, 1);
     TIFFSetField(t, TIFFTAG_TILEWIDTH, CELL);
     TIFFSetField(t, TIFFTAG_TILELENGTH, CELL);
     unsigned char *tile = malloc(CELL * CELL * 3);
