@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/mman.h>
 #include <unistd.h>
 
@@ -121,6 +122,23 @@ static int parse_options(int argc, char **argv, struct options *o)
     return -1;
 }
 
+/* The image format an output name asks for by its extension, when it is not PNG: --extract writes
+ * PNG only, and a .jpg that holds a PNG misleads every program that trusts the name. */
+static const char *other_image_format(const char *path)
+{
+    static const char *const names[][2] = {
+        {".jpg", "JPEG"},    {".jpeg", "JPEG"}, {".tif", "TIFF"}, {".tiff", "TIFF"},
+        {".exr", "OpenEXR"}, {".webp", "WebP"}, {".bmp", "BMP"},  {".gif", "GIF"},
+        {".tga", "TGA"},     {".dds", "DDS"},   {".ktx", "KTX"},  {".ktx2", "KTX2"}};
+    const char *dot = strrchr(path, '.');
+    if (!dot || strchr(dot, '/'))
+        return NULL;
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        if (strcasecmp(dot, names[i][0]) == 0)
+            return names[i][1];
+    return NULL;
+}
+
 static int validate_options(const struct options *o)
 {
     if (!o->store_path)
@@ -133,6 +151,10 @@ static int validate_options(const struct options *o)
                                                                    : "-o");
     if (o->extract && !o->out_path)
         return vt_usage_error("--extract needs -o OUT.png");
+    const char *format = o->extract ? other_image_format(o->out_path) : NULL;
+    if (format)
+        return vt_usage_error("-o '%s': --extract writes PNG, not %s: name the output .png",
+                              o->out_path, format);
     return 0;
 }
 

@@ -217,7 +217,7 @@ static int frame(struct app *a, uint64_t i, struct vtv_frame_stats *st, struct v
 static int loop(struct app *a, struct vts_error *err)
 {
     const struct vtv_options *o = a->o;
-    uint64_t n = 0;
+    uint64_t n = 0, last_fallback = 0;
     double title_t = 0;
     for (uint64_t i = 0; o->frames == 0 || i < o->frames; i++) {
         struct vtv_frame_stats st = {0};
@@ -226,6 +226,7 @@ static int loop(struct app *a, struct vts_error *err)
         if (s != 0)
             return s;
         st.ms = (now_s() - t0) * 1e3;
+        last_fallback = st.fallback_pixels;
         if (i < o->frames)
             a->stats[i] = st;
         n = i + 1;
@@ -261,6 +262,14 @@ static int loop(struct app *a, struct vts_error *err)
         int s = vtv_write_screenshot(o->screenshot, a->shot, o->width, o->height, err);
         if (s != 0)
             return s;
+        /* without --sync the loader may still be behind at the last frame */
+        if (!o->reference && last_fallback > 0)
+            vt_log(VT_LOG_WARN,
+                   "the screenshot's frame shows %" PRIu64
+                   " fallback pixels (coarser levels while tiles load): %s",
+                   last_fallback,
+                   o->sync ? "give more --frames or a larger --uploads"
+                           : "use --sync (or more --frames) for a complete frame");
     }
     if (o->stats) {
         struct vtv_run_info info = {

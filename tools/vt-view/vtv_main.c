@@ -28,7 +28,7 @@ static const char usage_text[] =
     "  --debug MODE          none (default), levels (colour by level used), tiles (outlines)\n"
     "  --cache N             physical cache size in tiles (default 256)\n"
     "  --uploads N           tile uploads per frame at most (default 32)\n"
-    "  --threads N           loader threads (default 2)\n"
+    "  -j, --threads N       loader threads (default 2)\n"
     "  --sync                load tiles on the render thread (deterministic statistics)\n"
     "  --reference           render with one plain mipmapped GL texture (level 0 of the store)\n"
     "  --reference-scene ORIGINAL.obj\n"
@@ -39,7 +39,7 @@ static const char usage_text[] =
     "                        (auto, default) or decode them on the CPU (off)\n"
     "  -q, --quiet           errors only\n"
     "  -v, --verbose         more messages\n"
-    "  --help, --version\n"
+    "  -h, --help            this help;    --version  version\n"
     "Window keys: arrows/WASD pan, +/- or wheel zoom, drag pan/orbit, F filtering, G debug view,\n"
     "Esc/Q quit.\n";
 
@@ -56,13 +56,11 @@ enum {
     OPT_DEBUG,
     OPT_CACHE,
     OPT_UPLOADS,
-    OPT_THREADS,
     OPT_SYNC,
     OPT_REFERENCE,
     OPT_REFERENCE_SCENE,
     OPT_LAYER,
     OPT_BC_UPLOAD,
-    OPT_HELP,
     OPT_VERSION,
 };
 
@@ -102,7 +100,7 @@ int main(int argc, char **argv)
         {"debug", required_argument, NULL, OPT_DEBUG},
         {"cache", required_argument, NULL, OPT_CACHE},
         {"uploads", required_argument, NULL, OPT_UPLOADS},
-        {"threads", required_argument, NULL, OPT_THREADS},
+        {"threads", required_argument, NULL, 'j'},
         {"sync", no_argument, NULL, OPT_SYNC},
         {"reference", no_argument, NULL, OPT_REFERENCE},
         {"reference-scene", required_argument, NULL, OPT_REFERENCE_SCENE},
@@ -110,7 +108,7 @@ int main(int argc, char **argv)
         {"bc-upload", required_argument, NULL, OPT_BC_UPLOAD},
         {"quiet", no_argument, NULL, 'q'},
         {"verbose", no_argument, NULL, 'v'},
-        {"help", no_argument, NULL, OPT_HELP},
+        {"help", no_argument, NULL, 'h'},
         {"version", no_argument, NULL, OPT_VERSION},
         {NULL, 0, NULL, 0},
     };
@@ -120,7 +118,7 @@ int main(int argc, char **argv)
     int verbosity = VT_LOG_WARN;
     opterr = 0;
     int c;
-    while ((c = vt_getopt_long(argc, argv, ":qv", longopts)) != -1) {
+    while ((c = vt_getopt_long(argc, argv, ":hj:qv", longopts)) != -1) {
         switch (c) {
         case OPT_HEADLESS:
             o.headless = true;
@@ -178,7 +176,7 @@ int main(int argc, char **argv)
             if (vt_parse_u32(optarg, 1, 65536, &o.uploads) != 0)
                 return vt_usage_error("--uploads '%s': expected 1..65536", optarg);
             break;
-        case OPT_THREADS:
+        case 'j':
             if (vt_parse_u32(optarg, 1, 64, &o.threads) != 0)
                 return vt_usage_error("--threads '%s': expected 1..64", optarg);
             break;
@@ -208,7 +206,7 @@ int main(int argc, char **argv)
         case 'v':
             verbosity++;
             break;
-        case OPT_HELP:
+        case 'h':
             fputs(usage_text, stdout);
             return VT_EXIT_OK;
         case OPT_VERSION:
