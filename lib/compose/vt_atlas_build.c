@@ -6,16 +6,10 @@
 #include <string.h>
 
 #include "internal/vt_atlas_build_impl.h"
-#include "internal/vt_mip_chain.h"
 #include "vt_checked.h"
 #include "vt_error.h"
 #include "vt_pool.h"
 #include "vts.h"
-
-struct tex_info {
-    uint8_t channels, sample;
-    bool opaque;
-};
 
 struct vt_atlas_build {
     struct vt_atlas_tile t; /* what the compositor reads, the chain cache included */
@@ -23,8 +17,7 @@ struct vt_atlas_build {
     uint32_t level_count;
     uint32_t tx[VTS_MAX_LEVELS + 1], ty[VTS_MAX_LEVELS + 1];
     uint64_t first[VTS_MAX_LEVELS + 1]; /* job number of each level's first tile */
-    struct tex_info *tex;               /* entries x slots */
-    uint64_t tiles_empty;
+    uint64_t tiles_empty, decodes;
     struct vt_atlas_tile_worker *workers; /* threads + 1 (the last for render) */
 };
 
@@ -39,40 +32,6 @@ static uint32_t log2_u32(uint32_t v)
     while (l < 31 && (1u << (l + 1)) <= v)
         l++;
     return l;
-}
-
-/* ---- the chain cache's build callback: key = entry * slots + slot ---- */
-
-static int build_chain(void *user, uint64_t key, struct vt_mip_chain *c, struct vts_error *err)
-{
-    struct vt_atlas_build *b = user;
-    uint32_t e = (uint32_t)(key / b->t.nslots), s = (uint32_t)(key % b->t.nslots);
-    const struct vt_layout_entry *en = &b->t.lay->entries[e];
-    const struct vt_layout_texture *t = &en->textures[b->t.slots[s].layer];
-    const struct vt_atlas_layer_format *f = &b->t.slots[s].fmt;
-    uint32_t levels = b->t.lmax[e] + 1u < b->level_count ? b->t.lmax[e] + 1u : b->level_count;
-    assert(en->crop_width && en->crop_height); /* vt_layout_check() fills them in */
-    struct vt_mip_chain_spec spec = {.width = en->width,
-                                     .height = en->height,
-                                     .crop_x = en->crop_x,
-                                     .crop_y = en->crop_y,
-                                     .crop_width = en->crop_width,
-                                     .crop_height = en->crop_height,
-                                     .wrap = en->wrap,
-                                     .level_count = levels,
-                                     .colour_channels = f->colour_channels,
-                                     .alpha = f->alpha,
-                                     .colour = f->colour,
-                                     .filter = b->o.filter,
-                                     .max_pixels = b->o.max_pixels};
-    if (!t->path)
-        return vt_mip_chain_from_fill(c, &spec, t->fill, err);
-    struct vt_source src = {0};
-    int rc = b->o.open(b->o.open_user, t->resolved ? t->resolved : t->path, &src, err);
-    if (rc == 0)
-        rc = vt_mip_chain_from_source(c, &spec, &src, err);
-    vt_source_close(&src);
-    return rc;
 }
 
 /* ---- tiles ---- */
@@ -152,7 +111,7 @@ static int tile_do(void *ctx, unsigned worker, uint64_t job, struct vts_error *e
         if (rc == 0)
             rc = r->emit(r->user, worker, s, L, tx, ty, any ? &w->payload[s] : NULL, err);
     }
-    vt_atlas_cache_unpin_all(&b->t.cache, &w->pins);
+    vt_atlas_tile_unpin(&b->t, w);
     __atomic_fetch_add(&r->done, 1, __ATOMIC_RELAXED);
     return rc;
 }
@@ -195,95 +154,8 @@ int vt_atlas_build_render(struct vt_atlas_build *b, uint32_t s, uint32_t L, uint
                                          o + (size_t)i * dst->channels, err);
         }
     }
-    vt_atlas_cache_unpin_all(&b->t.cache, &w->pins);
+    vt_atlas_tile_unpin(&b->t, w);
     return rc;
-}
-
-/* ---- the texture scan and the layer formats ---- */
-
-struct scan_run {
-    struct vt_atlas_build *b;
-    uint64_t next, total, done;
-};
-
-static bool scan_next(void *ctx, uint64_t *job)
-{
-    struct scan_run *r = ctx;
-    if (r->next >= r->total)
-        return false;
-    *job = r->next++;
-    return true;
-}
-
-static int scan_do(void *ctx, unsigned worker, uint64_t job, struct vts_error *err)
-{
-    struct scan_run *r = ctx;
-    struct vt_atlas_build *b = r->b;
-    uint32_t e = (uint32_t)(job / b->t.nslots), s = (uint32_t)(job % b->t.nslots);
-    const struct vt_layout_texture *t = &b->t.lay->entries[e].textures[b->t.slots[s].layer];
-    struct tex_info *ti = &b->tex[job];
-    (void)worker;
-    __atomic_fetch_add(&r->done, 1, __ATOMIC_RELAXED);
-    if (!t->path) {
-        bool grey = t->fill[0] == t->fill[1] && t->fill[1] == t->fill[2];
-        *ti = (struct tex_info){(uint8_t)(grey ? 1 : 3), VTS_SAMPLE_U8, t->fill[3] >= 1.0};
-        return 0;
-    }
-    const char *path = t->resolved ? t->resolved : t->path;
-    struct vt_source src = {0};
-    int rc = b->o.open(b->o.open_user, path, &src, err);
-    if (rc)
-        return rc;
-    const struct vt_source_info *in = &src.info;
-    if (in->width != t->width || in->height != t->height) {
-        rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': %ux%u texels, but the layout says %ux%u",
-                          path, in->width, in->height, t->width, t->height);
-        goto out;
-    }
-    ti->channels = (uint8_t)in->channels;
-    ti->sample = (uint8_t)in->sample;
-    ti->opaque = true;
-    if (in->has_alpha)
-        rc = vt_source_alpha_opaque(&src, &ti->opaque, err);
-out:
-    vt_source_close(&src);
-    return rc;
-}
-
-static int scan_progress(void *ctx)
-{
-    struct scan_run *r = ctx;
-    if (!r->b->o.progress)
-        return 0;
-    return r->b->o.progress(r->b->o.progress_user, __atomic_load_n(&r->done, __ATOMIC_RELAXED),
-                            r->total);
-}
-
-static void decide_formats(struct vt_atlas_build *b)
-{
-    for (uint32_t s = 0; s < b->t.nslots; s++) {
-        struct vt_atlas_tile_slot *sl = &b->t.slots[s];
-        bool grey = true, alpha = false;
-        uint32_t converted = 0;
-        for (uint32_t e = 0; e < b->t.lay->entry_count; e++) {
-            const struct tex_info *ti = &b->tex[(size_t)e * b->t.nslots + s];
-            grey &= ti->channels <= 2;
-            alpha |= !ti->opaque;
-            converted += ti->sample != VTS_SAMPLE_U8;
-        }
-        sl->fmt.colour = b->t.lay->layers[sl->layer].colour;
-        sl->fmt.colour_channels = grey && sl->fmt.colour != VTS_COLOUR_NORMAL ? 1 : 3;
-        sl->fmt.alpha = alpha;
-        sl->fmt.channels = sl->fmt.colour_channels + (alpha ? 1u : 0u);
-        sl->fmt.converted = converted;
-        sl->mode = (struct vt_pixel_mode){sl->fmt.channels, sl->fmt.colour,
-                                          alpha && sl->fmt.colour != VTS_COLOUR_DATA};
-        memset(sl->empty_px, 0, sizeof sl->empty_px);
-        if (sl->fmt.colour == VTS_COLOUR_NORMAL) { /* a flat normal, not (-1,-1,-1) */
-            sl->empty_px[0] = sl->empty_px[1] = 128;
-            sl->empty_px[2] = 255;
-        }
-    }
 }
 
 static void geometry(struct vt_atlas_build *b)
@@ -313,10 +185,10 @@ static int alloc_tables(struct vt_atlas_build *b, struct vts_error *err)
     uint32_t ne = b->t.lay->entry_count;
     if (!vt_size_mul(ne ? ne : 1, b->t.nslots, &n))
         return vt_error_set(err, VTS_ERR_LIMIT, "too many entries");
-    b->tex = calloc(n, sizeof *b->tex);
+    (void)n;
     b->t.lmax = calloc(ne ? ne : 1, 1);
     b->workers = calloc((size_t)b->o.threads + 1, sizeof *b->workers);
-    if (!b->tex || !b->t.lmax || !b->workers)
+    if (!b->t.lmax || !b->workers)
         return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the atlas tables");
     for (uint32_t e = 0; e < ne; e++)
         b->t.lmax[e] = (uint8_t)log2_u32(b->t.lay->entries[e].alignment);
@@ -357,7 +229,6 @@ struct vt_atlas_build *vt_atlas_build_create(const struct vt_atlas_build_options
     b->o = *o;
     b->t.lay = o->layout;
     b->t.nslots = o->layer_count;
-    uint64_t budget = o->cache_bytes ? o->cache_bytes : 1ull << 30;
     if (!b->o.max_pixels)
         b->o.max_pixels = 1ull << 34;
     for (uint32_t s = 0; s < b->t.nslots; s++) {
@@ -367,22 +238,11 @@ struct vt_atlas_build *vt_atlas_build_create(const struct vt_atlas_build_options
         }
         b->t.slots[s].layer = o->layers[s];
     }
-    size_t keys;
-    uint32_t ne = b->t.lay->entry_count;
-    if (!vt_size_mul(ne ? ne : 1, b->t.nslots, &keys)) {
-        vt_error_set(err, VTS_ERR_LIMIT, "too many entries");
-        goto fail;
-    }
-    if (vt_atlas_cache_init(&b->t.cache, keys, budget, build_chain, b, err))
-        goto fail;
     geometry(b);
     if (alloc_tables(b, err) || vt_atlas_tile_build_grid(&b->t, err))
         goto fail;
-    struct scan_run sr = {b, 0, (uint64_t)b->t.lay->entry_count * b->t.nslots, 0};
-    struct vt_pool_fns fns = {scan_next, scan_do, scan_progress};
-    if (sr.total && vt_pool_run(o->threads, &fns, &sr, err))
+    if (vt_atlas_chains_build(&b->t, &b->o, b->level_count, &b->decodes, err))
         goto fail;
-    decide_formats(b);
     if (alloc_payloads(b, err))
         goto fail;
     return b;
@@ -409,8 +269,11 @@ uint64_t vt_atlas_build_tile_count(const struct vt_atlas_build *b)
 
 void vt_atlas_build_stats(const struct vt_atlas_build *b, struct vt_atlas_build_stats *out)
 {
-    *out = (struct vt_atlas_build_stats){b->t.cache.built, b->t.cache.peak, b->tiles_empty,
-                                         b->t.texels_mixed};
+    struct vt_block_cache_stats cs = {0};
+    if (b->t.blocks)
+        vt_block_cache_stats(b->t.blocks, &cs);
+    *out = (struct vt_atlas_build_stats){b->decodes, cs.peak,        cs.budget,
+                                         cs.spilled, b->tiles_empty, b->t.texels_mixed};
 }
 
 void vt_atlas_build_destroy(struct vt_atlas_build *b)
@@ -419,15 +282,15 @@ void vt_atlas_build_destroy(struct vt_atlas_build *b)
         return;
     if (b->workers) {
         for (unsigned t = 0; t <= b->o.threads; t++) {
-            vt_atlas_cache_unpin_all(&b->t.cache, &b->workers[t].pins);
+            vt_atlas_tile_unpin(&b->t, &b->workers[t]);
             free(b->workers[t].cls);
             for (uint32_t s = 0; s < VT_LAYOUT_MAX_LAYERS; s++)
                 vt_image_release(&b->workers[t].payload[s]);
         }
     }
-    vt_atlas_cache_release(&b->t.cache);
+    vt_block_cache_destroy(b->t.blocks);
+    free(b->t.chains);
     free(b->workers);
-    free(b->tex);
     free(b->t.lmax);
     vt_atlas_tile_release_grid(&b->t);
     free(b);

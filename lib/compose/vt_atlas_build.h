@@ -2,18 +2,19 @@
  * (lib/layout/vt_layout.h) computed from the source textures on demand, without ever holding a
  * whole level.
  *
- * Each entry's texture (per layer) becomes a mip chain (vt_mip_chain.h) kept in a bounded,
- * reference-counted LRU cache shared by the workers. A level-L texel whose level-0 footprint lies
- * inside one entry's cell, with the entry aligned at 2^L, is "owned": it reads that entry's chain
- * at level L (clamped into the chain's rectangle, so cell padding, the gutter before x/y of a cell
- * that starts before its texture, and borders on a texture's edge repeat that texture's edge
- * texels, and filtering never mixes textures; a wrap entry's chain is read modulo its size
- * instead, so they show the opposite edge). The chain holds the entry's crop of its copies. A
- * texel whose footprint touches no cell is empty. Any other texel (coarse levels above an entry's
- * alignment) is "mixed": the coverage-weighted average, in the working space, of its four children
- * one level down. A tile whose content texels are all empty is emitted as empty. Output is 8-bit;
- * the bytes do not depend on the number of threads or on the cache size. Details in
- * docs/atlas-build.md. */
+ * Each texture file is decoded once; each entry's texture (per layer) becomes a mip chain
+ * (vt_mip_chain.h, streamed by vt_chain_stream.h where it can be) kept as blocks in a bounded
+ * cache that spills to a temporary file (vt_block_cache.h), shared by the workers. A level-L texel
+ * whose level-0 footprint lies inside one entry's cell, with the entry aligned at 2^L, is "owned":
+ * it reads that entry's chain at level L (clamped into the chain's rectangle, so cell padding, the
+ * gutter before x/y of a cell that starts before its texture, and borders on a texture's edge
+ * repeat that texture's edge texels, and filtering never mixes textures; a wrap entry's chain is
+ * read modulo its size instead, so they show the opposite edge). The chain holds the entry's crop
+ * of its copies. A texel whose footprint touches no cell is empty. Any other texel (coarse levels
+ * above an entry's alignment) is "mixed": the coverage-weighted average, in the working space, of
+ * its four children one level down. A tile whose content texels are all empty is emitted as empty.
+ * Output is 8-bit; the bytes do not depend on the number of threads or on the cache size. Details
+ * in docs/atlas-build.md. */
 #ifndef VT_ATLAS_BUILD_H
 #define VT_ATLAS_BUILD_H
 
@@ -41,6 +42,8 @@ typedef int (*vt_atlas_emit_fn)(void *user, unsigned worker, uint32_t slot, uint
 /* Progress: tile positions done of total; non-zero cancels. Called on the calling thread. */
 typedef int (*vt_atlas_progress_fn)(void *user, uint64_t done, uint64_t total);
 
+#define VT_ATLAS_BUILD_CACHE (256ull << 20) /* default chain block budget, bytes */
+
 struct vt_atlas_build_options {
     const struct vt_layout *layout; /* read and checked (vt_layout_read); must outlive the build */
     const uint32_t *layers;         /* layout layer indices to build, in store order */
@@ -48,8 +51,9 @@ struct vt_atlas_build_options {
     uint32_t level_count;           /* 0 = every level (down to one tile) */
     enum vt_filter_kind filter;     /* mip filter of the textures' chains */
     unsigned threads;               /* 1..256 */
-    uint64_t cache_bytes;           /* decoded chains kept; 0 = 1 GiB */
-    uint64_t max_pixels;            /* per entry chain (its crop of the copies); 0 = 2^34 */
+    uint64_t cache_bytes; /* decoded chain blocks kept in memory; 0 = VT_ATLAS_BUILD_CACHE */
+    const char *temp_dir; /* where chain blocks over the budget spill; NULL = $TMPDIR or /tmp */
+    uint64_t max_pixels;  /* per entry chain (its crop of the copies); 0 = 2^34 */
     vt_atlas_open_fn open;
     void *open_user;
     vt_atlas_progress_fn progress; /* optional, for the texture scan of create() too */
@@ -93,10 +97,12 @@ int vt_atlas_build_render(struct vt_atlas_build *b, uint32_t slot, uint32_t leve
                           uint32_t y, struct vt_image *dst, struct vts_error *err);
 
 struct vt_atlas_build_stats {
-    uint64_t chains_built; /* texture decodes (a texture evicted and needed again counts again) */
-    uint64_t cache_peak;   /* most chain bytes held at once */
-    uint64_t tiles_empty;  /* tile positions emitted empty (per layer) */
-    uint64_t texels_mixed; /* coarse texels computed from several cells */
+    uint64_t chains_built;  /* texture decodes: each file once, unless noted in atlas-build.md */
+    uint64_t cache_peak;    /* most chain block bytes held in memory at once */
+    uint64_t cache_budget;  /* the budget they were held to (unpinned blocks never exceed it) */
+    uint64_t spilled_bytes; /* chain block bytes written to the temporary file */
+    uint64_t tiles_empty;   /* tile positions emitted empty (per layer) */
+    uint64_t texels_mixed;  /* coarse texels computed from several cells */
 };
 void vt_atlas_build_stats(const struct vt_atlas_build *b, struct vt_atlas_build_stats *out);
 

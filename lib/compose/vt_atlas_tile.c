@@ -115,25 +115,42 @@ static int owned_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, 
                        uint32_t e, uint32_t L, int64_t X, int64_t Y, const uint8_t **out,
                        struct vts_error *err)
 {
-    const struct vt_mip_chain *c;
-    int rc = vt_atlas_cache_get(&t->cache, &w->pins, (uint64_t)e * t->nslots + s, &c, err);
-    if (rc)
-        return rc;
-    assert(L < c->level_count);
+    const struct vt_atlas_chain_info *ci = &t->chains[(size_t)e * t->nslots + s];
+    assert(L < ci->levels);
     const struct vt_layout_entry *en = &t->lay->entries[e];
-    const struct vt_image *lv = &c->levels[L];
+    int64_t lw = ci->fill ? 1 : ceil_shift(ci->w0, L), lh = ci->fill ? 1 : ceil_shift(ci->h0, L);
     int64_t i = X - (int64_t)(en->x >> L), j = Y - (int64_t)(en->y >> L);
     if (en->wrap) {
-        i %= (int64_t)lv->width;
-        j %= (int64_t)lv->height;
-        i += i < 0 ? lv->width : 0;
-        j += j < 0 ? lv->height : 0;
+        i %= lw;
+        j %= lh;
+        i += i < 0 ? lw : 0;
+        j += j < 0 ? lh : 0;
     } else {
-        i = i < 0 ? 0 : i >= lv->width ? lv->width - 1 : i;
-        j = j < 0 ? 0 : j >= lv->height ? lv->height - 1 : j;
+        i = i < 0 ? 0 : i >= lw ? lw - 1 : i;
+        j = j < 0 ? 0 : j >= lh ? lh - 1 : j;
     }
-    *out = vt_image_at(lv, (uint32_t)i, (uint32_t)j);
+    uint32_t sh = VT_BLOCK_CACHE_SHIFT, m = VT_BLOCK_CACHE_EDGE - 1;
+    uint64_t id =
+        ci->base[L] + (uint64_t)(j >> sh) * ceil_shift((uint32_t)lw, sh) + (uint64_t)(i >> sh);
+    if (!w->last_px || w->last_id != id) {
+        int rc = vt_block_cache_get(t->blocks, &w->pins, id, &w->last_px, err);
+        if (rc) {
+            w->last_px = NULL;
+            return rc;
+        }
+        w->last_id = id;
+    }
+    int64_t x0 = i & ~(int64_t)m;
+    uint32_t bw = lw - x0 < VT_BLOCK_CACHE_EDGE ? (uint32_t)(lw - x0) : VT_BLOCK_CACHE_EDGE;
+    *out = w->last_px + ((size_t)(j & m) * bw + (size_t)(i & m)) * t->slots[s].fmt.channels;
     return 0;
+}
+
+void vt_atlas_tile_unpin(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w)
+{
+    if (t->blocks)
+        vt_block_cache_unpin_all(t->blocks, &w->pins);
+    w->last_px = NULL;
 }
 
 /* A mixed texel: the coverage-weighted average of its children one level down (working space,

@@ -332,8 +332,23 @@ int vt_mip_chain_from_source(struct vt_mip_chain *c, const struct vt_mip_chain_s
     if (rc == 0)
         rc = vt_source_read(src, 0, 0, &raw, err);
     if (rc == 0)
-        rc = to_layer_u8(s, in, &raw, &c->levels[0], err);
+        rc = vt_mip_chain_from_image(c, s, in, &raw, err);
     vt_image_release(&raw);
+    return rc;
+}
+
+int vt_mip_chain_convert(const struct vt_mip_chain_spec *s, const struct vt_source_info *in,
+                         const struct vt_image *raw, struct vt_image *out, struct vts_error *err)
+{
+    return to_layer_u8(s, in, raw, out, err);
+}
+
+int vt_mip_chain_from_image(struct vt_mip_chain *c, const struct vt_mip_chain_spec *s,
+                            const struct vt_source_info *in, const struct vt_image *raw,
+                            struct vts_error *err)
+{
+    memset(c, 0, sizeof *c);
+    int rc = to_layer_u8(s, in, raw, &c->levels[0], err);
     bool nearest = false;
     if (rc == 0)
         rc = resample(s, &c->levels[0], &nearest, err);

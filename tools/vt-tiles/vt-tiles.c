@@ -61,7 +61,7 @@ static void usage(FILE *f)
         "      --max-pixels N       refuse inputs with more texels (default 2^34)\n"
         "      --max-store-size S   refuse to write more tile bytes than S (suffix K, M, G, T;\n"
         "                           default 2T)\n"
-        "      --cache-size S       --layout: decoded textures kept in memory (default 1G)\n"
+        "      --cache-size S       --layout: decoded textures kept in memory (default 256M)\n"
         "      --temp-dir DIR       where pass images go (default: the output's directory)\n"
         "      --shard I/N          build part I of N (N a power of two) for vt-merge to join\n"
         "      --layout FILE        instead of INPUT: build the atlas FILE (vt-atlas) from its\n"
@@ -340,6 +340,7 @@ static int run_layout(const struct options *o)
                                          .max_pixels = o->max_pixels,
                                          .max_store = o->max_store,
                                          .cache_bytes = o->cache_bytes,
+                                         .temp_dir = o->temp_dir,
                                          .threads = o->threads};
     return vt_tiles_layout_run(&lo);
 }

@@ -194,11 +194,12 @@ static int write_store(struct layout_run *r, struct vts_error *err)
     vt_atlas_build_stats(r->build, &bs);
     vt_log(
         VT_LOG_INFO,
-        "wrote '%s': %ux%u, %u levels, %u layers, %llu tiles stored (%llu shared), %llu empty, %llu payload bytes; %llu texture decodes, cache peak %.1f MiB",
+        "wrote '%s': %ux%u, %u levels, %u layers, %llu tiles stored (%llu shared), %llu empty, %llu payload bytes; %llu texture decodes, cache peak %.1f MiB of %.0f, %.1f MiB spilled",
         r->o->output, g.width, g.height, g.level_count, g.layer_count,
         (unsigned long long)st.tiles_stored, (unsigned long long)st.tiles_shared,
         (unsigned long long)st.tiles_empty, (unsigned long long)st.unique_bytes,
-        (unsigned long long)bs.chains_built, (double)bs.cache_peak / (1 << 20));
+        (unsigned long long)bs.chains_built, (double)bs.cache_peak / (1 << 20),
+        (double)bs.cache_budget / (1 << 20), (double)bs.spilled_bytes / (1 << 20));
     return 0;
 }
 
@@ -270,12 +271,19 @@ static int start_build(struct layout_run *r, struct vts_error *err)
 {
     const struct vt_tiles_layout_options *o = r->o;
     r->limits.max_pixels = o->max_pixels;
+    char dir[VT_PATH_MAX];
+    const char *temp_dir = o->temp_dir;
+    struct vts_error dir_err = {0}; /* no directory: the library's default ($TMPDIR) */
+    if (!temp_dir && o->output && !vt_output_path_is_stdio(o->output) &&
+        vt_output_path_scratch_dir(o->output, dir, sizeof dir, &dir_err) == 0)
+        temp_dir = dir;
     struct vt_atlas_build_options bo = {.layout = &r->lay,
                                         .layers = r->layers,
                                         .layer_count = r->nslots,
                                         .filter = o->filter,
                                         .threads = o->threads,
                                         .cache_bytes = o->cache_bytes,
+                                        .temp_dir = temp_dir,
                                         .max_pixels = o->max_pixels,
                                         .open = open_texture,
                                         .open_user = r,

@@ -27,7 +27,8 @@ struct vt_tiles_layout_options {
     uint64_t max_pixels; /* per texture */
     uint64_t max_store;  /* tile bytes the store may hold (0: no limit) */
     unsigned threads;
-    uint64_t cache_bytes; /* decoded textures kept; 0 = 1 GiB */
+    uint64_t cache_bytes; /* decoded texture blocks kept in memory; 0 = 256 MiB */
+    const char *temp_dir; /* where blocks over the budget spill; NULL = the output's directory */
 };
 
 /* Runs the build; logs through tool_common (vt_log, progress). Returns the exit status: 0, 1 (an

@@ -9,7 +9,7 @@
 #include <stdint.h>
 
 #include "vt_atlas_build.h"
-#include "vt_atlas_cache.h"
+#include "vt_block_cache.h"
 #include "vts.h"
 
 #define VT_ATLAS_TILE_EMPTY (-1) /* texel class: no entry covers it */
@@ -23,16 +23,28 @@ struct vt_atlas_tile_slot {
     uint8_t empty_px[4];
 };
 
-/* Scratch of one worker: its pinned chains, the classes of the current tile's content texels
- * (content x content) and one payload image per slot. */
+/* Scratch of one worker: its pinned chain blocks (the last one read kept at hand), the classes of
+ * the current tile's content texels (content x content) and one payload image per slot. */
 struct vt_atlas_tile_worker {
-    struct vt_atlas_cache_pins pins;
+    struct vt_block_cache_pins pins;
+    uint64_t last_id;
+    const uint8_t *last_px; /* NULL: none */
     int32_t *cls;
     struct vt_image payload[VT_LAYOUT_MAX_LAYERS];
 };
 
-/* What the compositor reads: the layout, its level sizes, the entry grid and the chain cache
- * (keyed entry * nslots + slot). Filled by vt_atlas_build.c; the grid by _build_grid. */
+/* Where the chain of one (entry, slot) key lives in the block cache: level L is
+ * ceil(w0 / 2^L) x ceil(h0 / 2^L) texels (1 x 1 for a constant fill) cut in blocks of
+ * VT_BLOCK_CACHE_EDGE, row-major, ids from base[L]. */
+struct vt_atlas_chain_info {
+    uint32_t w0, h0, levels;
+    bool fill;
+    uint64_t base[VTS_MAX_LEVELS];
+};
+
+/* What the compositor reads: the layout, its level sizes, the entry grid and the chains' blocks
+ * (keys entry * nslots + slot). Filled by vt_atlas_build.c, the grid by _build_grid, the chains
+ * by vt_atlas_chains_build. */
 struct vt_atlas_tile {
     const struct vt_layout *lay;
     struct vt_atlas_tile_slot slots[VT_LAYOUT_MAX_LAYERS];
@@ -44,9 +56,20 @@ struct vt_atlas_tile {
     /* grid over level 0: buckets of 2^gshift texels listing the entries whose cell meets them */
     uint32_t gshift, gw, gh;
     uint32_t *goff, *gidx, *gsat;
-    struct vt_atlas_cache cache;
-    uint64_t texels_mixed; /* updated atomically */
+    struct vt_block_cache *blocks;
+    struct vt_atlas_chain_info *chains; /* per key */
+    uint64_t texels_mixed;              /* updated atomically */
 };
+
+/* The texture pass (vt_atlas_chains.c): opens every texture of the built layers (checking its
+ * size), decides the layer formats (t->slots[].fmt, mode, empty_px), then decodes each texture
+ * file once and streams its chains into t->blocks (created here, o->cache_bytes of memory). Keys
+ * are built on o->threads. *decodes receives the texture decodes. 0 or the first error. */
+int vt_atlas_chains_build(struct vt_atlas_tile *t, const struct vt_atlas_build_options *o,
+                          uint32_t level_count, uint64_t *decodes, struct vts_error *err);
+
+/* Drops the worker's pins (and its last block). */
+void vt_atlas_tile_unpin(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w);
 
 /* Builds the entry grid of t->lay. 0 or VTS_ERR_NOMEM; free with vt_atlas_tile_release_grid. */
 int vt_atlas_tile_build_grid(struct vt_atlas_tile *t, struct vts_error *err);

@@ -48,6 +48,16 @@ struct vt_mip_chain {
 int vt_mip_chain_from_source(struct vt_mip_chain *c, const struct vt_mip_chain_spec *s,
                              struct vt_source *src, struct vts_error *err);
 
+/* The same from the source's texels already decoded (raw: the whole image, as read from it). */
+int vt_mip_chain_from_image(struct vt_mip_chain *c, const struct vt_mip_chain_spec *s,
+                            const struct vt_source_info *in, const struct vt_image *raw,
+                            struct vts_error *err);
+
+/* Step 1 alone: rows of the source (raw, any height) converted to the layer's 8-bit channels;
+ * out is allocated (free with vt_image_release). */
+int vt_mip_chain_convert(const struct vt_mip_chain_spec *s, const struct vt_source_info *in,
+                         const struct vt_image *raw, struct vt_image *out, struct vts_error *err);
+
 /* A constant fill (RGBA in 0..1, stored values): every level is one texel. */
 int vt_mip_chain_from_fill(struct vt_mip_chain *c, const struct vt_mip_chain_spec *s,
                            const double fill[4], struct vts_error *err);

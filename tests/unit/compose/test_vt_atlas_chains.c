@@ -1,0 +1,270 @@
+/* lib/compose's out-of-core texture pass: a chain streamed from rows holds the texels of the whole
+ * chain bit for bit; the block cache keeps its memory within the budget and gives back what was
+ * spilled; an atlas build decodes each texture file once (both layers from one decode) and holds
+ * its budget. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "internal/vt_atlas_build_impl.h"
+#include "internal/vt_block_cache.h"
+#include "internal/vt_chain_stream.h"
+#include "internal/vt_mip_chain.h"
+#include "vt_atlas_build.h"
+#include "vt_layout.h"
+#include "vt_test.h"
+
+static void fill_texture(struct vt_image *img, uint32_t w, uint32_t h, uint32_t ch, uint32_t seed)
+{
+    vt_image_alloc(img, w, h, ch, VTS_SAMPLE_U8, NULL);
+    uint32_t s = seed * 2654435761u + 1;
+    for (uint32_t y = 0; y < h; y++)
+        for (uint32_t x = 0; x < w; x++) {
+            uint8_t *p = vt_image_at(img, x, y);
+            for (uint32_t c = 0; c < ch; c++) {
+                s ^= s << 13, s ^= s >> 17, s ^= s << 5;
+                p[c] = (uint8_t)((x * 7 + y * 3 + c * 50) + (s & 15));
+            }
+            if (ch == 4)
+                p[3] = (uint8_t)(x * 255 / w);
+        }
+}
+
+/* ---- the stream against the whole chain ---- */
+
+struct got {
+    struct vt_image levels[VTS_MAX_LEVELS];
+    uint32_t blocks;
+};
+
+static int got_block(void *user, uint32_t level, uint32_t bx, uint32_t by, const uint8_t *px,
+                     uint32_t w, uint32_t h, struct vts_error *err)
+{
+    struct got *g = user;
+    struct vt_image *lv = &g->levels[level];
+    size_t tb = vt_image_texel_bytes(lv);
+    (void)err;
+    for (uint32_t j = 0; j < h; j++)
+        memcpy(vt_image_at(lv, bx * VT_CHAIN_STREAM_EDGE, by * VT_CHAIN_STREAM_EDGE + j),
+               px + j * w * tb, w * tb);
+    g->blocks++;
+    return 0;
+}
+
+/* Streams tex (tw x th) into the chain of an entry of ew x eh texels, band heights varying, and
+ * compares every level with vt_mip_chain_from_image's. Returns the texels that differ. */
+static uint64_t stream_vs_whole(uint32_t tw, uint32_t th, uint32_t ew, uint32_t eh, uint32_t ch,
+                                uint32_t colour, enum vt_filter_kind filter, uint32_t levels)
+{
+    struct vt_image tex;
+    fill_texture(&tex, tw, th, ch, tw + th);
+    struct vt_source_info in = {tw, th, ch, VTS_SAMPLE_U8, colour, ch == 4, false, true, 0, 0, ""};
+    struct vt_mip_chain_spec s = {
+        ew, eh, 0, 0, ew, eh, false, levels, ch == 4 ? 3 : ch, ch == 4, colour, filter, 1ull << 30};
+    struct vt_mip_chain whole;
+    VT_CHECK_INT_EQ(vt_mip_chain_from_image(&whole, &s, &in, &tex, NULL), 0);
+    struct got g = {0};
+    for (uint32_t l = 0; l < whole.level_count; l++)
+        vt_image_alloc(&g.levels[l], whole.levels[l].width, whole.levels[l].height, ch,
+                       VTS_SAMPLE_U8, NULL);
+    uint32_t pre = 99;
+    VT_CHECK(vt_chain_stream_fits(&s, tw, th, &pre));
+    struct vt_chain_stream *cs = vt_chain_stream_create(&s, tw, th, got_block, &g, NULL);
+    VT_CHECK(cs != NULL);
+    for (uint32_t y = 0, n = 1; cs && y < th; y += n, n = n % 13 + 5) {
+        struct vt_image band = tex;
+        band.pixels = (uint8_t *)tex.pixels + y * tex.stride;
+        band.height = th - y < n ? th - y : n;
+        VT_CHECK_INT_EQ(vt_chain_stream_push(cs, &band, NULL), 0);
+    }
+    vt_chain_stream_destroy(cs);
+    uint64_t diff = 0;
+    for (uint32_t l = 0; l < whole.level_count; l++) {
+        const struct vt_image *a = &whole.levels[l], *b = &g.levels[l];
+        for (uint32_t y = 0; y < a->height; y++)
+            diff += memcmp(vt_image_at(a, 0, y), vt_image_at(b, 0, y), a->width * ch) != 0;
+        vt_image_release(&g.levels[l]);
+    }
+    VT_CHECK(g.blocks > 0);
+    vt_mip_chain_release(&whole);
+    vt_image_release(&tex);
+    return diff;
+}
+
+static void a_streamed_chain_equals_the_whole_chain(void)
+{
+    VT_CHECK_INT_EQ(stream_vs_whole(131, 77, 131, 77, 3, VTS_COLOUR_SRGB, VT_FILTER_BOX, 8), 0);
+    VT_CHECK_INT_EQ(stream_vs_whole(200, 150, 200, 150, 4, VTS_COLOUR_SRGB, VT_FILTER_LANCZOS3, 6),
+                    0);
+    VT_CHECK_INT_EQ(stream_vs_whole(97, 130, 97, 130, 3, VTS_COLOUR_NORMAL, VT_FILTER_KAISER, 5),
+                    0);
+    VT_CHECK_INT_EQ(stream_vs_whole(70, 64, 70, 64, 1, VTS_COLOUR_DATA, VT_FILTER_TRIANGLE, 1), 0);
+    /* the texture's own mip level 2 (scale 1/4), then the chain */
+    VT_CHECK_INT_EQ(stream_vs_whole(259, 130, 65, 33, 4, VTS_COLOUR_SRGB, VT_FILTER_LANCZOS3, 4),
+                    0);
+}
+
+static void a_wrong_texel_is_caught(void)
+{
+    /* the comparison can fail: a chain of another filter differs */
+    struct vt_image tex;
+    fill_texture(&tex, 64, 64, 3, 1);
+    struct vt_source_info in = {64, 64, 3, VTS_SAMPLE_U8, VTS_COLOUR_SRGB, false, false, true,
+                                0,  0,  ""};
+    struct vt_mip_chain_spec s = {
+        64, 64, 0, 0, 64, 64, false, 3, 3, false, VTS_COLOUR_SRGB, VT_FILTER_BOX, 1ull << 30};
+    struct vt_mip_chain a, b;
+    vt_mip_chain_from_image(&a, &s, &in, &tex, NULL);
+    s.filter = VT_FILTER_LANCZOS3;
+    vt_mip_chain_from_image(&b, &s, &in, &tex, NULL);
+    VT_CHECK(memcmp(a.levels[1].pixels, b.levels[1].pixels, 32 * 32 * 3) != 0);
+    vt_mip_chain_release(&a);
+    vt_mip_chain_release(&b);
+    vt_image_release(&tex);
+    uint32_t pre;
+    s.wrap = true; /* not streamed: built whole */
+    VT_CHECK(!vt_chain_stream_fits(&s, 64, 64, &pre));
+}
+
+/* ---- the block cache ---- */
+
+static void the_block_cache_holds_its_budget_and_reads_back_what_spilled(void)
+{
+    enum { N = 40, BYTES = 1000 };
+    struct vt_block_cache *c = vt_block_cache_create(N, 5 * BYTES, NULL, NULL);
+    VT_CHECK(c != NULL);
+    uint8_t buf[BYTES];
+    struct vt_block_cache_stats st;
+    for (int i = 0; i < N; i++) {
+        memset(buf, i, sizeof buf);
+        VT_CHECK_INT_EQ(vt_block_cache_put(c, (uint64_t)i, buf, sizeof buf, NULL), 0);
+        vt_block_cache_stats(c, &st);
+        VT_CHECK(st.bytes <= 5 * BYTES);
+    }
+    VT_CHECK_INT_EQ(st.spilled, (N - 5) * BYTES);
+    struct vt_block_cache_pins pins = {0};
+    for (int round = 0; round < 2; round++)
+        for (int i = N - 1; i >= 0; i--) {
+            const uint8_t *px = NULL;
+            VT_CHECK_INT_EQ(vt_block_cache_get(c, &pins, (uint64_t)i, &px, NULL), 0);
+            VT_CHECK(px && px[0] == i && px[BYTES - 1] == i);
+            vt_block_cache_stats(c, &st);
+            VT_CHECK(st.bytes - 0 <= 5 * BYTES + VT_BLOCK_CACHE_PINS * BYTES);
+        }
+    vt_block_cache_unpin_all(c, &pins);
+    vt_block_cache_stats(c, &st);
+    VT_CHECK(st.peak_unpinned <= 5 * BYTES);
+    VT_CHECK(st.peak <= 5 * BYTES + VT_BLOCK_CACHE_PINS * BYTES);
+    VT_CHECK(st.reloads > 0);
+    VT_CHECK_INT_EQ(st.spilled, N * BYTES); /* each block written once at most */
+    vt_block_cache_destroy(c);
+}
+
+/* ---- a build: decodes counted through the open callback ---- */
+
+#define NTEX 4
+static struct vt_image textures[NTEX];
+static const uint32_t tex_w[NTEX] = {300, 170, 256, 90}, tex_h[NTEX] = {200, 260, 256, 40};
+static uint64_t rows_read[NTEX];
+
+static int mem_read(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst, struct vts_error *err)
+{
+    int i = (int)(intptr_t)ctx;
+    (void)err;
+    __atomic_fetch_add(&rows_read[i], dst->height, __ATOMIC_RELAXED);
+    for (uint32_t j = 0; j < dst->height; j++)
+        memcpy(vt_image_at(dst, 0, j), vt_image_at(&textures[i], x, y + j),
+               (size_t)dst->width * textures[i].channels);
+    return 0;
+}
+
+static void mem_close(void *ctx)
+{
+    (void)ctx;
+}
+
+static const struct vt_source_ops mem_ops = {mem_read, mem_close};
+
+static int open_mem(void *user, const char *path, struct vt_source *out, struct vts_error *err)
+{
+    const char *b = strrchr(path, '/');
+    int i = (b ? b[1] : path[0]) - '0';
+    (void)user;
+    if (i < 0 || i >= NTEX)
+        return vt_error_set(err, VTS_ERR_IO, "no texture '%s'", path);
+    struct vt_image *t = &textures[i];
+    *out = (struct vt_source){{t->width, t->height, t->channels, VTS_SAMPLE_U8, VTS_COLOUR_SRGB,
+                               t->channels == 4, false, true, 0, 0, "mem"},
+                              &mem_ops,
+                              (void *)(intptr_t)i,
+                              "mem"};
+    return 0;
+}
+
+static int count_tiles(void *user, unsigned worker, uint32_t slot, uint32_t level, uint32_t tx,
+                       uint32_t ty, const struct vt_image *payload, struct vts_error *err)
+{
+    (void)worker, (void)slot, (void)level, (void)tx, (void)ty, (void)payload, (void)err;
+    __atomic_fetch_add((uint64_t *)user, 1, __ATOMIC_RELAXED);
+    return 0;
+}
+
+static void a_build_decodes_each_file_once_within_its_budget(void)
+{
+    char json[4096];
+    int n = snprintf(json, sizeof json,
+                     "{\"format\": \"vtpipe-atlas\", \"version\": 1, \"width\": 2048, \"height\": "
+                     "512, \"tile_content\": 64, \"border\": 4, \"layers\": [{\"name\": \"d\", "
+                     "\"map\": \"map_Kd\", \"colour\": \"srgb\"}, {\"name\": \"a\", \"map\": "
+                     "\"map_d\", \"colour\": \"data\"}], \"entries\": [");
+    for (int i = 0; i < NTEX; i++) {
+        fill_texture(&textures[i], tex_w[i], tex_h[i], i == 1 ? 4 : 3, (uint32_t)i);
+        n += snprintf(json + n, sizeof json - (size_t)n,
+                      "%s{\"name\": \"e%d\", \"x\": %d, \"y\": 0, \"width\": %u, \"height\": %u, "
+                      "\"cell_width\": 512, \"cell_height\": 512, \"alignment\": 4, "
+                      "\"textures\": [{\"path\": \"%d.png\", \"width\": %u, \"height\": %u}, "
+                      "{\"path\": \"%d.png\", \"width\": %u, \"height\": %u}]}",
+                      i ? ", " : "", i, i * 512, tex_w[i], tex_h[i], i, tex_w[i], tex_h[i], i,
+                      tex_w[i], tex_h[i]);
+    }
+    snprintf(json + n, sizeof json - (size_t)n, "]}");
+    struct vt_layout lay;
+    VT_CHECK_INT_EQ(vt_layout_parse_memory(json, strlen(json), "/m/atlas.json", NULL, &lay, NULL),
+                    0);
+    uint32_t layers[2] = {0, 1};
+    struct vt_atlas_build_options o = {.layout = &lay,
+                                       .layers = layers,
+                                       .layer_count = 2,
+                                       .threads = 2,
+                                       .cache_bytes = 200000, /* a fraction of the chains */
+                                       .open = open_mem};
+    struct vts_error err = {0};
+    struct vt_atlas_build *b = vt_atlas_build_create(&o, &err);
+    VT_CHECK(b != NULL);
+    uint64_t tiles = 0;
+    VT_CHECK_INT_EQ(b ? vt_atlas_build_tiles(b, count_tiles, &tiles, &err) : -1, 0);
+    struct vt_atlas_build_stats st = {0};
+    if (b)
+        vt_atlas_build_stats(b, &st);
+    VT_CHECK_INT_EQ(st.chains_built, NTEX); /* one decode per file, for both layers */
+    for (int i = 0; i < NTEX; i++)
+        VT_CHECK_INT_EQ(rows_read[i], tex_h[i]); /* every row decoded once */
+    VT_CHECK(st.spilled_bytes > 0);
+    VT_CHECK(st.cache_peak <= 200000 + 3 * VT_BLOCK_CACHE_PINS * 64 * 64 * 4);
+    VT_CHECK_INT_EQ(tiles, 2 * vt_atlas_build_tile_count(b));
+    struct vt_atlas_layer_format f;
+    vt_atlas_build_format(b, 0, &f);
+    VT_CHECK(f.alpha); /* texture 1's alpha is not opaque */
+    vt_atlas_build_destroy(b);
+    vt_layout_release(&lay);
+    for (int i = 0; i < NTEX; i++)
+        vt_image_release(&textures[i]);
+}
+
+int main(void)
+{
+    VT_RUN(a_streamed_chain_equals_the_whole_chain);
+    VT_RUN(a_wrong_texel_is_caught);
+    VT_RUN(the_block_cache_holds_its_budget_and_reads_back_what_spilled);
+    VT_RUN(a_build_decodes_each_file_once_within_its_budget);
+    return vt_test_main_result();
+}
