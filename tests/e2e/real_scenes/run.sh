@@ -73,6 +73,11 @@ step tiles "$bin/vt-tiles" --layout atlas.json -o scene.vts --codec png
 step extract "$bin/vt-info" --extract 0 -o level0.png scene.vts
 
 if [[ $mode == final ]]; then
+  # one worker and a cache far smaller than the textures (blocks spilled and read back): the
+  # same bytes
+  step tiles_j1 "$bin/vt-tiles" --layout atlas.json -o scene_j1.vts --codec png -j 1 \
+    --cache-size 1M
+  cmp scene.vts scene_j1.vts || fail "-j 1 --cache-size 1M gave other bytes than all cores and the default cache"
   case $kind in
   strip | roof)
     grep -Eiq '[1-9][0-9]* [a-z ()]*\bcut|\bcut[a-z ]*:? *[1-9]' offset.out \
