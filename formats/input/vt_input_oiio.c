@@ -1,10 +1,14 @@
 /* The OpenImageIO fallback for formats without a native reader (TGA, HDR, PSD, DDS, WebP...):
  * loads libvt_oiio.so (vt_oiio_shim.cpp) with dlopen() when the first such file is opened, so that
  * a process that reads only TIFF/PNG/JPEG/EXR never maps OpenImageIO (~0.4 s and ~130 MB).
- * The module is searched, in order, at $VT_OIIO_MODULE, at its build-tree path, at its install
- * path and at <dir of the executable>/../<libdir>/vtpipe/. It is opened with RTLD_NODELETE: each
+ * The module is searched at $VT_OIIO_MODULE, then: for an executable inside the build tree, at
+ * its build-tree path only; for any other (installed, or moved with its prefix) at
+ * <dir of the executable>/../<libdir>/vtpipe/, then at the install path. An installed tool never
+ * loads a module from the build tree, and a build-tree tool never loads an older installed one.
+ * It is opened with RTLD_NODELETE: each
  * source holds a reference, and closing the last one does not unload OpenImageIO (whose static
  * state does not survive unloading, and reloading costs the start-up again). No global state. */
+#define _XOPEN_SOURCE 700 /* realpath */
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -65,28 +69,42 @@ static void *oiio_try(const char *path, char *why, size_t why_size)
     return m;
 }
 
-/* <dir of the executable>/../VT_OIIO_RELATIVE_PATH, or "" if unknown. */
-static void oiio_exe_relative(char *buf, size_t size)
+/* The directory of the executable, or "" if unknown. */
+static void oiio_exe_dir(char *buf, size_t size)
 {
-    char exe[PATH_MAX];
     buf[0] = '\0';
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    ssize_t n = readlink("/proc/self/exe", buf, size - 1);
     if (n <= 0)
         return;
-    exe[n] = '\0';
-    char *slash = strrchr(exe, '/');
-    if (!slash)
-        return;
-    *slash = '\0';
-    snprintf(buf, size, "%s/../%s", exe, VT_OIIO_RELATIVE_PATH);
+    buf[n] = '\0';
+    char *slash = strrchr(buf, '/');
+    if (slash)
+        *slash = '\0';
+    else
+        buf[0] = '\0';
+}
+
+/* True when dir is VT_BUILD_DIR or below it (both resolved: the build directory may be reached
+ * through a link). */
+static bool oiio_in_build_tree(const char *dir)
+{
+    char build[PATH_MAX];
+    if (!dir[0] || !realpath(VT_BUILD_DIR, build))
+        return false;
+    size_t n = strlen(build);
+    return strncmp(dir, build, n) == 0 && (dir[n] == '/' || dir[n] == '\0');
 }
 
 static void *oiio_load(char *why, size_t why_size)
 {
-    char relative[PATH_MAX + 64];
-    oiio_exe_relative(relative, sizeof relative);
-    const char *candidates[] = {getenv("VT_OIIO_MODULE"), VT_OIIO_BUILD_PATH, VT_OIIO_INSTALL_PATH,
-                                relative};
+    char dir[PATH_MAX], relative[PATH_MAX + 64];
+    oiio_exe_dir(dir, sizeof dir);
+    bool in_build = oiio_in_build_tree(dir);
+    relative[0] = '\0';
+    if (dir[0] && !in_build)
+        snprintf(relative, sizeof relative, "%s/../%s", dir, VT_OIIO_RELATIVE_PATH);
+    const char *candidates[] = {getenv("VT_OIIO_MODULE"), in_build ? VT_OIIO_BUILD_PATH : relative,
+                                in_build ? NULL : VT_OIIO_INSTALL_PATH};
     why[0] = '\0';
     for (size_t i = 0; i < sizeof candidates / sizeof candidates[0]; i++) {
         void *m = oiio_try(candidates[i], why, why_size);

@@ -43,3 +43,63 @@ for c in consumer consumer_cxx; do
   echo "$c: $out"
   [ "$out" = "300x200 levels=4 stored=26" ] || fail "unexpected $c output: $out"
 done
+
+# find_package(vts): a CMake consumer of the imported target vts::vts; a version the package does
+# not have is refused.
+mkdir "$tmp/cm"
+cp "$src/tests/e2e/install/consumer.c" "$tmp/cm/"
+cat > "$tmp/cm/CMakeLists.txt" <<'CM'
+cmake_minimum_required(VERSION 3.20)
+project(consumer C)
+find_package(vts ${WANT} REQUIRED)
+add_executable(consumer consumer.c)
+target_link_libraries(consumer PRIVATE vts::vts)
+CM
+cmake -S "$tmp/cm" -B "$tmp/cm/build" -DCMAKE_PREFIX_PATH="$tmp/prefix" -DWANT=0.1 >/dev/null ||
+  fail "find_package(vts 0.1) failed"
+cmake --build "$tmp/cm/build" >/dev/null || fail "the CMake consumer did not build"
+out=$("$tmp/cm/build/consumer" "$tmp/s.vts") # the imported target carries libvts's rpath
+[ "$out" = "300x200 levels=4 stored=26" ] || fail "unexpected CMake consumer output: $out"
+echo "find_package(vts 0.1): $out"
+if cmake -S "$tmp/cm" -B "$tmp/cm/b99" -DCMAKE_PREFIX_PATH="$tmp/prefix" -DWANT=99 \
+   >/dev/null 2>&1; then
+  fail "find_package(vts 99) was accepted"
+fi
+
+# Man pages, bash completion, the make rules and vt-obj2ply.
+tools="vt-atlas vt-convert vt-info vt-merge vt-obj2ply vt-offset vt-tiles vt-view"
+for t in $tools; do
+  test -x "$tmp/prefix/bin/$t" || fail "$t not installed"
+  page=$tmp/prefix/share/man/man1/$t.1
+  grep -q "^\.TH $(echo "$t" | tr a-z A-Z) 1 " "$page" || fail "no man page $page"
+  grep -q -- '--help' "$page" || fail "$page does not list the options"
+  test -f "$tmp/prefix/share/bash-completion/completions/$t" || fail "no bash completion for $t"
+done
+cmp "$src/scripts/vt.mk" "$tmp/prefix/share/vtpipe/vt.mk" || fail "share/vtpipe/vt.mk"
+echo "man pages, completions and vt.mk: $(echo $tools | wc -w) tools"
+bc=/usr/share/bash-completion/bash_completion
+if [ -f "$bc" ]; then # complete 'vt-tiles --layo' as bash would
+  got=$(PATH=$tmp/prefix/bin:$PATH bash -c "source $bc; source \
+    '$tmp/prefix/share/bash-completion/completions/vt-tiles'; COMP_WORDS=(vt-tiles --layo); \
+    COMP_CWORD=1; COMP_LINE='vt-tiles --layo'; COMP_POINT=\${#COMP_LINE}; \
+    _longopt vt-tiles --layo vt-tiles; echo \"\${COMPREPLY[*]}\"")
+  [ "$got" = "--layout" ] || fail "completing 'vt-tiles --layo' gave '$got'"
+  echo "bash completion: vt-tiles --layo -> $got"
+else
+  echo "bash completion: not tried (no $bc)"
+fi
+
+# The installed tools, moved with their prefix, load their own OpenImageIO module, never the
+# build tree's (LD_DEBUG shows which file dlopen() maps).
+if ls "$tmp"/prefix/lib*/vtpipe/libvt_oiio.so >/dev/null 2>&1; then
+  mv "$tmp/prefix" "$tmp/moved"
+  /usr/bin/python3 -c "from PIL import Image; Image.new('RGB', (70, 50), (10, 200, 30)).save('$tmp/x.tga')"
+  (unset VT_OIIO_MODULE; LD_DEBUG=files "$tmp/moved/bin/vt-tiles" -q "$tmp/x.tga" -o "$tmp/x.vts" \
+    2>"$tmp/ld.txt") || { cat "$tmp/ld.txt" | grep -v '^ *[0-9]*:' ; fail "installed vt-tiles could not read a TGA"; }
+  grep -q "file=$tmp/moved/bin/../lib[^ ]*/vtpipe/libvt_oiio.so" "$tmp/ld.txt" ||
+    fail "the moved vt-tiles did not load its own module: $(grep -o 'file=[^ ]*oiio[^ ]*' "$tmp/ld.txt" | head -1)"
+  ! grep -q "file=$build" "$tmp/ld.txt" || fail "the installed vt-tiles opened a file of the build tree"
+  echo "OpenImageIO module: the moved prefix's own"
+  mv "$tmp/moved" "$tmp/prefix"
+fi
+echo "ok: install"
