@@ -11,6 +11,7 @@
 
 #include "tool_common.h"
 #include "vt_atomic_file.h"
+#include "vt_level_stats.h"
 #include "vt_output_path.h"
 #include "vt_stdin_spool.h"
 #include "vt_store_stats.h"
@@ -22,15 +23,16 @@
 struct options {
     const char *store_path;
     const char *out_path; /* -o */
-    bool json, verify, extract, has_tile, has_layer;
+    bool json, verify, extract, stats, has_tile, has_layer;
     uint32_t level, tile_x, tile_y, layer; /* --extract, --tile, --layer */
 };
 
-enum { OPT_JSON = 256, OPT_VERIFY, OPT_EXTRACT, OPT_TILE, OPT_LAYER, OPT_VERSION };
+enum { OPT_JSON = 256, OPT_VERIFY, OPT_EXTRACT, OPT_STATS, OPT_TILE, OPT_LAYER, OPT_VERSION };
 
 static const struct option long_options[] = {{"json", no_argument, NULL, OPT_JSON},
                                              {"verify", no_argument, NULL, OPT_VERIFY},
                                              {"extract", required_argument, NULL, OPT_EXTRACT},
+                                             {"stats", no_argument, NULL, OPT_STATS},
                                              {"tile", required_argument, NULL, OPT_TILE},
                                              {"layer", required_argument, NULL, OPT_LAYER},
                                              {"output", required_argument, NULL, 'o'},
@@ -43,6 +45,7 @@ static const struct option long_options[] = {{"json", no_argument, NULL, OPT_JSO
 static void usage(void)
 {
     fputs("usage: vt-info [-q|-v] [--json | --verify] STORE\n"
+          "       vt-info --stats [--layer N] [--json] STORE\n"
           "       vt-info --extract LEVEL [--tile X,Y] [--layer N] -o OUT.png STORE\n"
           "Describe, check or extract from a .vts virtual-texture store.\n"
           "\n"
@@ -50,11 +53,15 @@ static void usage(void)
           "      --json           print the summary as JSON on stdout (keys: docs/cli/vt-info.md)\n"
           "      --verify         read every stored tile, check its CRC-32C and decode it;\n"
           "                       exit 1 naming the first bad tile\n"
+          "      --stats          per layer, level and channel: min, max, mean, stddev of the\n"
+          "                       texels (u8/u16 codes, f16/f32 values; borders left out;\n"
+          "                       empty tiles count as zeros); with --json as JSON\n"
           "      --extract LEVEL  write level LEVEL (integer, 0..levels-1) as a PNG; needs -o\n"
           "Extract options:\n"
           "      --tile X,Y       write only tile X,Y (integers, 0..tiles-1 of LEVEL) with its\n"
           "                       border; default: the whole level stitched without borders\n"
-          "      --layer N        layer to extract (integer, 0..layers-1; default 0)\n"
+          "      --layer N        layer to extract (integer, 0..layers-1; default 0); with\n"
+          "                       --stats the one layer to describe (default: all)\n"
           "  -o, --output FILE    PNG to write (replaced only when complete); - for standard\n"
           "                       output (not a terminal)\n"
           "General:\n"
@@ -98,6 +105,8 @@ static int parse_options(int argc, char **argv, struct options *o)
             o->json = true;
         } else if (c == OPT_VERIFY) {
             o->verify = true;
+        } else if (c == OPT_STATS) {
+            o->stats = true;
         } else if (c == OPT_EXTRACT) {
             o->extract = true;
             if (vt_parse_u32(optarg, 0, UINT32_MAX, &o->level) != 0)
@@ -143,9 +152,11 @@ static int validate_options(const struct options *o)
 {
     if (!o->store_path)
         return vt_usage_error("missing STORE argument");
-    if (o->json + o->verify + o->extract > 1)
-        return vt_usage_error("--json, --verify and --extract are separate modes: give one");
-    if (!o->extract && (o->has_tile || o->has_layer || o->out_path))
+    if (o->json * !o->stats + o->verify + o->extract + o->stats > 1)
+        return vt_usage_error(
+            "--json, --verify, --extract and --stats are separate modes: give one (--stats "
+            "takes --json)");
+    if (!o->extract && (o->has_tile || (o->has_layer && !o->stats) || o->out_path))
         return vt_usage_error("%s needs --extract", o->has_tile    ? "--tile"
                                                     : o->has_layer ? "--layer"
                                                                    : "-o");
@@ -411,6 +422,80 @@ static int run_verify(const struct vts_store *s)
     return VT_EXIT_OK;
 }
 
+/* --stats: every level of every layer (or of --layer), as text or JSON on stdout. */
+static int run_stats(const struct vts_store *s, const struct options *o)
+{
+    const struct vts_geometry *g = vts_store_geometry(s);
+    if (o->has_layer && o->layer >= g->layer_count)
+        return vt_usage_error("--layer %u: '%s' has layers 0..%u", o->layer, o->store_path,
+                              g->layer_count - 1);
+    struct vt_tile_reader r = {0};
+    struct vts_error err = {0};
+    json_t *layers = o->json ? json_array() : NULL;
+    int rc = 0;
+    for (uint32_t layer = 0; layer < g->layer_count && rc == 0; layer++) {
+        if (o->has_layer && layer != o->layer)
+            continue;
+        const struct vts_layer *info = vts_store_layer(s, layer);
+        vt_tile_reader_release(&r);
+        rc = vt_tile_reader_init(&r, s, layer, &err);
+        json_t *levels = o->json ? json_array() : NULL;
+        for (uint32_t level = 0; level < g->level_count && rc == 0; level++) {
+            struct vt_level_stats st;
+            rc = vt_level_stats_compute(&r, level, &st, &err);
+            if (rc)
+                break;
+            struct vts_level L;
+            vts_store_level(s, level, &L);
+            if (!o->json) {
+                printf("layer %u '%s' %s x%u, level %u %ux%u: %llu texels, %llu empty tiles\n",
+                       layer, info->name, vts_sample_name(info->sample), info->channels, level,
+                       L.width, L.height, (unsigned long long)st.texels,
+                       (unsigned long long)st.empty_tiles);
+                for (uint32_t c = 0; c < st.channels; c++) {
+                    const struct vt_channel_stats *cs = &st.ch[c];
+                    printf("  channel %u: min %.9g max %.9g mean %.6f stddev %.6f", c, cs->min,
+                           cs->max, cs->mean, cs->stddev);
+                    if (cs->nan)
+                        printf(" (%llu NaN)", (unsigned long long)cs->nan);
+                    putchar('\n');
+                }
+                continue;
+            }
+            json_t *channels = json_array();
+            for (uint32_t c = 0; c < st.channels; c++) {
+                const struct vt_channel_stats *cs = &st.ch[c];
+                json_array_append_new(channels,
+                                      json_pack("{s:f,s:f,s:f,s:f,s:I}", "min", cs->min, "max",
+                                                cs->max, "mean", cs->mean, "stddev", cs->stddev,
+                                                "nan", (json_int_t)cs->nan));
+            }
+            json_array_append_new(levels,
+                                  json_pack("{s:i,s:i,s:i,s:I,s:I,s:o}", "level", (int)level,
+                                            "width", (int)L.width, "height", (int)L.height,
+                                            "texels", (json_int_t)st.texels, "empty_tiles",
+                                            (json_int_t)st.empty_tiles, "channels", channels));
+        }
+        if (o->json)
+            json_array_append_new(
+                layers, json_pack("{s:i,s:s,s:s,s:o}", "layer", (int)layer, "name", info->name,
+                                  "sample", vts_sample_name(info->sample), "levels", levels));
+    }
+    vt_tile_reader_release(&r);
+    if (rc != 0) {
+        json_decref(layers);
+        vt_log(VT_LOG_ERROR, "%s", err.message);
+        return VT_EXIT_BAD_INPUT;
+    }
+    if (o->json) {
+        json_t *root = json_pack("{s:o}", "layers", layers);
+        json_dumpf(root, stdout, JSON_INDENT(1) | JSON_REAL_PRECISION(9));
+        putchar('\n');
+        json_decref(root);
+    }
+    return VT_EXIT_OK;
+}
+
 /* Usage errors for a layer, level or tile the store does not have, giving the valid range. */
 static int check_extract_range(const struct vts_store *s, const struct options *o)
 {
@@ -515,6 +600,8 @@ static int run(const struct options *o)
            (unsigned long long)vts_store_tile_count(s), (unsigned long long)vts_store_file_size(s));
     if (o->verify)
         rc = run_verify(s);
+    else if (o->stats)
+        rc = run_stats(s, o);
     else if (o->extract)
         rc = run_extract(s, o);
     else
