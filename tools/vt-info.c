@@ -56,7 +56,8 @@ static void usage(void)
           "      --stats          per layer, level and channel: min, max, mean, stddev of the\n"
           "                       texels (u8/u16 codes, f16/f32 values; borders left out;\n"
           "                       empty tiles count as zeros); with --json as JSON\n"
-          "      --extract LEVEL  write level LEVEL (integer, 0..levels-1) as a PNG; needs -o\n"
+          "      --extract LEVEL  write level LEVEL (integer, 0..levels-1) as a PNG, or a TIFF\n"
+          "                       when -o ends in .tif/.tiff; needs -o\n"
           "Extract options:\n"
           "      --tile X,Y       write only tile X,Y (integers, 0..tiles-1 of LEVEL) with its\n"
           "                       border; default: the whole level stitched without borders\n"
@@ -78,6 +79,7 @@ static void usage(void)
           "layers). Compression ratio = raw size of the stored tiles (payload edge^2 * channels *\n"
           "sample bytes each) / payload bytes.\n"
           "PNG: u8 -> 8-bit, u16 -> 16-bit, f16/f32 -> 16-bit clamped to [0,1] (with a warning);\n"
+          "TIFF (deflate): u8 -> 8-bit, u16 -> 16-bit, f16/f32 -> 32-bit float, values kept;\n"
           "1-4 channels -> gray, gray+alpha, RGB, RGBA; empty tiles are zero (transparent black).\n"
           "Exit status: 0 ok, 1 bad input (unreadable or corrupt store, bad tile, output not\n"
           "written), 2 bad usage (including a level, tile or layer the store does not have).\n",
@@ -131,14 +133,14 @@ static int parse_options(int argc, char **argv, struct options *o)
     return -1;
 }
 
-/* The image format an output name asks for by its extension, when it is not PNG: --extract writes
- * PNG only, and a .jpg that holds a PNG misleads every program that trusts the name. */
+/* The image format an output name asks for by its extension, when it is neither PNG nor TIFF
+ * (which --extract writes): a .jpg that holds a PNG misleads every program that trusts the name. */
 static const char *other_image_format(const char *path)
 {
     static const char *const names[][2] = {
-        {".jpg", "JPEG"},    {".jpeg", "JPEG"}, {".tif", "TIFF"}, {".tiff", "TIFF"},
-        {".exr", "OpenEXR"}, {".webp", "WebP"}, {".bmp", "BMP"},  {".gif", "GIF"},
-        {".tga", "TGA"},     {".dds", "DDS"},   {".ktx", "KTX"},  {".ktx2", "KTX2"}};
+        {".jpg", "JPEG"}, {".jpeg", "JPEG"}, {".exr", "OpenEXR"}, {".webp", "WebP"},
+        {".bmp", "BMP"},  {".gif", "GIF"},   {".tga", "TGA"},     {".dds", "DDS"},
+        {".ktx", "KTX"},  {".ktx2", "KTX2"}};
     const char *dot = strrchr(path, '.');
     if (!dot || strchr(dot, '/'))
         return NULL;
@@ -146,6 +148,14 @@ static const char *other_image_format(const char *path)
         if (strcasecmp(dot, names[i][0]) == 0)
             return names[i][1];
     return NULL;
+}
+
+/* True when the output is named .tif or .tiff (--extract then writes a TIFF). */
+static bool wants_tiff(const char *path)
+{
+    const char *dot = strrchr(path, '.');
+    return dot && !strchr(dot, '/') &&
+           (strcasecmp(dot, ".tif") == 0 || strcasecmp(dot, ".tiff") == 0);
 }
 
 static int validate_options(const struct options *o)
@@ -164,8 +174,9 @@ static int validate_options(const struct options *o)
         return vt_usage_error("--extract needs -o OUT.png");
     const char *format = o->extract ? other_image_format(o->out_path) : NULL;
     if (format)
-        return vt_usage_error("-o '%s': --extract writes PNG, not %s: name the output .png",
-                              o->out_path, format);
+        return vt_usage_error(
+            "-o '%s': --extract writes PNG or TIFF, not %s: name the output .png or .tif",
+            o->out_path, format);
     return 0;
 }
 
@@ -530,17 +541,20 @@ static int run_extract(const struct vts_store *s, const struct options *o)
     int rc = check_extract_range(s, o);
     if (rc != 0)
         return rc;
+    bool tiff = wants_tiff(o->out_path);
     rc = vt_tile_reader_init(&r, s, o->layer, &err);
-    if (rc == 0 && (r.img.sample == VTS_SAMPLE_F16 || r.img.sample == VTS_SAMPLE_F32))
-        vt_log(VT_LOG_WARN, "layer %u holds %s samples: writing a 16-bit PNG clamped to [0,1]",
+    if (rc == 0 && !tiff && (r.img.sample == VTS_SAMPLE_F16 || r.img.sample == VTS_SAMPLE_F32))
+        vt_log(VT_LOG_WARN,
+               "layer %u holds %s samples: writing a 16-bit PNG clamped to [0,1] (a .tif output "
+               "keeps the values)",
                o->layer, vts_sample_name(r.img.sample));
     if (rc == 0 && o->has_tile &&
         vts_store_tile(s, o->layer, o->level, o->tile_x, o->tile_y, &e, NULL) == 0 && e.length == 0)
         vt_log(VT_LOG_WARN, "tile %u,%u of level %u is empty: writing zeros", o->tile_x, o->tile_y,
                o->level);
     if (rc == 0)
-        rc = vt_tile_reader_write_png(&r, o->level, o->has_tile, o->tile_x, o->tile_y, o->out_path,
-                                      &err);
+        rc = vt_tile_reader_write_image(&r, o->level, o->has_tile, o->tile_x, o->tile_y,
+                                        o->out_path, tiff, &err);
     vt_tile_reader_release(&r);
     if (rc != 0) {
         vt_log(VT_LOG_ERROR, "%s", err.message);

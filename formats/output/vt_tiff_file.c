@@ -57,7 +57,8 @@ static int tiff_file_fail(struct vt_tiff_file_writer *w, struct vts_error *err)
 }
 
 /* Opens the TIFF over a duplicate of the temporary file's descriptor (TIFFClose closes it). */
-static int tiff_file_open(struct vt_tiff_file_writer *w, uint32_t channels, struct vts_error *err)
+static int tiff_file_open(struct vt_tiff_file_writer *w, uint32_t channels, uint32_t sample,
+                          struct vts_error *err)
 {
     TIFFOpenOptions *opts = TIFFOpenOptionsAlloc();
     if (!opts)
@@ -65,7 +66,8 @@ static int tiff_file_open(struct vt_tiff_file_writer *w, uint32_t channels, stru
                             w->file.final_path);
     TIFFOpenOptionsSetErrorHandlerExtR(opts, tiff_file_on_error, w);
     TIFFOpenOptionsSetWarningHandlerExtR(opts, tiff_file_on_warning, w);
-    bool big = (uint64_t)w->width * w->height * channels > TIFF_FILE_BIGTIFF_BYTES;
+    uint32_t bits = sample == VTS_SAMPLE_U8 ? 8 : sample == VTS_SAMPLE_U16 ? 16 : 32;
+    bool big = (uint64_t)w->width * w->height * channels * (bits / 8) > TIFF_FILE_BIGTIFF_BYTES;
     int fd = dup(w->file.fd);
     if (fd >= 0 && !(w->tif = TIFFFdOpenExt(fd, w->file.final_path, big ? "w8" : "w", opts)))
         close(fd);
@@ -76,7 +78,9 @@ static int tiff_file_open(struct vt_tiff_file_writer *w, uint32_t channels, stru
     TIFFSetField(w->tif, TIFFTAG_IMAGEWIDTH, w->width);
     TIFFSetField(w->tif, TIFFTAG_IMAGELENGTH, w->height);
     TIFFSetField(w->tif, TIFFTAG_SAMPLESPERPIXEL, (uint16_t)channels);
-    TIFFSetField(w->tif, TIFFTAG_BITSPERSAMPLE, (uint16_t)8);
+    TIFFSetField(w->tif, TIFFTAG_BITSPERSAMPLE, (uint16_t)bits);
+    TIFFSetField(w->tif, TIFFTAG_SAMPLEFORMAT,
+                 (uint16_t)(bits == 32 ? SAMPLEFORMAT_IEEEFP : SAMPLEFORMAT_UINT));
     TIFFSetField(w->tif, TIFFTAG_PHOTOMETRIC,
                  channels >= 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK);
     TIFFSetField(w->tif, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
@@ -91,9 +95,18 @@ struct vt_tiff_file_writer *vt_tiff_file_writer_create(const char *path, uint32_
                                                        uint32_t height, uint32_t channels,
                                                        struct vts_error *err)
 {
-    if (!path || width == 0 || height == 0 || channels < 1 || channels > 4) {
-        vt_error_set(err, VTS_ERR_ARG, "cannot write '%s': %ux%u texels of %u channels",
-                     path ? path : "(null)", width, height, channels);
+    return vt_tiff_file_writer_create_sample(path, width, height, channels, VTS_SAMPLE_U8, err);
+}
+
+struct vt_tiff_file_writer *vt_tiff_file_writer_create_sample(const char *path, uint32_t width,
+                                                              uint32_t height, uint32_t channels,
+                                                              uint32_t sample,
+                                                              struct vts_error *err)
+{
+    if (!path || width == 0 || height == 0 || channels < 1 || channels > 4 ||
+        (sample != VTS_SAMPLE_U8 && sample != VTS_SAMPLE_U16 && sample != VTS_SAMPLE_F32)) {
+        vt_error_set(err, VTS_ERR_ARG, "cannot write '%s': %ux%u texels of %u channels (%s)",
+                     path ? path : "(null)", width, height, channels, vts_sample_name(sample));
         return NULL;
     }
     struct vt_tiff_file_writer *w = calloc(1, sizeof *w);
@@ -105,7 +118,7 @@ struct vt_tiff_file_writer *vt_tiff_file_writer_create(const char *path, uint32_
     w->height = height;
     if (vt_atomic_file_create(&w->file, path, "tmp", 0, err) != 0)
         goto out_free;
-    if (tiff_file_open(w, channels, err) != 0)
+    if (tiff_file_open(w, channels, sample, err) != 0)
         goto out_destroy;
     return w;
 
@@ -128,7 +141,8 @@ int vt_tiff_file_writer_rows(struct vt_tiff_file_writer *w, const void *rows, ui
                             w->file.final_path, row_count, w->height);
     const char *row = rows;
     for (uint32_t i = 0; i < row_count; i++, row += stride) {
-        /* libtiff takes a non-const buffer but only reads it for 8-bit contiguous rows */
+        /* libtiff takes a non-const buffer but only reads it for uncompressed-order contiguous
+         * rows (no byte swapping: we write the host's order, which the header records) */
         if (TIFFWriteScanline(w->tif, (void *)(uintptr_t)row, w->rows_written, 0) < 0)
             return tiff_file_fail(w, err);
         w->rows_written++;

@@ -1,6 +1,7 @@
-/* TIFF files on disk: a streaming writer of 8-bit images too big to hold in memory (vt-tiles
- * --export-atlas), written through a temporary file and renamed when complete. Uses libtiff; its
- * messages are caught into the writer's error and never printed. */
+/* TIFF files on disk: a streaming writer of images too big to hold in memory (vt-tiles
+ * --export-atlas, vt-info --extract), 8-bit, 16-bit or 32-bit float samples, written through a
+ * temporary file and renamed when complete. Uses libtiff; its messages are caught into the writer's
+ * error and never printed. */
 #ifndef VT_TIFF_FILE_H
 #define VT_TIFF_FILE_H
 
@@ -41,5 +42,13 @@ int vt_tiff_file_writer_finish(struct vt_tiff_file_writer *w, struct vts_error *
 /* Frees the writer; without a successful finish, removes the temporary file so that no file
  * appears under path. Accepts NULL. */
 void vt_tiff_file_writer_destroy(struct vt_tiff_file_writer *w);
+
+/* As vt_tiff_file_writer_create(), with samples of type sample: VTS_SAMPLE_U8, VTS_SAMPLE_U16
+ * (16-bit unsigned) or VTS_SAMPLE_F32 (32-bit IEEE float, SAMPLEFORMAT_IEEEFP); rows hold them in
+ * the host's byte order. Other sample types: NULL with VTS_ERR_ARG. */
+struct vt_tiff_file_writer *vt_tiff_file_writer_create_sample(const char *path, uint32_t width,
+                                                              uint32_t height, uint32_t channels,
+                                                              uint32_t sample,
+                                                              struct vts_error *err);
 
 #endif

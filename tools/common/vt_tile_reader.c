@@ -9,6 +9,7 @@
 #include "vt_checked.h"
 #include "vt_error.h"
 #include "vt_png_file.h"
+#include "vt_tiff_file.h"
 
 int vt_tile_reader_init(struct vt_tile_reader *r, const struct vts_store *store, uint32_t layer,
                         struct vts_error *err)
@@ -107,22 +108,61 @@ void vt_tile_reader_png_row(const struct vt_tile_reader *r, uint32_t x, uint32_t
     }
 }
 
+/* TIFF samples of the layer: u8 and u16 as they are, f16 and f32 as 32-bit floats. */
+static uint32_t tiff_sample(const struct vt_tile_reader *r)
+{
+    return r->img.sample == VTS_SAMPLE_U8 || r->img.sample == VTS_SAMPLE_U16 ? r->img.sample
+                                                                             : VTS_SAMPLE_F32;
+}
+
+/* Where extracted rows go: a PNG or a TIFF writer, and how a row of texels is converted. */
+struct image_sink {
+    struct vt_png_file_writer *png;
+    struct vt_tiff_file_writer *tiff;
+};
+
+static void sink_row(const struct image_sink *k, const struct vt_tile_reader *r, uint32_t x,
+                     uint32_t y, uint32_t count, void *dst)
+{
+    if (k->png || r->img.sample != VTS_SAMPLE_F16) {
+        if (k->png || r->img.sample == VTS_SAMPLE_U8 || r->img.sample == VTS_SAMPLE_U16)
+            vt_tile_reader_png_row(r, x, y, count, dst);
+        else /* f32 into a float TIFF: the values */
+            memcpy(dst, vt_image_at(&r->img, x, y), (size_t)count * r->img.channels * 4);
+        return;
+    }
+    const unsigned char *src = vt_image_at(&r->img, x, y);
+    for (size_t i = 0; i < (size_t)count * r->img.channels; i++) { /* f16: exact as floats */
+        uint16_t half;
+        memcpy(&half, src + 2 * i, 2);
+        float f = half_to_float(half);
+        memcpy((unsigned char *)dst + 4 * i, &f, 4);
+    }
+}
+
+static int sink_rows(const struct image_sink *k, const void *rows, uint32_t count, size_t stride,
+                     struct vts_error *err)
+{
+    return k->png ? vt_png_file_writer_rows(k->png, rows, count, stride, err)
+                  : vt_tiff_file_writer_rows(k->tiff, rows, count, stride, err);
+}
+
 /* Writes tile (tx, ty) whole, one row at a time through row (row_bytes). */
 static int write_tile_rows(struct vt_tile_reader *r, uint32_t level, uint32_t tx, uint32_t ty,
-                           struct vt_png_file_writer *w, unsigned char *row, size_t row_bytes,
+                           const struct image_sink *k, unsigned char *row, size_t row_bytes,
                            struct vts_error *err)
 {
     bool stored;
     int rc = vt_tile_reader_read(r, level, tx, ty, &stored, err);
     for (uint32_t y = 0; rc == 0 && y < r->img.height; y++) {
-        vt_tile_reader_png_row(r, 0, y, r->img.width, row);
-        rc = vt_png_file_writer_rows(w, row, 1, row_bytes, err);
+        sink_row(k, r, 0, y, r->img.width, row);
+        rc = sink_rows(k, row, 1, row_bytes, err);
     }
     return rc;
 }
 
 /* Writes the contents of every tile of level, one row of tiles (tile content rows) at a time. */
-static int write_level_rows(struct vt_tile_reader *r, uint32_t level, struct vt_png_file_writer *w,
+static int write_level_rows(struct vt_tile_reader *r, uint32_t level, const struct image_sink *k,
                             unsigned char *band, size_t row_bytes, struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(r->store);
@@ -141,18 +181,18 @@ static int write_level_rows(struct vt_tile_reader *r, uint32_t level, struct vt_
             unsigned char *dst = band + (size_t)tx * edge * texel_bytes;
             rc = vt_tile_reader_read(r, level, tx, ty, &stored, err);
             for (uint32_t y = 0; rc == 0 && y < rows; y++)
-                vt_tile_reader_png_row(r, border, border + y, cols, dst + y * row_bytes);
+                sink_row(k, r, border, border + y, cols, dst + y * row_bytes);
             vt_progress_update(&progress, (uint64_t)ty * L.tiles_x + tx + 1);
         }
         if (rc == 0)
-            rc = vt_png_file_writer_rows(w, band, rows, row_bytes, err);
+            rc = sink_rows(k, band, rows, row_bytes, err);
     }
     vt_progress_end(&progress);
     return rc;
 }
 
-int vt_tile_reader_write_png(struct vt_tile_reader *r, uint32_t level, bool one_tile, uint32_t tx,
-                             uint32_t ty, const char *path, struct vts_error *err)
+int vt_tile_reader_write_image(struct vt_tile_reader *r, uint32_t level, bool one_tile, uint32_t tx,
+                               uint32_t ty, const char *path, bool tiff, struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(r->store);
     struct vts_level L;
@@ -161,20 +201,33 @@ int vt_tile_reader_write_png(struct vt_tile_reader *r, uint32_t level, bool one_
     uint32_t height = one_tile ? r->img.height : L.height;
     uint32_t band_rows = one_tile ? 1 : height < g->tile_content_px ? height : g->tile_content_px;
     uint32_t depth = vt_tile_reader_png_depth(r);
+    size_t sample_bytes = tiff ? vts_sample_bytes(tiff_sample(r)) : depth / 8;
     size_t row_bytes, band_bytes;
     unsigned char *band = NULL;
-    if (!vt_size_mul3(width, r->img.channels, depth / 8, &row_bytes) ||
+    if (!vt_size_mul3(width, r->img.channels, sample_bytes, &row_bytes) ||
         !vt_size_mul(row_bytes, band_rows, &band_bytes) || !(band = malloc(band_bytes)))
         return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for %u rows of %u texels", band_rows,
                             width);
-    struct vt_png_file_writer *w =
-        vt_png_file_writer_create(path, width, height, r->img.channels, depth, err);
-    int rc = !w         ? (err ? err->status : VTS_ERR_IO)
-             : one_tile ? write_tile_rows(r, level, tx, ty, w, band, row_bytes, err)
-                        : write_level_rows(r, level, w, band, row_bytes, err);
+    struct image_sink k = {0};
+    if (tiff)
+        k.tiff = vt_tiff_file_writer_create_sample(path, width, height, r->img.channels,
+                                                   tiff_sample(r), err);
+    else
+        k.png = vt_png_file_writer_create(path, width, height, r->img.channels, depth, err);
+    int rc = !k.png && !k.tiff ? (err ? err->status : VTS_ERR_IO)
+             : one_tile        ? write_tile_rows(r, level, tx, ty, &k, band, row_bytes, err)
+                               : write_level_rows(r, level, &k, band, row_bytes, err);
     if (rc == 0)
-        rc = vt_png_file_writer_finish(w, err);
-    vt_png_file_writer_destroy(w);
+        rc =
+            k.png ? vt_png_file_writer_finish(k.png, err) : vt_tiff_file_writer_finish(k.tiff, err);
+    vt_png_file_writer_destroy(k.png);
+    vt_tiff_file_writer_destroy(k.tiff);
     free(band);
     return rc;
+}
+
+int vt_tile_reader_write_png(struct vt_tile_reader *r, uint32_t level, bool one_tile, uint32_t tx,
+                             uint32_t ty, const char *path, struct vts_error *err)
+{
+    return vt_tile_reader_write_image(r, level, one_tile, tx, ty, path, false, err);
 }

@@ -54,4 +54,9 @@ void vt_tile_reader_png_row(const struct vt_tile_reader *r, uint32_t x, uint32_t
 int vt_tile_reader_write_png(struct vt_tile_reader *r, uint32_t level, bool one_tile, uint32_t tx,
                              uint32_t ty, const char *path, struct vts_error *err);
 
+/* The same as a PNG (tiff false) or as a TIFF (deflate; vt_tiff_file): u8 and u16 samples as they
+ * are, f16 and f32 as 32-bit floats holding their exact values (no clamping). */
+int vt_tile_reader_write_image(struct vt_tile_reader *r, uint32_t level, bool one_tile, uint32_t tx,
+                               uint32_t ty, const char *path, bool tiff, struct vts_error *err);
+
 #endif

@@ -18,7 +18,7 @@ done <<'CASES'
 --extract 0 --tile 1,x -o out.png s.vts
 --extract 0 --layer 1.5 -o out.png s.vts
 --extract 0 -o out.jpg s.vts
---extract 0 -o dir/OUT.TIFF s.vts
+--extract 0 -o dir/OUT.EXR s.vts
 s.vts other.vts
 CASES
 for f in out.png out.jpg; do [ ! -e "$f" ] || { echo "$f written"; exit 3; }; done
