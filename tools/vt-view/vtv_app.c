@@ -27,6 +27,8 @@ void vtv_options_default(struct vtv_options *o)
     o->cache_tiles = 256;
     o->uploads = 32;
     o->threads = 2;
+    o->ram_tiles = UINT32_MAX; /* as many as the physical cache */
+    o->prefetch = true;
 }
 
 static double now_s(void)
@@ -168,8 +170,12 @@ static int setup(struct app *a, struct vts_error *err)
         st = vtv_render_set_reference(&a->render, img, g->width, g->height, srgb, err);
         free(img);
     } else {
+        struct vtv_stream_options so = {.ram_tiles = o->ram_tiles == UINT32_MAX ? o->cache_tiles
+                                                                                : o->ram_tiles,
+                                        .prefetch = o->prefetch,
+                                        .reads = o->reads};
         st = vtv_stream_init(&a->stream, a->store, layer, o->cache_tiles, o->threads, o->sync,
-                             o->uploads, !o->no_bc_upload, &a->render, err);
+                             o->uploads, !o->no_bc_upload, &so, &a->render, err);
     }
     if (st != 0)
         return st;

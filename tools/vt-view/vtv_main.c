@@ -28,6 +28,12 @@ static const char usage_text[] =
     "  --debug MODE          none (default), levels (colour by level used), tiles (outlines)\n"
     "  --cache N             physical cache size in tiles (default 256)\n"
     "  --uploads N           tile uploads per frame at most (default 32)\n"
+    "  --ram-cache N         decoded tiles kept in RAM beyond the physical cache (default: as\n"
+    "                        --cache; 0 = none): evicted tiles come back without a read\n"
+    "  --prefetch on|off     read the next finer tiles and the neighbours of wanted tiles\n"
+    "                        ahead into the RAM cache (default on)\n"
+    "  --reads N             with --sync: tiles read from the store per frame at most\n"
+    "                        (default 0 = no limit), the I/O budget of a deterministic run\n"
     "  -j, --threads N       loader threads (default 2)\n"
     "  --sync                load tiles on the render thread (deterministic statistics)\n"
     "  --reference           render with one plain mipmapped GL texture (level 0 of the store)\n"
@@ -56,6 +62,9 @@ enum {
     OPT_DEBUG,
     OPT_CACHE,
     OPT_UPLOADS,
+    OPT_RAM_CACHE,
+    OPT_PREFETCH,
+    OPT_READS,
     OPT_SYNC,
     OPT_REFERENCE,
     OPT_REFERENCE_SCENE,
@@ -100,6 +109,9 @@ int main(int argc, char **argv)
         {"debug", required_argument, NULL, OPT_DEBUG},
         {"cache", required_argument, NULL, OPT_CACHE},
         {"uploads", required_argument, NULL, OPT_UPLOADS},
+        {"ram-cache", required_argument, NULL, OPT_RAM_CACHE},
+        {"prefetch", required_argument, NULL, OPT_PREFETCH},
+        {"reads", required_argument, NULL, OPT_READS},
         {"threads", required_argument, NULL, 'j'},
         {"sync", no_argument, NULL, OPT_SYNC},
         {"reference", no_argument, NULL, OPT_REFERENCE},
@@ -176,6 +188,22 @@ int main(int argc, char **argv)
             if (vt_parse_u32(optarg, 1, 65536, &o.uploads) != 0)
                 return vt_usage_error("--uploads '%s': expected 1..65536", optarg);
             break;
+        case OPT_RAM_CACHE:
+            if (vt_parse_u32(optarg, 0, 1u << 20, &o.ram_tiles) != 0)
+                return vt_usage_error("--ram-cache '%s': expected 0..1048576 tiles", optarg);
+            break;
+        case OPT_PREFETCH:
+            if (strcmp(optarg, "on") == 0)
+                o.prefetch = true;
+            else if (strcmp(optarg, "off") == 0)
+                o.prefetch = false;
+            else
+                return vt_usage_error("--prefetch '%s': expected on or off", optarg);
+            break;
+        case OPT_READS:
+            if (vt_parse_u32(optarg, 0, 65536, &o.reads) != 0)
+                return vt_usage_error("--reads '%s': expected 0..65536", optarg);
+            break;
         case 'j':
             if (vt_parse_u32(optarg, 1, 64, &o.threads) != 0)
                 return vt_usage_error("--threads '%s': expected 1..64", optarg);
@@ -228,6 +256,8 @@ int main(int argc, char **argv)
         return vt_usage_error("--orbit and --camera exclude each other");
     if (o.reference_scene && (!o.reference || !o.obj_path))
         return vt_usage_error("--reference-scene needs --reference and a scene (SCENE.vt.obj)");
+    if (o.reads && !o.sync)
+        return vt_usage_error("--reads needs --sync (the loader threads read as fast as they can)");
     if (!frames_set)
         o.frames = o.headless ? (o.orbit ? o.orbit : 30) : 0;
     if (o.headless && o.frames == 0)

@@ -11,6 +11,7 @@
 #include "vtv_cache.h"
 #include "vtv_feedback.h"
 #include "vtv_loader.h"
+#include "vtv_ramcache.h"
 #include "vtv_render.h"
 
 struct vtv_frame_stats {
@@ -21,7 +22,19 @@ struct vtv_frame_stats {
     uint64_t fallback_pixels; /* pixels drawn from a coarser level than wanted */
     uint64_t empty;           /* tiles known to be stored empty */
     uint64_t failed;          /* tiles that could not be read or decoded, in all */
-    double ms;                /* wall time of the frame */
+    uint64_t ram_hits;        /* uploads served by the RAM cache (no read, no decode) */
+    uint64_t reads;           /* tiles read and decoded this frame (--sync; demand + prefetch) */
+    uint64_t prefetched;      /* tiles read ahead of demand into the RAM cache this frame */
+    uint32_t levels;          /* entries of missed */
+    uint32_t missed[VTS_MAX_LEVELS]; /* per level: tiles wanted that were not resident */
+    double ms;                       /* wall time of the frame */
+};
+
+/* Streaming options beyond the cache size. */
+struct vtv_stream_options {
+    uint32_t ram_tiles; /* RAM cache of decoded payloads, in tiles (0: none) */
+    bool prefetch;      /* read the neighbours and the next finer tiles of wanted ones ahead */
+    uint32_t reads;     /* --sync: tiles read from the store per frame at most (0: no limit) */
 };
 
 struct vtv_stream {
@@ -37,6 +50,14 @@ struct vtv_stream {
     uint32_t pending_count;
     uint64_t *dropped;
     uint64_t empty, failed;
+    struct vtv_stream_options opt;
+    struct vtv_ramcache *ram;
+    uint8_t *wanted; /* per tile: asked for by the latest tile determination */
+    uint64_t *ready; /* async: wanted tiles the RAM cache holds, to upload */
+    uint32_t ready_count;
+    uint64_t *ahead; /* prefetch candidates (index, then level, x, y in ahead_lxy) */
+    uint32_t *ahead_lxy;
+    uint32_t ahead_count, ahead_cap;
 };
 
 /* Opens the cache (slots tiles), the loader (threads; 0 with sync) and uploads every tile of the
@@ -44,7 +65,8 @@ struct vtv_stream {
  * texture as stored when the GL can take them (else they are decoded on the CPU). */
 int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, uint32_t layer,
                     uint32_t slots, uint32_t threads, bool sync, uint32_t budget, bool bc_upload,
-                    struct vtv_render *render, struct vts_error *err);
+                    const struct vtv_stream_options *opt, struct vtv_render *render,
+                    struct vts_error *err);
 void vtv_stream_free(struct vtv_stream *s);
 
 /* Before the main pass: applies finished loads (sync: loads the pending list now). */

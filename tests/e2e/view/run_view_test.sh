@@ -156,6 +156,41 @@ debug_views)
   "$check" psnr levels.png plain.png --max 20 || fail "levels view looks plain"
   "$check" psnr tiles.png plain.png --max 30 || fail "tiles view looks plain"
   ;;
+ram_prefetch)
+  # --sync with an I/O budget (--reads): a camera that pans right, back left over the same tiles,
+  # then zooms in. The RAM cache serves the tiles the small physical cache evicted on the way out
+  # (no read), and the prefetch reads the neighbours and children of wanted tiles with the reads
+  # left over: fewer fallback pixels over the path with each, the same on a second run.
+  "$synth_image" big.png --format png --size 2048x1024 --channels 3 --seed 9 --photo
+  "$vt_tiles" big.png -o big.vts --codec png --tile-size 64 -q
+  : >path.cam
+  for x in $(seq 300 40 1100) $(seq 1100 -40 300); do echo "$x 500 1.0" >>path.cam; done
+  for z in 1.0 1.2 1.45 1.75 2.1 2.5 3.0 3.6 4.3; do echo "700 500 $z" >>path.cam; done
+  n=$(wc -l <path.cam)
+  total() { grep -o "\"$2\": [0-9]*" "$1" | head -"$n" | awk '{ s += $2 } END { print s + 0 }'; }
+  run() { # NAME ARGS...
+    local name=$1; shift
+    vt big.vts --camera path.cam --frames "$n" --sync --cache 32 --uploads 8 --reads 6 \
+      --stats "$name.json" "$@"
+    echo "$name: fallback $(total "$name.json" fallback_pixels) ram_hits $(total "$name.json" \
+      ram_hits) prefetched $(total "$name.json" prefetched) reads $(total "$name.json" reads)"
+  }
+  run none --ram-cache 0 --prefetch off
+  run ram --ram-cache 512 --prefetch off
+  run both --ram-cache 512 --prefetch on
+  run both2 --ram-cache 512 --prefetch on
+  "$check" frames-equal both.json both2.json || fail "a --sync run is not repeatable"
+  [ "$(total none.json ram_hits)" = 0 ] || fail "RAM hits without a RAM cache"
+  [ "$(total ram.json ram_hits)" -gt 0 ] || fail "no RAM hits on the way back"
+  [ "$(total both.json prefetched)" -gt 0 ] || fail "nothing prefetched"
+  grep -o '"reads": [0-9]*' none.json | awk '$2 > 6 { bad = 1 } END { exit bad }' ||
+    fail "more than --reads 6 in a frame"
+  [ "$(total ram.json fallback_pixels)" -lt "$(total none.json fallback_pixels)" ] ||
+    fail "the RAM cache did not reduce the fallback"
+  [ "$(total both.json fallback_pixels)" -lt "$(total ram.json fallback_pixels)" ] ||
+    fail "the prefetch did not reduce the fallback"
+  grep -q '"missed_by_level": \[' both.json || fail "no missed_by_level"
+  ;;
 vt_tiles_store)
   # A store made by the real pipeline: vt-tiles (box mips in linear light, sRGB layer) from a
   # generated photo-like PNG; sRGB textures on both sides.
