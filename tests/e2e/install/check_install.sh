@@ -2,7 +2,9 @@
 # Installs the build into a temporary prefix and builds a libvts consumer with pkg-config only,
 # as C and as C++ (the public headers must compile and link in both), then runs both on a
 # generated store. Also: only the public headers are installed, and libvts.so exports nothing
-# but vts_* (the check is shown to fail on a symbol list with an internal name).
+# but vts_* (the check is shown to fail on a symbol list with an internal name). The same for
+# libvts-decode (vts_decode_* only; consumers through vts-decode.pc and vts::decode) and the
+# installed vtpipe Python package, which must load the prefix's libvts-decode.
 # usage: check_install.sh BUILD_DIR SOURCE_DIR VT_SYNTH
 set -euo pipefail
 build=$1 src=$2 synth=$3
@@ -14,7 +16,7 @@ libdir=$(ls -d "$tmp"/prefix/lib*/pkgconfig | head -1)
 export PKG_CONFIG_PATH=$libdir
 [ "$(pkg-config --modversion vts)" != "" ] || fail "pkg-config --modversion vts"
 headers=$(cd "$tmp/prefix/include/vts" && ls | tr '\n' ' ')
-[ "$headers" = "vts.h vts_writer.h " ] || fail "installed headers: $headers"
+[ "$headers" = "vts.h vts_decode.h vts_writer.h " ] || fail "installed headers: $headers"
 test -x "$tmp/prefix/bin/vt-info" || fail "vt-info not installed"
 
 # Exported symbols: every defined dynamic symbol of libvts.so is vts_*.
@@ -27,6 +29,19 @@ bad=$(nm -D --defined-only "$so" | not_vts)
 count=$(nm -D --defined-only "$so" | awk '$3 ~ /^vts_/' | wc -l)
 [ "$count" -ge 30 ] || fail "libvts.so exports only $count vts_ symbols"
 echo "libvts.so: $count symbols, all vts_*"
+# libvts-decode.so: vts_decode_* only; the store's functions are libvts.so's (undefined here).
+not_decode() { awk '$2 ~ /^[TDBRVW]$/ && $3 !~ /^vts_decode_/ {print $3}'; }
+printf '0000 T vts_decode_tile\n0000 T vts_open\n' | not_decode | grep -x vts_open >/dev/null \
+  || fail "the export check does not catch a non-vts_decode_ symbol"
+dso=$(ls "$tmp"/prefix/lib*/libvts-decode.so | head -1)
+bad=$(nm -D --defined-only "$dso" | not_decode)
+[ -z "$bad" ] || fail "libvts-decode.so exports non-vts_decode_ symbols: $(echo $bad)"
+count=$(nm -D --defined-only "$dso" | awk '$3 ~ /^vts_decode_/' | wc -l)
+[ "$count" -ge 5 ] || fail "libvts-decode.so exports only $count vts_decode_ symbols"
+nm -D --undefined-only "$dso" | grep -qw vts_store_read || fail "libvts-decode.so does not use libvts.so"
+echo "libvts-decode.so: $count symbols, all vts_decode_*"
+[ "$(pkg-config --modversion vts-decode)" = "$(pkg-config --modversion vts)" ] ||
+  fail "pkg-config --modversion vts-decode"
 
 cc -std=c11 -Wall -Wextra -Werror $(pkg-config --cflags vts) "$src/tests/e2e/install/consumer.c" \
   -o "$tmp/consumer" $(pkg-config --libs vts)
@@ -44,16 +59,51 @@ for c in consumer consumer_cxx; do
   [ "$out" = "300x200 levels=4 stored=26" ] || fail "unexpected $c output: $out"
 done
 
+# libvts-decode through vts-decode.pc, as C and C++: level 0 decoded whole agrees with its tiles.
+cc -std=c11 -Wall -Wextra -Werror $(pkg-config --cflags vts-decode) \
+  "$src/tests/e2e/install/consumer_decode.c" -o "$tmp/consumer_decode" $(pkg-config --libs vts-decode)
+cp "$src/tests/e2e/install/consumer_decode.c" "$tmp/consumer_decode_cxx.cpp"
+c++ -std=c++11 -Wall -Wextra -Werror $(pkg-config --cflags vts-decode) "$tmp/consumer_decode_cxx.cpp" \
+  -o "$tmp/consumer_decode_cxx" $(pkg-config --libs vts-decode)
+decoded=$(LD_LIBRARY_PATH=$(dirname "$libdir") "$tmp/consumer_decode" "$tmp/s.vts") ||
+  fail "consumer_decode failed"
+echo "consumer_decode: $decoded"
+case $decoded in 300x200x4\ fnv1a=*) ;; *) fail "unexpected consumer_decode output: $decoded" ;; esac
+out=$(LD_LIBRARY_PATH=$(dirname "$libdir") "$tmp/consumer_decode_cxx" "$tmp/s.vts")
+[ "$out" = "$decoded" ] || fail "consumer_decode_cxx: $out"
+
+# The installed Python package: imported from the prefix's site directory, it loads the prefix's
+# libvts-decode (found relative to itself) and decodes what the C consumer decoded.
+pydir=$(ls -d "$tmp"/prefix/lib/python3*/*-packages | head -1)
+test -f "$pydir/vtpipe/__init__.py" || fail "vtpipe not installed in $pydir"
+for py in python3 /usr/bin/python3; do "$py" -c 'import numpy' 2>/dev/null && break; done
+got=$(cd "$tmp" && PYTHONPATH=$pydir PYTHONDONTWRITEBYTECODE=1 "$py" -c "
+import sys, vtpipe
+assert vtpipe.__file__.startswith('$pydir/'), vtpipe.__file__
+maps = open('/proc/self/maps').read()
+assert '$tmp/prefix/lib' in maps and 'libvts-decode.so' in maps and '$build' not in maps, 'libs'
+a = vtpipe.open('$tmp/s.vts').level(0, 0)
+h = 14695981039346656037
+for b in a.tobytes():
+    h = ((h ^ b) * 1099511628211) % (1 << 64)
+print('%dx%dx%d fnv1a=%016x' % (a.shape[1], a.shape[0], a.shape[2] * a.itemsize, h))") ||
+  fail "the installed vtpipe package failed"
+[ "$got" = "$decoded" ] || fail "the installed vtpipe package decoded $got, the C consumer $decoded"
+echo "python vtpipe (installed): $got"
+
 # find_package(vts): a CMake consumer of the imported target vts::vts; a version the package does
 # not have is refused.
 mkdir "$tmp/cm"
 cp "$src/tests/e2e/install/consumer.c" "$tmp/cm/"
+cp "$src/tests/e2e/install/consumer_decode.c" "$tmp/cm/"
 cat > "$tmp/cm/CMakeLists.txt" <<'CM'
 cmake_minimum_required(VERSION 3.20)
 project(consumer C)
 find_package(vts ${WANT} REQUIRED)
 add_executable(consumer consumer.c)
 target_link_libraries(consumer PRIVATE vts::vts)
+add_executable(consumer_decode consumer_decode.c)
+target_link_libraries(consumer_decode PRIVATE vts::decode)
 CM
 cmake -S "$tmp/cm" -B "$tmp/cm/build" -DCMAKE_PREFIX_PATH="$tmp/prefix" -DWANT=0.1 >/dev/null ||
   fail "find_package(vts 0.1) failed"
@@ -61,6 +111,9 @@ cmake --build "$tmp/cm/build" >/dev/null || fail "the CMake consumer did not bui
 out=$("$tmp/cm/build/consumer" "$tmp/s.vts") # the imported target carries libvts's rpath
 [ "$out" = "300x200 levels=4 stored=26" ] || fail "unexpected CMake consumer output: $out"
 echo "find_package(vts 0.1): $out"
+out=$("$tmp/cm/build/consumer_decode" "$tmp/s.vts")
+[ "$out" = "$decoded" ] || fail "unexpected CMake consumer_decode output: $out"
+echo "find_package(vts 0.1) vts::decode: $out"
 if cmake -S "$tmp/cm" -B "$tmp/cm/b99" -DCMAKE_PREFIX_PATH="$tmp/prefix" -DWANT=99 \
    >/dev/null 2>&1; then
   fail "find_package(vts 99) was accepted"
