@@ -347,6 +347,37 @@ static void print_summary(const struct options *o, const struct vt_layout *l,
                r->target_density);
 }
 
+/* -v: a material's alpha mode and why (docs/atlas-format.md, "Alpha modes"), unless it is none
+ * for want of a d < 1, a map_d or a map_Kd with alpha. */
+static void print_alpha(const struct vt_atlas_scene *scene, const struct vt_atlas_material *m)
+{
+    const char *mode = vt_layout_alpha_name(m->features.alpha);
+    const struct vt_atlas_texture *t =
+        m->texture[VT_ATLAS_DIFFUSE] >= 0 ? &scene->textures[m->texture[VT_ATLAS_DIFFUSE]] : NULL;
+    switch (m->alpha_reason) {
+    case VT_ATLAS_ALPHA_BY_MTL:
+        vt_log(VT_LOG_INFO, "material '%s': alpha %s (vt_alpha)", m->name, mode);
+        break;
+    case VT_ATLAS_ALPHA_BY_D:
+        vt_log(VT_LOG_INFO, "material '%s': alpha %s (d %g)", m->name, mode, m->features.d);
+        break;
+    case VT_ATLAS_ALPHA_BY_MAP_D:
+        vt_log(VT_LOG_INFO, "material '%s': alpha %s (map_d)", m->name, mode);
+        break;
+    case VT_ATLAS_ALPHA_BY_TEXELS:
+        if (t && t->alpha_scanned && t->alpha.read)
+            vt_log(VT_LOG_INFO,
+                   "material '%s': alpha %s (map_Kd '%s': %.3g%% clear, %.3g%% partial of the "
+                   "%llu texels read of %llu)",
+                   m->name, mode, t->path, 100.0 * t->alpha.clear / t->alpha.read,
+                   100.0 * t->alpha.partial / t->alpha.read, (unsigned long long)t->alpha.read,
+                   (unsigned long long)t->alpha.texels);
+        break;
+    default: /* none for want of anything else: not worth a line */
+        break;
+    }
+}
+
 /* -v: what was chosen for each material. */
 static void print_choices(const struct vt_atlas_scene *scene, const struct vt_layout *l,
                           const struct vt_atlas_place_choice *c)
@@ -356,6 +387,7 @@ static void print_choices(const struct vt_atlas_scene *scene, const struct vt_la
     for (uint32_t i = 0; i < scene->material_count; i++) {
         const struct vt_atlas_material *m = &scene->materials[i];
         const struct vt_layout_entry *e = &l->entries[c[i].entry];
+        print_alpha(scene, m);
         if (!m->has_uv || m->umax < m->umin) {
             vt_log(VT_LOG_INFO, "material '%s': %s, entry '%s'", m->name, c[i].how, e->name);
             continue;

@@ -1,5 +1,6 @@
 /* vt-offset: rewrites the texture coordinates of an OBJ scene onto the atlas of a layout
- * (atlas.json), writing OUT.obj and OUT.mtl with one material that names the store. Reference:
+ * (atlas.json), writing OUT.obj (each face keeps its material) and OUT.mtl (every material the
+ * faces use, its constants and alpha mode, its maps naming the store's layers). Reference:
  * docs/cli/vt-offset.md; the engine is lib/offset/vt_offset.c. */
 #include <errno.h>
 #include <limits.h>
@@ -41,33 +42,35 @@ static const struct option long_options[] = {{"output", required_argument, NULL,
 
 static void usage(void)
 {
-    fputs("usage: vt-offset SCENE.obj atlas.json -o OUT.obj [options]\n"
-          "Put the texture coordinates (vt) of an OBJ scene onto the atlas of atlas.json (written\n"
-          "by vt-atlas), in double precision. Every other line is copied unchanged.\n"
-          "\n"
-          "  -o, --output FILE   the OBJ to write (replaced only when complete); - for standard\n"
-          "                      output (needs --mtl)\n"
-          "      --mtl FILE      the MTL to write, named by OUT's mtllib line\n"
-          "                      (default: OUT with .mtl instead of .obj; with -o -:\n"
-          "                      required, and the mtllib line names it as given)\n"
-          "      --store NAME    the store map_Kd names in the MTL, as written\n"
-          "                      (default: OUT's file name with .vts instead of .obj; with -o -,\n"
-          "                      the MTL's with .vts instead of .mtl)\n"
-          "      --precision N   decimal places of the written coordinates, 1..17 (default: the\n"
-          "                      fewest keeping the round-off under 1e-4 texel of the atlas)\n"
-          "  -q, --quiet         print errors only\n"
-          "  -v, --verbose       print more\n"
-          "  -h, --help          print this help and exit\n"
-          "      --version       print the version and exit\n"
-          "\n"
-          "A vt shared by faces of different materials is written once per material (faces\n"
-          "renumbered); usemtl lines name the one material vt_atlas. Prints the worst round-off\n"
-          "of the written coordinates in level-0 texels, as double and as float32, and warns when\n"
-          "float32 loses more than 1/8 texel. V is up, as in OBJ (docs/cli/vt-offset.md).\n"
-          "Exit status: 0 ok, 1 bad input (unreadable scene or atlas, bad index or number, a\n"
-          "material the atlas lacks, UVs outside what it covers) or output not written, 2 bad\n"
-          "usage.\n",
-          stdout);
+    fputs(
+        "usage: vt-offset SCENE.obj atlas.json -o OUT.obj [options]\n"
+        "Put the texture coordinates (vt) of an OBJ scene onto the atlas of atlas.json (written\n"
+        "by vt-atlas), in double precision. Every other line is copied unchanged.\n"
+        "\n"
+        "  -o, --output FILE   the OBJ to write (replaced only when complete); - for standard\n"
+        "                      output (needs --mtl)\n"
+        "      --mtl FILE      the MTL to write, named by OUT's mtllib line\n"
+        "                      (default: OUT with .mtl instead of .obj; with -o -:\n"
+        "                      required, and the mtllib line names it as given)\n"
+        "      --store NAME    the store the MTL's maps name (NAME#layer), as written\n"
+        "                      (default: OUT's file name with .vts instead of .obj; with -o -,\n"
+        "                      the MTL's with .vts instead of .mtl)\n"
+        "      --precision N   decimal places of the written coordinates, 1..17 (default: the\n"
+        "                      fewest keeping the round-off under 1e-4 texel of the atlas)\n"
+        "  -q, --quiet         print errors only\n"
+        "  -v, --verbose       print more\n"
+        "  -h, --help          print this help and exit\n"
+        "      --version       print the version and exit\n"
+        "\n"
+        "A vt shared by faces of different materials is written once per material (faces\n"
+        "renumbered); usemtl lines are kept, and OUT.mtl has each material the faces use with\n"
+        "its constants, its alpha mode (vt_alpha) and its maps as STORE#layer. Prints the worst round-off\n"
+        "of the written coordinates in level-0 texels, as double and as float32, and warns when\n"
+        "float32 loses more than 1/8 texel. V is up, as in OBJ (docs/cli/vt-offset.md).\n"
+        "Exit status: 0 ok, 1 bad input (unreadable scene or atlas, bad index or number, a\n"
+        "material the atlas lacks, UVs outside what it covers) or output not written, 2 bad\n"
+        "usage.\n",
+        stdout);
 }
 
 /* Returns an exit code when main should stop now (help, version, usage error), else -1. */
@@ -285,25 +288,19 @@ static int sink_write(void *user, const void *data, size_t size, struct vts_erro
 }
 
 static int write_mtl(struct file_sink *mtl, const struct options *o, const struct vt_layout *layout,
-                     const char *store, struct vts_error *err)
+                     const struct vt_offset_used *used, const char *store, struct vts_error *err)
 {
     char text[4096];
     size_t n = (size_t)snprintf(text, sizeof text,
-                                "# written by vt-offset (vtpipe %s) from '%s' and '%s'\n"
-                                "# the store holds the %ux%u atlas; its layers:",
+                                "written by vt-offset (vtpipe %s) from '%s' and '%s'\n"
+                                "the store holds the %ux%u atlas; its layers:",
                                 VT_VERSION_STRING, base_name(o->obj_path),
                                 base_name(o->layout_path), layout->width, layout->height);
     for (uint32_t i = 0; i < layout->layer_count && n < sizeof text; i++)
         n += (size_t)snprintf(text + n, sizeof text - n, " %s (%s)", layout->layers[i].name,
                               layout->layers[i].map);
-    if (n < sizeof text)
-        n +=
-            (size_t)snprintf(text + n, sizeof text - n,
-                             "\nnewmtl %s\nKa 1 1 1\nKd 1 1 1\nKs 0 0 0\nd 1\nillum 1\nmap_Kd %s\n",
-                             VT_OFFSET_MATERIAL, store);
-    if (n >= sizeof text)
-        return vt_error_set(err, VTS_ERR_ARG, "store name '%s' too long", store);
-    return sink_write(mtl, text, n, err);
+    struct vt_offset_sink sink = {sink_write, mtl};
+    return vt_offset_write_mtl(layout, used, store, text, &sink, err);
 }
 
 static void report(const struct options *o, const char *mtl_path, const struct vt_layout *layout,
@@ -346,6 +343,7 @@ static int run(const struct options *o)
 {
     struct vts_error err = {0};
     struct vt_layout layout = {0};
+    struct vt_offset_used used = {0};
     struct file_sink obj = {.file.fd = -1}, mtl = {.file.fd = -1};
     char *mtl_path =
         o->mtl_path ? strdup(o->mtl_path) : with_extension(o->out_path, ".obj", ".mtl");
@@ -372,13 +370,15 @@ static int run(const struct options *o)
     vt_offset_options_default(&opt);
     opt.layout_name = o->layout_path;
     opt.mtllib = mtllib;
+    opt.material = NULL; /* usemtl lines kept: the MTL has every material */
+    opt.used = &used;
     opt.digits = o->digits;
     struct vt_offset_stats stats;
     struct vt_offset_sink sink = {sink_write, &obj};
     if (rc == 0)
         rc = vt_offset_rewrite(o->obj_path, &layout, &opt, &sink, &stats, &err);
     if (rc == 0)
-        rc = write_mtl(&mtl, o, &layout, store, &err);
+        rc = write_mtl(&mtl, o, &layout, &used, store, &err);
     if (rc == 0)
         rc = vt_atomic_file_commit(&mtl.file, &err);
     if (rc == 0) {
@@ -396,6 +396,7 @@ out:
     vt_atomic_file_abort(&obj.file); /* no-ops once committed */
     vt_atomic_file_abort(&mtl.file);
     vt_layout_release(&layout);
+    vt_offset_used_release(&used);
     free(mtl_path);
     free(store);
     free(mtllib);

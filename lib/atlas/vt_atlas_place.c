@@ -2,6 +2,7 @@
  * layout (vt_atlas_place.h). */
 #include "vt_atlas_place.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -324,6 +325,32 @@ static int set_aliases(struct vt_layout_entry *e, const struct vt_atlas_scene *s
     return 0;
 }
 
+/* One material per scene material (entry names and aliases alike): its group's entry, the layers
+ * it has a texture in, its constants; sorted by name as the layout wants them. */
+static int fill_materials(const struct vt_atlas_scene *scene, const unsigned *kinds,
+                          uint32_t layer_count, const struct group *groups, uint32_t group_count,
+                          const uint32_t *next_member, struct vt_layout *l, struct vts_error *err)
+{
+    int rc = vt_layout_alloc_materials(l, scene->material_count, err);
+    uint32_t n = 0;
+    for (uint32_t i = 0; !rc && i < group_count; i++)
+        for (uint32_t mi = groups[i].first; mi != NO_GROUP; mi = next_member[mi]) {
+            const struct vt_atlas_material *sm = &scene->materials[mi];
+            struct vt_layout_material *m = &l->materials[n++];
+            *m = sm->features;
+            m->entry = i;
+            m->layer_mask = 0;
+            for (uint32_t k = 0; k < layer_count; k++)
+                m->layer_mask |= (sm->texture[kinds[k]] >= 0 ? 1u : 0u) << k;
+            m->name = strdup(sm->name);
+            if (!m->name)
+                rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory building the layout");
+        }
+    assert(rc || n == scene->material_count);
+    vt_layout_sort_materials(l);
+    return rc;
+}
+
 static int fill_layout(const struct vt_atlas_scene *scene, const struct vt_atlas_place_options *o,
                        const unsigned *kinds, uint32_t layer_count, const struct group *groups,
                        uint32_t group_count, const uint32_t *next_member,
@@ -393,7 +420,7 @@ static int fill_layout(const struct vt_atlas_scene *scene, const struct vt_atlas
     }
     if (nomem)
         return vt_error_set(err, VTS_ERR_NOMEM, "out of memory building the layout");
-    return 0;
+    return fill_materials(scene, kinds, layer_count, groups, group_count, next_member, l, err);
 }
 
 static int check_grid(const struct vt_atlas_scene *scene, const struct vt_atlas_place_options *o,

@@ -95,8 +95,10 @@ static int open_texture(struct vt_atlas_scene *s, const char *path, const char *
     int rc = o->open(o->open_user, path, &src, &oe);
     if (rc)
         return vt_error_set(err, rc, "%s: %s", where, oe.message);
-    struct vt_atlas_texture t = {
-        .width = src.info.width, .height = src.info.height, .channels = src.info.channels};
+    struct vt_atlas_texture t = {.width = src.info.width,
+                                 .height = src.info.height,
+                                 .channels = src.info.channels,
+                                 .has_alpha = src.info.has_alpha};
     vt_source_close(&src);
     t.path = strdup(path);
     t.id = strdup(id);
@@ -421,6 +423,92 @@ static int add_maps(struct obj_ctx *c, struct vt_atlas_material *m,
     return 0;
 }
 
+/* Reads the alpha of texture ti once (a map_Kd with an alpha channel): is it a cut-out? */
+static int scan_alpha(struct obj_ctx *c, int32_t ti, const char *where, bool *cutout,
+                      struct vts_error *err)
+{
+    struct vt_atlas_texture *t = &c->scene->textures[ti];
+    *cutout = false;
+    if (!t->has_alpha)
+        return 0;
+    if (!t->alpha_scanned) {
+        struct vt_source src = {0};
+        struct vts_error oe = {0};
+        int rc = c->o->open(c->o->open_user, t->path, &src, &oe);
+        if (!rc)
+            rc = vt_atlas_alpha_scan(&src, &t->alpha, &oe);
+        vt_source_close(&src);
+        if (rc)
+            return vt_error_set(err, rc, "%s: %s", where, oe.message);
+        t->alpha_scanned = true;
+    }
+    *cutout = vt_atlas_alpha_is_cutout(&t->alpha);
+    return 0;
+}
+
+static void clamp_colour(double dst[3], const double src[3], bool given, double dflt)
+{
+    for (int k = 0; k < 3; k++)
+        dst[k] = !given ? dflt : src[k] > 0 ? src[k] : 0;
+}
+
+/* m's constants from its MTL definition mm (NULL: not defined), with the defaults of
+ * docs/atlas-format.md: Kd 1 with a map_Kd else 0.8, Ka Ks Ke 0, Ns 0, d from d (else from Tr
+ * strictly between 0 and 1, else 1), illum 2 with a non-zero Ks else 1. */
+static void set_constants(struct vt_atlas_material *m, const struct vt_mtl_material *mm)
+{
+    static const double none[3] = {0, 0, 0};
+    struct vt_layout_material *f = &m->features;
+    unsigned flags = mm ? mm->flags : 0;
+    clamp_colour(f->kd, mm ? mm->kd : none, flags & VT_MTL_HAS_KD,
+                 m->texture[VT_ATLAS_DIFFUSE] >= 0 ? 1 : 0.8);
+    clamp_colour(f->ka, mm ? mm->ka : none, flags & VT_MTL_HAS_KA, 0);
+    clamp_colour(f->ks, mm ? mm->ks : none, flags & VT_MTL_HAS_KS, 0);
+    clamp_colour(f->ke, mm ? mm->ke : none, flags & VT_MTL_HAS_KE, 0);
+    f->ns = (flags & VT_MTL_HAS_NS) && mm->ns > 0 ? mm->ns : 0;
+    double d = 1;
+    if (flags & VT_MTL_HAS_D)
+        d = mm->d;
+    else if ((flags & VT_MTL_HAS_TR) && mm->tr > 0 && mm->tr < 1)
+        d = 1 - mm->tr; /* Tr 1 alone is MeshLab's opaque (docs/obj-reader.md) */
+    f->d = d < 0 ? 0 : d > 1 ? 1 : d;
+    bool specular = f->ks[0] > 0 || f->ks[1] > 0 || f->ks[2] > 0;
+    f->illum = (flags & VT_MTL_HAS_ILLUM) ? (uint32_t)mm->illum : specular ? 2 : 1;
+    f->alpha = VT_LAYOUT_ALPHA_NONE;
+    m->alpha_reason = VT_ATLAS_ALPHA_BY_DEFAULT;
+}
+
+/* m's alpha mode: the MTL's vt_alpha; else blend when d < 1; else test with a map_d, or with a
+ * map_Kd whose alpha is a cut-out (vt_atlas_alpha.h); else none. */
+static int set_alpha(struct obj_ctx *c, struct vt_atlas_material *m,
+                     const struct vt_mtl_material *mm, const char *mtl_path, struct vts_error *err)
+{
+    struct vt_layout_material *f = &m->features;
+    bool cutout = false;
+    if (mm->alpha != VT_MTL_ALPHA_AUTO) {
+        f->alpha = mm->alpha - VT_MTL_ALPHA_NONE + VT_LAYOUT_ALPHA_NONE;
+        m->alpha_reason = VT_ATLAS_ALPHA_BY_MTL;
+    } else if (f->d < 1) {
+        f->alpha = VT_LAYOUT_ALPHA_BLEND;
+        m->alpha_reason = VT_ATLAS_ALPHA_BY_D;
+    } else if (m->texture[VT_ATLAS_ALPHA] >= 0) {
+        f->alpha = VT_LAYOUT_ALPHA_TEST;
+        m->alpha_reason = VT_ATLAS_ALPHA_BY_MAP_D;
+    } else if (m->texture[VT_ATLAS_DIFFUSE] >= 0) {
+        char where[VTS_ERROR_MESSAGE_MAX];
+        snprintf(where, sizeof where, "'%s':%llu: map_Kd alpha", mtl_path,
+                 (unsigned long long)mm->maps[VT_MTL_MAP_KD].line);
+        int rc = scan_alpha(c, m->texture[VT_ATLAS_DIFFUSE], where, &cutout, err);
+        if (rc)
+            return rc;
+        f->alpha = cutout ? VT_LAYOUT_ALPHA_TEST : VT_LAYOUT_ALPHA_NONE;
+        m->alpha_reason = c->scene->textures[m->texture[VT_ATLAS_DIFFUSE]].has_alpha
+                              ? VT_ATLAS_ALPHA_BY_TEXELS
+                              : VT_ATLAS_ALPHA_BY_DEFAULT;
+    }
+    return 0;
+}
+
 /* Gives m its constants and textures from the first of the OBJ's MTL files that defines it. */
 static int resolve_material(struct obj_ctx *c, struct vt_atlas_material *m, struct vts_error *err)
 {
@@ -431,6 +519,7 @@ static int resolve_material(struct obj_ctx *c, struct vt_atlas_material *m, stru
             mi = i;
     set_fills(m, mm);
     if (!mm) {
+        set_constants(m, NULL);
         if (c->o->warn) {
             char msg[VTS_ERROR_MESSAGE_MAX];
             snprintf(msg, sizeof msg,
@@ -441,7 +530,11 @@ static int resolve_material(struct obj_ctx *c, struct vt_atlas_material *m, stru
         return 0;
     }
     m->defined = true;
-    return add_maps(c, m, mm, c->mtl_paths[mi], err);
+    int rc = add_maps(c, m, mm, c->mtl_paths[mi], err);
+    if (rc)
+        return rc;
+    set_constants(m, mm);
+    return set_alpha(c, m, mm, c->mtl_paths[mi], err);
 }
 
 int vt_atlas_scene_scan_obj(struct vt_atlas_scene *scene, const char *obj_path,
@@ -498,6 +591,7 @@ static int add_file_entry(struct vt_atlas_scene *s, const char *name, const char
     struct vt_atlas_material *m = &s->materials[mi];
     m->defined = true;
     m->texture[VT_ATLAS_DIFFUSE] = ti;
+    set_constants(m, NULL); /* a listed texture: Kd 1, opaque (its alpha is not read) */
     return 0;
 }
 

@@ -10,8 +10,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "vt_atlas_alpha.h"
 #include "vt_atlas_kind.h"
 #include "vt_error.h"
+#include "vt_layout.h"
 #include "vt_source.h"
 
 /* One texture file. Two paths that name the same file (same device and inode: "tex/a.png" and
@@ -21,6 +23,18 @@ struct vt_atlas_texture {
     char *path; /* as first read (resolved against the MTL or list file's directory) */
     char *id;   /* "device:inode" of the file */
     uint32_t width, height, channels;
+    bool has_alpha;                     /* the file has an alpha channel */
+    bool alpha_scanned;                 /* alpha holds its counts (a map_Kd with alpha) */
+    struct vt_atlas_alpha_counts alpha; /* vt_atlas_alpha_scan() of the file */
+};
+
+/* Why a material got its alpha mode (for -v). */
+enum vt_atlas_alpha_reason {
+    VT_ATLAS_ALPHA_BY_DEFAULT, /* none: no d < 1, no map_d, no cut-out map_Kd */
+    VT_ATLAS_ALPHA_BY_MTL,     /* the MTL's vt_alpha statement */
+    VT_ATLAS_ALPHA_BY_D,       /* blend: d < 1 */
+    VT_ATLAS_ALPHA_BY_MAP_D,   /* test: a map_d texture */
+    VT_ATLAS_ALPHA_BY_TEXELS,  /* test or none: the map_Kd's alpha texels */
 };
 
 struct vt_atlas_material {
@@ -41,12 +55,17 @@ struct vt_atlas_material {
     uint32_t charts;                      /* charts of its faces (over every OBJ) */
     uint32_t moved_charts;                /* of those, charts moved by a non-zero repeat */
     double uv_area, world_area;           /* summed over its triangles with texcoords */
+    struct vt_layout_material features;   /* its constants and alpha mode (name, entry and
+                                             layer_mask unset: vt_atlas_place fills them) */
+    enum vt_atlas_alpha_reason alpha_reason;
 };
 
 /* Opens the texture file at path as a source; the scan keeps its size and channels and closes it
- * at once. lib/ does not read image files itself: tools pass vt_image_input_open() through this
- * (with their pixel limit), tests a fake. Fills err naming the file on failure (the scan prefixes
- * the MTL statement: "'a.mtl':4: map_Kd: <err>"). Called once per distinct texture file. */
+ * at once. A map_Kd texture with an alpha channel is opened a second time and its alpha read in
+ * bands (vt_atlas_alpha_scan(): the cut-out detection), once per file. lib/ does not read image
+ * files itself: tools pass vt_image_input_open() through this (with their pixel limit), tests a
+ * fake. Fills err naming the file on failure (the scan prefixes the MTL statement: "'a.mtl':4:
+ * map_Kd: <err>"). Called once per distinct texture file. */
 typedef int (*vt_atlas_scene_open_fn)(void *user, const char *path, struct vt_source *out,
                                       struct vts_error *err);
 

@@ -363,6 +363,74 @@ static int index_names(struct vt_layout *l, const char *name, struct vts_error *
     return 0;
 }
 
+static bool valid_colour(const double c[3])
+{
+    for (int k = 0; k < 3; k++)
+        if (!isfinite(c[k]) || c[k] < 0)
+            return false;
+    return true;
+}
+
+/* What is wrong with the constants of material m, or NULL. */
+static const char *material_problem(const struct vt_layout_material *m)
+{
+    if (!valid_colour(m->kd) || !valid_colour(m->ka) || !valid_colour(m->ks) ||
+        !valid_colour(m->ke))
+        return "has a colour (Kd, Ka, Ks, Ke) that is not finite and >= 0";
+    if (!isfinite(m->ns) || m->ns < 0)
+        return "has an Ns that is not finite and >= 0";
+    if (!(m->d >= 0 && m->d <= 1))
+        return "has a d outside 0..1";
+    if (m->illum > 100)
+        return "has an illum outside 0..100";
+    if (m->alpha > VT_LAYOUT_ALPHA_BLEND)
+        return "has an unknown alpha mode";
+    return NULL;
+}
+
+/* The materials, when there are any: one per name of the name index, in its order (sorted by
+ * name), each naming the entry that name belongs to, with maps only where the entry has a
+ * texture. */
+static int check_materials(const struct vt_layout *l, const char *name, struct vts_error *err)
+{
+    if (l->material_count == 0)
+        return 0;
+    if (l->material_count != l->name_count)
+        return vt_error_set(err, VTS_ERR_BAD_INPUT,
+                            "'%s': materials: %u materials for %zu material names (one for each "
+                            "entry name and alias)",
+                            name, l->material_count, l->name_count);
+    for (uint32_t i = 0; i < l->material_count; i++) {
+        const struct vt_layout_material *m = &l->materials[i];
+        const struct vt_layout_name *n = &l->by_name[i];
+        const char *want = name_of(l, n), *what;
+        if (!m->name || strcmp(m->name, want) != 0)
+            return vt_error_set(err, VTS_ERR_BAD_INPUT,
+                                "'%s': materials[%u] ('%s'): expected material '%s' (one for each "
+                                "entry name and alias, sorted by name)",
+                                name, i, m->name ? m->name : "", want);
+        if (m->entry != n->entry)
+            return vt_error_set(err, VTS_ERR_BAD_INPUT,
+                                "'%s': materials[%u] ('%s'): entry %u, but '%s' is a name of "
+                                "entry '%s'",
+                                name, i, m->name, m->entry, m->name, l->entries[n->entry].name);
+        if (l->layer_count < 32 && (m->layer_mask >> l->layer_count))
+            return vt_error_set(err, VTS_ERR_BAD_INPUT,
+                                "'%s': materials[%u] ('%s'): layers past the %u of the layout",
+                                name, i, m->name, l->layer_count);
+        for (uint32_t k = 0; k < l->layer_count; k++)
+            if ((m->layer_mask >> k & 1) && !l->entries[n->entry].textures[k].path)
+                return vt_error_set(err, VTS_ERR_BAD_INPUT,
+                                    "'%s': materials[%u] ('%s'): layer '%s' is a fill of entry "
+                                    "'%s', not a map",
+                                    name, i, m->name, l->layers[k].name, l->entries[n->entry].name);
+        if ((what = material_problem(m)) != NULL)
+            return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': materials[%u] ('%s') %s", name, i,
+                                m->name, what);
+    }
+    return 0;
+}
+
 int vt_layout_check(struct vt_layout *l, const char *name, struct vts_error *err)
 {
     if (l->width == 0 || l->height == 0)
@@ -394,7 +462,9 @@ int vt_layout_check(struct vt_layout *l, const char *name, struct vts_error *err
             return rc;
     }
     int rc = index_names(l, name, err);
-    return rc ? rc : check_overlaps(l, name, err);
+    if (!rc)
+        rc = check_overlaps(l, name, err);
+    return rc ? rc : check_materials(l, name, err);
 }
 
 int vt_layout_index(struct vt_layout *layout, struct vts_error *err)
@@ -419,6 +489,55 @@ const struct vt_layout_entry *vt_layout_find(const struct vt_layout *layout, con
             hi = mid;
     }
     return NULL;
+}
+
+const struct vt_layout_material *vt_layout_material_find(const struct vt_layout *layout,
+                                                         const char *name)
+{
+    size_t lo = 0, hi = layout->material_count;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        int c = strcmp(layout->materials[mid].name, name);
+        if (c == 0)
+            return &layout->materials[mid];
+        if (c < 0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return NULL;
+}
+
+const char *vt_layout_alpha_name(uint32_t alpha)
+{
+    static const char *const names[] = {"none", "test", "blend"};
+    return alpha <= VT_LAYOUT_ALPHA_BLEND ? names[alpha] : "?";
+}
+
+static int cmp_material(const void *a, const void *b)
+{
+    const struct vt_layout_material *x = a, *y = b;
+    return strcmp(x->name ? x->name : "", y->name ? y->name : "");
+}
+
+void vt_layout_sort_materials(struct vt_layout *layout)
+{
+    if (layout->material_count > 1)
+        qsort(layout->materials, layout->material_count, sizeof *layout->materials, cmp_material);
+}
+
+int vt_layout_alloc_materials(struct vt_layout *layout, uint32_t count, struct vts_error *err)
+{
+    for (uint32_t i = 0; i < layout->material_count; i++)
+        free(layout->materials[i].name);
+    free(layout->materials);
+    layout->materials = calloc(count ? count : 1, sizeof *layout->materials);
+    layout->material_count = layout->materials ? count : 0;
+    if (!layout->materials)
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for %u materials", count);
+    for (uint32_t i = 0; i < count; i++)
+        layout->materials[i].d = 1;
+    return 0;
 }
 
 int vt_layout_layer_index(const struct vt_layout *layout, const char *name)
@@ -501,6 +620,9 @@ void vt_layout_release(struct vt_layout *layout)
             free(e->aliases[a]);
         free(e->aliases);
     }
+    for (uint32_t i = 0; layout->materials && i < layout->material_count; i++)
+        free(layout->materials[i].name);
+    free(layout->materials);
     free(layout->layers);
     free(layout->entries);
     free(layout->by_name);

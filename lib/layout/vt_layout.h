@@ -108,6 +108,29 @@ struct vt_layout_entry {
     struct vt_layout_texture *textures; /* one per layer, in layer order */
 };
 
+/* A material's alpha mode (atlas.json "alpha"): how a renderer draws its coverage. */
+enum vt_layout_alpha {
+    VT_LAYOUT_ALPHA_NONE,  /* "none": opaque (alpha, if any, is not coverage) */
+    VT_LAYOUT_ALPHA_TEST,  /* "test": cut-out (map_d, or binary alpha in map_Kd): discard below
+                              0.5, no sorting */
+    VT_LAYOUT_ALPHA_BLEND, /* "blend": d < 1: blended, drawn sorted after the opaque faces */
+};
+
+/* What one material needs to be drawn (atlas.json "materials"; docs/atlas-format.md): its entry,
+ * which layers hold a real map of it, its MTL constants and its alpha mode. Several materials
+ * may share an entry (aliases) and differ here. */
+struct vt_layout_material {
+    char *name;          /* the material name: its entry's name or one of its aliases */
+    uint32_t entry;      /* index into entries (file: "entry", the entry's name) */
+    uint32_t layer_mask; /* bit k: layer k holds a texture of it (not a fill) (file: "layers",
+                            their names in layer order) */
+    double kd[3], ka[3], ks[3], ke[3]; /* finite, >= 0 */
+    double ns;                         /* specular exponent, finite, >= 0 */
+    double d;                          /* opacity 0..1 */
+    uint32_t illum;                    /* MTL illumination model 0..100 */
+    uint32_t alpha;                    /* enum vt_layout_alpha */
+};
+
 /* One name of the name index: entries[entry].name when alias is 0, else
  * entries[entry].aliases[alias - 1]. */
 struct vt_layout_name {
@@ -127,6 +150,11 @@ struct vt_layout {
     struct vt_layout_name *by_name; /* every entry name and alias, sorted (filled by the reader
                                        and by vt_layout_index()); used by vt_layout_find() */
     size_t name_count;              /* entries plus aliases */
+    struct vt_layout_material *materials; /* NULL (material_count 0: a layout written before
+                                             materials existed, or built without them), or one
+                                             per name of by_name, in the same order: sorted by
+                                             name, so materials[i] is the material of by_name[i] */
+    uint32_t material_count;
 };
 
 /* Limits against hostile files; exceeding one fails with VTS_ERR_LIMIT and a message. */
@@ -199,12 +227,39 @@ void vt_layout_map_uv(const struct vt_layout *layout, const struct vt_layout_ent
  * bounds included. */
 bool vt_layout_uv_covered(const struct vt_layout_entry *e, double u, double v);
 
+/* The material named name, or NULL (also when the layout has no materials). O(log n). */
+const struct vt_layout_material *vt_layout_material_find(const struct vt_layout *layout,
+                                                         const char *name);
+
+/* The name of alpha mode a ("none", "test", "blend"; "?" out of range). */
+const char *vt_layout_alpha_name(uint32_t alpha);
+
+/* Sorts layout->materials by name (writers fill them in any order; the checks want them sorted).
+ */
+void vt_layout_sort_materials(struct vt_layout *layout);
+
+/* The materials as one compact JSON array, the same objects as atlas.json's "materials" (name,
+ * entry, layers, Kd, Ka, Ks, Ke, Ns, d, illum, alpha), for the store's metadata key
+ * VT_LAYOUT_MATERIALS_KEY (vt-tiles --layout). "[]" for a layout without materials. Returns a
+ * malloc'ed string (free() it), or NULL with err filled: VTS_ERR_NOMEM, or VTS_ERR_LIMIT when the
+ * text would exceed max_bytes (the store's metadata limit: the caller passes what is left). */
+char *vt_layout_materials_meta(const struct vt_layout *layout, size_t max_bytes,
+                               struct vts_error *err);
+
+/* The store metadata key of vt_layout_materials_meta(). */
+#define VT_LAYOUT_MATERIALS_KEY "materials"
+
 /* Allocation helpers for writers (vt-atlas, tests): zeroed arrays of count layers/entries, and
  * per entry layer_count textures. Return 0 or VTS_ERR_NOMEM. Strings are strdup()ed by the
  * caller and freed by vt_layout_release(), as are aliases (a malloc()ed array of strdup()ed
  * strings). */
 int vt_layout_alloc(struct vt_layout *layout, uint32_t layer_count, uint32_t entry_count,
                     struct vts_error *err);
+
+/* Allocates layout->materials: count zeroed materials (each d 1), replacing any earlier ones.
+ * Names are strdup()ed by the caller and freed by vt_layout_release(). Returns 0 or
+ * VTS_ERR_NOMEM. */
+int vt_layout_alloc_materials(struct vt_layout *layout, uint32_t count, struct vts_error *err);
 
 #ifdef __cplusplus
 }

@@ -304,6 +304,140 @@ static int read_entry(struct ctx *c, json_t *o, size_t i, const struct vt_layout
     return 0;
 }
 
+/* [r, g, b]: three numbers (the range is checked with the model). */
+static int get_rgb(struct ctx *c, json_t *o, const char *key, const char *where, double out[3])
+{
+    char path[160];
+    snprintf(path, sizeof path, "%s.%s", where, key);
+    json_t *v = json_object_get(o, key);
+    if (!v)
+        return bad(c, path, "missing");
+    for (size_t k = 0; k < 3; k++) {
+        json_t *x = json_is_array(v) && json_array_size(v) == 3 ? json_array_get(v, k) : NULL;
+        if (!x || !json_is_number(x) || !(json_number_value(x) >= 0))
+            return bad(c, path, "expected [r, g, b]: three numbers >= 0");
+        out[k] = json_number_value(x);
+    }
+    return 0;
+}
+
+static int get_number(struct ctx *c, json_t *o, const char *key, const char *where, double min,
+                      double max, double *out)
+{
+    char path[160], what[96];
+    snprintf(path, sizeof path, "%s.%s", where, key);
+    json_t *v = json_object_get(o, key);
+    if (!v)
+        return bad(c, path, "missing");
+    if (!json_is_number(v) || !(json_number_value(v) >= min && json_number_value(v) <= max)) {
+        snprintf(what, sizeof what, "expected a number %g..%g", min, max);
+        return bad(c, path, what);
+    }
+    *out = json_number_value(v);
+    return 0;
+}
+
+/* "layers": the names of the layers that hold a map of the material, in any order, each once. */
+static int read_material_layers(struct ctx *c, json_t *o, const char *where,
+                                const struct vt_layout *l, struct vt_layout_material *m)
+{
+    char path[160], what[160];
+    snprintf(path, sizeof path, "%s.layers", where);
+    json_t *arr = json_object_get(o, "layers");
+    if (!arr)
+        return bad(c, path, "missing");
+    if (!json_is_array(arr))
+        return bad(c, path, "expected an array of layer names");
+    for (size_t k = 0; k < json_array_size(arr); k++) {
+        json_t *v = json_array_get(arr, k);
+        int li = json_is_string(v) ? vt_layout_layer_index(l, json_string_value(v)) : -1;
+        if (!json_is_string(v))
+            return bad(c, path, "expected an array of layer names");
+        if (li < 0) {
+            snprintf(what, sizeof what, "no layer '%.100s' in the layout", json_string_value(v));
+            return bad(c, path, what);
+        }
+        if (m->layer_mask >> li & 1) {
+            snprintf(what, sizeof what, "layer '%s' given twice", l->layers[li].name);
+            return bad(c, path, what);
+        }
+        m->layer_mask |= 1u << li;
+    }
+    return 0;
+}
+
+static int read_material(struct ctx *c, json_t *o, size_t i, const struct vt_layout *l,
+                         struct vt_layout_material *m)
+{
+    char where[48], *entry = NULL, *alpha = NULL;
+    snprintf(where, sizeof where, "materials[%zu]", i);
+    if (!json_is_object(o))
+        return bad(c, where, "expected an object");
+    uint64_t illum;
+    int rc = get_string(c, o, "name", where, true, &m->name);
+    if (!rc)
+        rc = get_string(c, o, "entry", where, true, &entry);
+    if (!rc) {
+        const struct vt_layout_entry *e = vt_layout_find(l, entry);
+        char path[64];
+        snprintf(path, sizeof path, "%s.entry", where);
+        if (!e || strcmp(e->name, entry) != 0)
+            rc = bad(c, path, "not the name of an entry");
+        else
+            m->entry = (uint32_t)(e - l->entries);
+    }
+    free(entry);
+    if (!rc)
+        rc = read_material_layers(c, o, where, l, m);
+    if (!rc)
+        rc = get_rgb(c, o, "Kd", where, m->kd);
+    if (!rc)
+        rc = get_rgb(c, o, "Ka", where, m->ka);
+    if (!rc)
+        rc = get_rgb(c, o, "Ks", where, m->ks);
+    if (!rc)
+        rc = get_rgb(c, o, "Ke", where, m->ke);
+    if (!rc)
+        rc = get_number(c, o, "Ns", where, 0, 1e30, &m->ns);
+    if (!rc)
+        rc = get_number(c, o, "d", where, 0, 1, &m->d);
+    if (!rc)
+        rc = get_uint(c, o, "illum", where, 0, 100, true, 0, &illum);
+    if (!rc)
+        rc = get_string(c, o, "alpha", where, true, &alpha);
+    if (rc)
+        return rc;
+    m->illum = (uint32_t)illum;
+    m->alpha = UINT32_MAX;
+    for (uint32_t k = VT_LAYOUT_ALPHA_NONE; k <= VT_LAYOUT_ALPHA_BLEND; k++)
+        if (strcmp(alpha, vt_layout_alpha_name(k)) == 0)
+            m->alpha = k;
+    free(alpha);
+    if (m->alpha == UINT32_MAX) {
+        char path[64];
+        snprintf(path, sizeof path, "%s.alpha", where);
+        return bad(c, path, "expected \"none\", \"test\" or \"blend\"");
+    }
+    return 0;
+}
+
+/* "materials" (optional: layouts written before it have none): read after the entries are
+ * checked and indexed, then checked with them (vt_layout_check). */
+static int read_materials(struct ctx *c, json_t *arr, struct vt_layout *l)
+{
+    if (!json_is_array(arr))
+        return bad(c, "materials", "expected an array");
+    if (json_array_size(arr) != l->name_count)
+        return vt_error_set(c->err, VTS_ERR_BAD_INPUT,
+                            "'%s': materials: %zu materials for %zu material names (one for each "
+                            "entry name and alias)",
+                            c->name, json_array_size(arr), l->name_count);
+    int rc = vt_layout_alloc_materials(l, (uint32_t)json_array_size(arr), c->err);
+    for (size_t i = 0; !rc && i < l->material_count; i++)
+        rc = read_material(c, json_array_get(arr, i), i, l, &l->materials[i]);
+    return rc ? rc : vt_layout_check(l, c->name, c->err);
+}
+
 static int read_root(struct ctx *c, json_t *root, const struct vt_layout_limits *lim,
                      struct vt_layout *l)
 {
@@ -354,7 +488,10 @@ static int read_root(struct ctx *c, json_t *root, const struct vt_layout_limits 
         rc = read_layers(c, root, l);
     for (size_t i = 0; !rc && i < l->entry_count; i++)
         rc = read_entry(c, json_array_get(entries, i), i, l, &l->entries[i]);
-    return rc ? rc : vt_layout_check(l, c->name, c->err);
+    if (!rc)
+        rc = vt_layout_check(l, c->name, c->err);
+    json_t *materials = json_object_get(root, "materials");
+    return rc || !materials ? rc : read_materials(c, materials, l);
 }
 
 int vt_layout_parse_memory(const void *data, size_t size, const char *name,
@@ -498,6 +635,60 @@ static json_t *entry_json(const struct vt_layout *l, const struct vt_layout_entr
     return o;
 }
 
+static json_t *rgb(const double c[3])
+{
+    return json_pack("[fff]", c[0], c[1], c[2]);
+}
+
+static json_t *material_json(const struct vt_layout *l, const struct vt_layout_material *m)
+{
+    json_t *layers = json_array();
+    for (uint32_t k = 0; layers && k < l->layer_count; k++)
+        if ((m->layer_mask >> k & 1) &&
+            json_array_append_new(layers, json_string(l->layers[k].name))) {
+            json_decref(layers);
+            return NULL;
+        }
+    return json_pack("{s:s, s:s, s:o, s:s, s:o, s:o, s:o, s:o, s:f, s:f, s:I}", "name", m->name,
+                     "entry", l->entries[m->entry].name, "layers", layers, "alpha",
+                     vt_layout_alpha_name(m->alpha), "Kd", rgb(m->kd), "Ka", rgb(m->ka), "Ks",
+                     rgb(m->ks), "Ke", rgb(m->ke), "Ns", m->ns, "d", m->d, "illum",
+                     (json_int_t)m->illum);
+}
+
+static json_t *materials_json(const struct vt_layout *l)
+{
+    json_t *arr = json_array();
+    for (uint32_t i = 0; arr && i < l->material_count; i++)
+        if (json_array_append_new(arr, material_json(l, &l->materials[i]))) {
+            json_decref(arr);
+            return NULL;
+        }
+    return arr;
+}
+
+char *vt_layout_materials_meta(const struct vt_layout *layout, size_t max_bytes,
+                               struct vts_error *err)
+{
+    json_t *arr = materials_json(layout);
+    char *text =
+        arr ? json_dumps(arr, JSON_COMPACT | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(17)) : NULL;
+    json_decref(arr);
+    if (!text) {
+        vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the materials of the layout");
+        return NULL;
+    }
+    if (strlen(text) > max_bytes) {
+        vt_error_set(err, VTS_ERR_LIMIT,
+                     "the materials of the layout take %zu bytes of metadata, more than the %zu "
+                     "left",
+                     strlen(text), max_bytes);
+        free(text);
+        return NULL;
+    }
+    return text;
+}
+
 static json_t *layout_json(const struct vt_layout *l)
 {
     json_t *layers = json_array(), *entries = json_array();
@@ -512,11 +703,18 @@ static json_t *layout_json(const struct vt_layout *l)
             goto fail;
     if (!layers || !entries)
         goto fail;
-    return json_pack("{s:s, s:i, s:s, s:I, s:I, s:I, s:I, s:o, s:o}", "format", VT_LAYOUT_FORMAT,
-                     "version", VT_LAYOUT_VERSION, "generator",
-                     l->generator ? l->generator : "vtpipe", "width", (json_int_t)l->width,
-                     "height", (json_int_t)l->height, "tile_content", (json_int_t)l->tile_content,
-                     "border", (json_int_t)l->border, "layers", layers, "entries", entries);
+    json_t *root =
+        json_pack("{s:s, s:i, s:s, s:I, s:I, s:I, s:I, s:o, s:o}", "format", VT_LAYOUT_FORMAT,
+                  "version", VT_LAYOUT_VERSION, "generator", l->generator ? l->generator : "vtpipe",
+                  "width", (json_int_t)l->width, "height", (json_int_t)l->height, "tile_content",
+                  (json_int_t)l->tile_content, "border", (json_int_t)l->border, "layers", layers,
+                  "entries", entries);
+    /* materials only when there are some: layouts without them are written as before */
+    if (root && l->material_count && json_object_set_new(root, "materials", materials_json(l))) {
+        json_decref(root);
+        return NULL;
+    }
+    return root;
 fail:
     json_decref(layers);
     json_decref(entries);

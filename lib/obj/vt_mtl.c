@@ -69,7 +69,7 @@ static int mtl_newmtl(struct mtl_parse *p, char *cur, struct vts_error *err)
     return 0;
 }
 
-/* Kd/Ka/Ks r [g b] (one value means grey); "spectral" and "xyz" forms are counted as unknown. */
+/* Kd/Ka/Ks/Ke r [g b] (one value means grey); "spectral" and "xyz" forms are counted as unknown. */
 static int mtl_colour(struct mtl_parse *p, struct vt_mtl_material *m, const char *kw, char *cur,
                       struct vts_error *err)
 {
@@ -87,13 +87,16 @@ static int mtl_colour(struct mtl_parse *p, struct vt_mtl_material *m, const char
         return mtl_bad(p, "needs 1 or 3 numbers:", kw, err);
     if (n == 1)
         rgb[1] = rgb[2] = rgb[0];
-    double *dst = kw[1] == 'd' ? m->kd : kw[1] == 'a' ? m->ka : m->ks;
+    double *dst = kw[1] == 'd' ? m->kd : kw[1] == 'a' ? m->ka : kw[1] == 's' ? m->ks : m->ke;
     memcpy(dst, rgb, sizeof rgb);
-    m->flags |= kw[1] == 'd' ? VT_MTL_HAS_KD : kw[1] == 'a' ? VT_MTL_HAS_KA : VT_MTL_HAS_KS;
+    m->flags |= kw[1] == 'd'   ? VT_MTL_HAS_KD
+                : kw[1] == 'a' ? VT_MTL_HAS_KA
+                : kw[1] == 's' ? VT_MTL_HAS_KS
+                               : VT_MTL_HAS_KE;
     return 0;
 }
 
-/* d [-halo] f, Tr f, illum n. */
+/* d [-halo] f, Tr f, Ns f, illum n. */
 static int mtl_scalar(struct mtl_parse *p, struct vt_mtl_material *m, const char *kw, char *cur,
                       struct vts_error *err)
 {
@@ -107,6 +110,8 @@ static int mtl_scalar(struct mtl_parse *p, struct vt_mtl_material *m, const char
         return mtl_bad(p, "bad number", tok, err);
     if (kw[0] == 'd') {
         m->d = v, m->flags |= VT_MTL_HAS_D;
+    } else if (kw[0] == 'N') {
+        m->ns = v, m->flags |= VT_MTL_HAS_NS;
     } else if (kw[0] == 'T') {
         m->tr = v, m->flags |= VT_MTL_HAS_TR;
     } else {
@@ -115,6 +120,23 @@ static int mtl_scalar(struct mtl_parse *p, struct vt_mtl_material *m, const char
         m->illum = (int)v, m->flags |= VT_MTL_HAS_ILLUM;
     }
     return 0;
+}
+
+/* vt_alpha none|test|blend. */
+static int mtl_alpha(struct mtl_parse *p, struct vt_mtl_material *m, char *cur,
+                     struct vts_error *err)
+{
+    static const char *const names[] = {"none", "test", "blend"};
+    char *tok = vt_text_token(&cur);
+    if (!tok)
+        return mtl_bad(p, "missing value after", "vt_alpha", err);
+    bool alone = vt_text_token(&cur) == NULL;
+    for (unsigned i = 0; i < 3 && alone; i++)
+        if (strcmp(tok, names[i]) == 0) {
+            m->alpha = VT_MTL_ALPHA_NONE + i;
+            return 0;
+        }
+    return mtl_bad(p, "vt_alpha must be none, test or blend, not", tok, err);
 }
 
 static int map_kind(const char *kw)
@@ -265,10 +287,14 @@ static int mtl_statement(struct mtl_parse *p, struct vts_error *err)
     }
     if (kind >= 0)
         return mtl_map(p, m, kind, cur, err);
-    if (strcmp(kw, "Kd") == 0 || strcmp(kw, "Ka") == 0 || strcmp(kw, "Ks") == 0)
+    if (strcmp(kw, "Kd") == 0 || strcmp(kw, "Ka") == 0 || strcmp(kw, "Ks") == 0 ||
+        strcmp(kw, "Ke") == 0)
         return mtl_colour(p, m, kw, cur, err);
-    if (strcmp(kw, "d") == 0 || strcmp(kw, "Tr") == 0 || strcmp(kw, "illum") == 0)
+    if (strcmp(kw, "d") == 0 || strcmp(kw, "Tr") == 0 || strcmp(kw, "Ns") == 0 ||
+        strcmp(kw, "illum") == 0)
         return mtl_scalar(p, m, kw, cur, err);
+    if (strcmp(kw, "vt_alpha") == 0)
+        return mtl_alpha(p, m, cur, err);
     p->mtl->unknown_statements++;
     return 0;
 }

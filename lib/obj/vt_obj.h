@@ -164,18 +164,31 @@ enum vt_mtl_flags {
     VT_MTL_HAS_D = 1 << 3,
     VT_MTL_HAS_TR = 1 << 4,
     VT_MTL_HAS_ILLUM = 1 << 5,
+    VT_MTL_HAS_NS = 1 << 6,
+    VT_MTL_HAS_KE = 1 << 7,
+};
+
+/* vtpipe's own statement "vt_alpha none|test|blend": forces a material's alpha mode (vt-atlas
+ * otherwise derives it from d, map_d and the texels of map_Kd; docs/atlas-format.md). */
+enum vt_mtl_alpha {
+    VT_MTL_ALPHA_AUTO, /* no vt_alpha statement */
+    VT_MTL_ALPHA_NONE,
+    VT_MTL_ALPHA_TEST,
+    VT_MTL_ALPHA_BLEND,
 };
 
 /* One newmtl block. d and Tr are kept raw: by the MTL spec Tr = 1 - d (1 = fully transparent), but
  * MeshLab writes "Tr 1.000000" for opaque materials; callers decide which convention to trust. */
 struct vt_mtl_material {
     char *name;
-    uint64_t line;  /* of the newmtl statement */
-    unsigned flags; /* enum vt_mtl_flags: which values were given */
-    double kd[3], ka[3], ks[3];
-    double d;  /* dissolve as written (default 1) */
-    double tr; /* Tr as written (default 0) */
+    uint64_t line;                     /* of the newmtl statement */
+    unsigned flags;                    /* enum vt_mtl_flags: which values were given */
+    double kd[3], ka[3], ks[3], ke[3]; /* as written (0 when not given) */
+    double ns;                         /* specular exponent Ns as written (0 when not given) */
+    double d;                          /* dissolve as written (default 1) */
+    double tr;                         /* Tr as written (default 0) */
     int illum;
+    unsigned alpha; /* enum vt_mtl_alpha (vt_alpha statement) */
     struct vt_mtl_map maps[VT_MTL_MAP_COUNT];
 };
 
@@ -183,7 +196,7 @@ struct vt_mtl_material {
 struct vt_mtl {
     struct vt_mtl_material *materials;
     size_t material_count;
-    uint64_t unknown_statements; /* statements ignored (Ns, Ni, Ke, map_Ns, refl, ...) */
+    uint64_t unknown_statements; /* statements ignored (Ni, map_Ns, refl, ...) */
 };
 
 /* Reads the MTL file at path into *mtl (overwritten; release it after success or failure).

@@ -73,6 +73,48 @@ static int run_pass(struct vt_offset_run *r, const char *path, const void *mem, 
     return rc;
 }
 
+static int cmp_name(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* The used slots in slot order; the unknown names sorted, each once. */
+static int finish_used(struct vt_offset_run *r, struct vt_offset_used *u, struct vts_error *err)
+{
+    size_t n = r->slot_used ? r->layout->name_count : 0;
+    uint32_t count = 0;
+    for (size_t i = 0; i < n; i++)
+        count += r->slot_used[i];
+    u->slots = malloc((count ? count : 1) * sizeof *u->slots);
+    if (!u->slots)
+        return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory", r->name);
+    for (size_t i = 0; i < n; i++)
+        if (r->slot_used[i])
+            u->slots[u->slot_count++] = (uint32_t)i;
+    if (u->unknown_count > 1)
+        qsort(u->unknown, u->unknown_count, sizeof *u->unknown, cmp_name);
+    uint32_t k = 0;
+    for (uint32_t i = 0; i < u->unknown_count; i++) {
+        if (k && strcmp(u->unknown[k - 1], u->unknown[i]) == 0)
+            free(u->unknown[i]);
+        else
+            u->unknown[k++] = u->unknown[i];
+    }
+    u->unknown_count = k;
+    return 0;
+}
+
+void vt_offset_used_release(struct vt_offset_used *used)
+{
+    if (!used)
+        return;
+    free(used->slots);
+    for (uint32_t i = 0; i < used->unknown_count; i++)
+        free(used->unknown[i]);
+    free(used->unknown);
+    memset(used, 0, sizeof *used);
+}
+
 static int rewrite(const char *path, const void *mem, size_t size, const struct vt_layout *layout,
                    const struct vt_offset_options *opt, const struct vt_offset_sink *out,
                    struct vt_offset_stats *stats, struct vts_error *err)
@@ -82,9 +124,10 @@ static int rewrite(const char *path, const void *mem, size_t size, const struct 
         vt_offset_options_default(&defaults);
         opt = &defaults;
     }
-    if (!layout || !out || !out->write || opt->digits > VT_UV_MAX_DIGITS || !opt->mtllib ||
-        !opt->material)
+    if (!layout || !out || !out->write || opt->digits > VT_UV_MAX_DIGITS || !opt->mtllib)
         return vt_error_set(err, VTS_ERR_ARG, "vt_offset_rewrite: bad arguments");
+    if (opt->used)
+        memset(opt->used, 0, sizeof *opt->used);
     struct vt_offset_run r = {0};
     r.layout = layout;
     r.name = path;
@@ -113,6 +156,10 @@ static int rewrite(const char *path, const void *mem, size_t size, const struct 
     }
     if (rc == 0)
         rc = vt_offset_run_flush(&r, err);
+    if (rc == 0 && opt->used)
+        rc = finish_used(&r, opt->used, err);
+    if (rc && opt->used)
+        vt_offset_used_release(opt->used);
     if (rc == 0 && stats)
         *stats = r.stats;
     vt_offset_mesh_release(&r);
@@ -125,6 +172,7 @@ static int rewrite(const char *path, const void *mem, size_t size, const struct 
     free(r.clean);
     free(r.repl);
     free(r.obuf);
+    free(r.slot_used);
     return rc;
 }
 

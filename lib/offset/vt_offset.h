@@ -18,8 +18,9 @@
  *     inserted before their lines;
  *   - a cut or split face is replaced by the new `v` lines it is the first to use, one `vn` and
  *     one `vt` per corner of its pieces, and one `f` line per piece (positive indices);
- *   - `usemtl X` becomes `usemtl <material>`; the first `mtllib` names the new MTL, later ones are
- *     turned into comments ("# " before them); without any, an mtllib line is written first;
+ *   - `usemtl X` is kept (options.material NULL) or becomes `usemtl <material>`; the first `mtllib`
+ * names the new MTL, later ones are turned into comments ("# " before them); without any, an mtllib
+ * line is written first;
  *   - every other line is copied byte for byte, CRLF and '\' continuations included.
  * Memory: about 28 bytes per `vt` plus 8 per extra copy, 24 bytes per face and 12 per face
  * corner (the charts), 8 per v and vn when faces are cut; never the text. */
@@ -42,10 +43,26 @@ extern "C" {
 /* vt-offset warns when the float32 round-off of a written coordinate exceeds this, in texels. */
 #define VT_OFFSET_F32_WARN_TEXELS 0.125
 
+/* The materials the faces of a rewrite use (each face after a usemtl), filled when
+ * vt_offset_options.used is set; release with vt_offset_used_release(). */
+struct vt_offset_used {
+    uint32_t *slots; /* names of the layout's name index (by_name, sorted: with materials,
+                        materials[slot] is the material), in slot order */
+    uint32_t slot_count;
+    char **unknown; /* names the layout does not have (faces without texcoords: their
+                       material is not checked), sorted, each once */
+    uint32_t unknown_count;
+};
+
+/* Frees what *used holds and zeroes it. Accepts NULL. */
+void vt_offset_used_release(struct vt_offset_used *used);
+
 struct vt_offset_options {
     const char *layout_name;     /* the layout file, for messages ("atlas.json") */
     const char *mtllib;          /* written on the mtllib line (relative to the output OBJ) */
-    const char *material;        /* written on usemtl lines (VT_OFFSET_MATERIAL) */
+    const char *material;        /* written on usemtl lines (VT_OFFSET_MATERIAL); NULL: usemtl
+                                    lines are copied unchanged (each face keeps its material) */
+    struct vt_offset_used *used; /* NULL, or filled with the materials the faces use */
     unsigned digits;             /* decimal places of the written coordinates, 1..17; 0: default */
     struct vt_obj_limits limits; /* line length and vertex counts (vt_obj_limits_default) */
 };
@@ -101,6 +118,16 @@ int vt_offset_rewrite_memory(const void *data, size_t size, const char *name,
                              const struct vt_layout *layout, const struct vt_offset_options *opt,
                              const struct vt_offset_sink *out, struct vt_offset_stats *stats,
                              struct vts_error *err);
+
+/* The MTL of a rewrite (docs/cli/vt-offset.md, "The MTL"): after header_comment (may be NULL; each
+ * line gets "# "), one newmtl per material of used, with its constants from the layout's
+ * materials (a layout without them, or a name it lacks: Kd 1 1 1 with maps, 0.8 grey without,
+ * opaque), its alpha mode as "vt_alpha MODE", and per layer that holds a map of it the layer's
+ * MTL statement naming "<store>#<layer>". Written to out. Returns 0, VTS_ERR_NOMEM or out's
+ * status. */
+int vt_offset_write_mtl(const struct vt_layout *layout, const struct vt_offset_used *used,
+                        const char *store, const char *header_comment,
+                        const struct vt_offset_sink *out, struct vts_error *err);
 
 /* True when the float32 round-off of stats exceeds VT_OFFSET_F32_WARN_TEXELS. */
 bool vt_offset_f32_warning(const struct vt_offset_stats *stats);

@@ -140,6 +140,35 @@ static int pass1_corner(struct vt_offset_run *r, const struct vt_offset_tok *t, 
                         (unsigned long long)r->src.line, vt_offset_tok_text(t, text));
 }
 
+/* opt->used: the face just read uses the current material. */
+static int mark_used(struct vt_offset_run *r, struct vts_error *err)
+{
+    struct vt_offset_used *u = r->opt->used;
+    if (!u || r->mat == VT_OFFSET_MAT_NONE)
+        return 0;
+    if (r->mat_group != VT_CHART_NONE) {
+        if (!r->slot_used && !(r->slot_used = calloc(r->layout->name_count + 1, 1)))
+            return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory", r->src.name);
+        r->slot_used[r->mat_group] = true;
+        return 0;
+    }
+    if (r->unknown_line == r->mat_line) /* this usemtl's name is in already */
+        return 0;
+    if (u->unknown_count == r->unknown_cap) {
+        uint32_t cap = r->unknown_cap ? 2 * r->unknown_cap : 8;
+        char **grown = cap > (1u << 28) ? NULL : realloc(u->unknown, cap * sizeof *grown);
+        if (!grown)
+            return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory", r->src.name);
+        u->unknown = grown;
+        r->unknown_cap = cap;
+    }
+    if (!(u->unknown[u->unknown_count] = strdup(r->mat_name)))
+        return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory", r->src.name);
+    u->unknown_count++;
+    r->unknown_line = r->mat_line;
+    return 0;
+}
+
 static int pass1_face(struct vt_offset_run *r, const unsigned char *cur, const unsigned char *end,
                       struct vts_error *err)
 {
@@ -175,7 +204,8 @@ static int pass1_face(struct vt_offset_run *r, const unsigned char *cur, const u
     r->stats.faces++;
     if (!any_vt)
         r->stats.faces_without_vt++;
-    return vt_offset_mesh_add_face(r, r->corner, corners, err);
+    int rc = mark_used(r, err);
+    return rc < 0 ? rc : vt_offset_mesh_add_face(r, r->corner, corners, err);
 }
 
 int vt_offset_scan_line(struct vt_offset_run *r, const unsigned char *line, size_t n,

@@ -388,6 +388,8 @@ int vt_offset_write_line(struct vt_offset_run *r, const unsigned char *line, siz
         if (rc < 0)
             return rc;
         r->mat = vt_offset_run_material(r, name);
+        if (!r->opt->material) /* each face keeps its material */
+            return vt_offset_run_put(r, line, n, err);
         rc = vt_offset_run_put(r, line, (size_t)(kw.s - line), err); /* indentation */
         if (rc == 0)
             rc = vt_offset_run_str(r, "usemtl ", err);

@@ -1,6 +1,7 @@
 /* vt-atlas-dump: reads an atlas.json through vt_layout_read() (so every check of the reader
- * runs) and prints it one line per entry (and its aliases) and texture, for the golden vt-atlas CLI
- * cases. usage: vt-atlas-dump atlas.json */
+ * runs) and prints it one line per entry (and its aliases) and texture, and one per material
+ * (its entry, layers, constants and alpha mode), for the golden vt-atlas CLI cases. usage:
+ * vt-atlas-dump atlas.json */
 #include <stdio.h>
 
 #include "vt_layout.h"
@@ -50,6 +51,18 @@ int main(int argc, char **argv)
                 printf("  %s: fill %g %g %g %g\n", l.layers[k].name, t->fill[0], t->fill[1],
                        t->fill[2], t->fill[3]);
         }
+    }
+    for (uint32_t i = 0; i < l.material_count; i++) {
+        const struct vt_layout_material *m = &l.materials[i];
+        printf("material '%s' entry '%s' alpha %s layers", m->name, l.entries[m->entry].name,
+               vt_layout_alpha_name(m->alpha));
+        for (uint32_t k = 0; k < l.layer_count; k++)
+            if (m->layer_mask >> k & 1)
+                printf(" %s", l.layers[k].name);
+        printf("%s\n  Kd %g %g %g Ka %g %g %g Ks %g %g %g Ke %g %g %g Ns %g d %g illum %u\n",
+               m->layer_mask ? "" : " -", m->kd[0], m->kd[1], m->kd[2], m->ka[0], m->ka[1],
+               m->ka[2], m->ks[0], m->ks[1], m->ks[2], m->ke[0], m->ke[1], m->ke[2], m->ns, m->d,
+               m->illum);
     }
     vt_layout_release(&l);
     return 0;

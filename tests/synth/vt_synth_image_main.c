@@ -1,7 +1,9 @@
 /* vt-synth-image: writes a seeded test image file (test utility used by scripts/demo, not
  * installed). usage: vt-synth-image OUT [--format tiff|png|jpeg|exr] [--size WxH] [--channels N]
  *                    [--sample u8|u16|f16|f32] [--tile N] [--seed N] [--photo]
- * --photo: a photo-like RGB PNG (gradients, texture, hard edges, grain) instead of the pattern. */
+ *                    [--alpha pattern|cutout|smooth|binary|opaque|sparse]
+ * --photo: a photo-like RGB PNG (gradients, texture, hard edges, grain) instead of the pattern.
+ * --alpha: the shape of the alpha channel (2 or 4 channels, u8; enum vt_synth_alpha). */
 #include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,11 +24,17 @@ static int pick(const char *s, const char *const *names, int n)
 
 int main(int argc, char **argv)
 {
-    static const struct option opts[] = {
-        {"format", required_argument, 0, 'f'},   {"size", required_argument, 0, 's'},
-        {"channels", required_argument, 0, 'c'}, {"sample", required_argument, 0, 'S'},
-        {"tile", required_argument, 0, 't'},     {"seed", required_argument, 0, 'r'},
-        {"photo", no_argument, 0, 'p'},          {0, 0, 0, 0}};
+    static const struct option opts[] = {{"format", required_argument, 0, 'f'},
+                                         {"size", required_argument, 0, 's'},
+                                         {"channels", required_argument, 0, 'c'},
+                                         {"sample", required_argument, 0, 'S'},
+                                         {"tile", required_argument, 0, 't'},
+                                         {"seed", required_argument, 0, 'r'},
+                                         {"photo", no_argument, 0, 'p'},
+                                         {"alpha", required_argument, 0, 'a'},
+                                         {0, 0, 0, 0}};
+    static const char *const alphas[] = {"pattern", "cutout", "smooth",
+                                         "binary",  "opaque", "sparse"};
     static const char *const formats[] = {"tiff", "png", "jpeg", "exr"};
     static const char *const samples[] = {"u8", "u16", "f16", "f32"};
     struct vt_synth_image_options o;
@@ -59,6 +67,11 @@ int main(int argc, char **argv)
         case 'p':
             photo = 1;
             break;
+        case 'a':
+            i = pick(optarg, alphas, 6);
+            bad |= i < 0;
+            o.alpha_shape = (uint32_t)(i < 0 ? 0 : i);
+            break;
         default:
             bad = 1;
         }
@@ -66,7 +79,7 @@ int main(int argc, char **argv)
     if (bad || optind != argc - 1) {
         fprintf(
             stderr,
-            "usage: vt-synth-image OUT [--format tiff|png|jpeg|exr] [--size WxH] [--channels N] [--sample u8|u16|f16|f32] [--tile N] [--seed N] [--photo]\n");
+            "usage: vt-synth-image OUT [--format tiff|png|jpeg|exr] [--size WxH] [--channels N] [--sample u8|u16|f16|f32] [--tile N] [--seed N] [--photo] [--alpha pattern|cutout|smooth|binary|opaque|sparse]\n");
         return 2;
     }
     struct vts_error err = {0};

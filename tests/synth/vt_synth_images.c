@@ -2,6 +2,7 @@
 #include "vt_synth_images.h"
 
 #include <errno.h>
+#include <math.h>
 #include <png.h>
 #include <setjmp.h>
 #include <stdio.h>
@@ -68,10 +69,35 @@ static float synth_float(uint32_t h)
     return (float)(h & 0xffffff) / 2097152.0f - 2.0f;
 }
 
+/* Alpha in 0..1 of texel (x, y) for a shaped alpha channel. */
+static double synth_alpha(const struct vt_synth_image_options *o, uint32_t x, uint32_t y)
+{
+    double cx = o->width / 2.0, cy = o->height / 2.0;
+    double r = 0.4 * (o->width < o->height ? o->width : o->height);
+    double dx = x + 0.5 - cx, dy = y + 0.5 - cy, d = sqrt(dx * dx + dy * dy);
+    switch (o->alpha_shape) {
+    case VT_SYNTH_ALPHA_CUTOUT:
+        return d < r - 0.5 ? 1 : d > r + 0.5 ? 0 : 0.5;
+    case VT_SYNTH_ALPHA_SMOOTH:
+        return (x + 0.5) / o->width;
+    case VT_SYNTH_ALPHA_BINARY:
+        return x < o->width / 2 ? 0 : 1;
+    case VT_SYNTH_ALPHA_SPARSE:
+        return x == 0 && y == 0 ? 0 : 1;
+    default:
+        return 1;
+    }
+}
+
 /* Writes the expected sample of channel c of texel (x, y) at p. */
 static void synth_sample(const struct vt_synth_image_options *o, uint32_t x, uint32_t y, uint32_t c,
                          unsigned char *p)
 {
+    if (o->alpha_shape && !o->palette && o->sample == VTS_SAMPLE_U8 &&
+        (o->channels == 2 || o->channels == 4) && c == o->channels - 1) {
+        *p = (uint8_t)lround(synth_alpha(o, x, y) * 255);
+        return;
+    }
     /* EXR: pairs of equal texels, so that ZIP chunks shrink: OpenEXRCore 3.1.5 writes a corrupt
      * chunk when ZIP makes it bigger (the readers decode such files as OpenImageIO does) */
     uint32_t h = synth_hash(o->seed, o->format == VT_SYNTH_EXR ? x / 2 : x, y, c);

@@ -56,6 +56,18 @@ struct vt_synth_image_options {
     uint32_t quality;                   /* JPEG quality 1..100 */
     bool jpeg_420;                      /* JPEG 4:2:0 chroma (else 4:4:4) */
     bool progressive;                   /* JPEG */
+    uint32_t alpha_shape; /* enum vt_synth_alpha: the alpha channel (2 or 4 channels, u8 only) */
+};
+
+/* Shapes of the alpha channel (vt-atlas's cut-out detection); each texel's alpha in 0..1. */
+enum vt_synth_alpha {
+    VT_SYNTH_ALPHA_PATTERN, /* the seeded pattern, like the other channels */
+    VT_SYNTH_ALPHA_CUTOUT,  /* a disc of radius 0.4 min(w, h): 1 inside, 0 outside, 0.5 on the
+                               texels its edge crosses (an anti-aliased cut-out) */
+    VT_SYNTH_ALPHA_SMOOTH,  /* (x + 0.5) / width: a smooth mask */
+    VT_SYNTH_ALPHA_BINARY,  /* 0 in the left half, 1 in the right (a team-colour mask) */
+    VT_SYNTH_ALPHA_OPAQUE,  /* 1 everywhere */
+    VT_SYNTH_ALPHA_SPARSE,  /* 1 everywhere but texel (0, 0), which is 0 */
 };
 
 /* Defaults: 97x61 RGBA8 TIFF, seed 1, striped 16 rows, deflate/zip, JPEG quality 90. */

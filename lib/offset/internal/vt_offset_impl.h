@@ -84,8 +84,11 @@ struct vt_offset_run {
     uint32_t *new_pos_out;    /* output index of each new position, VT_OFFSET_NONE: not yet */
     uint64_t in_v, in_vn, out_v, out_vn; /* pass 2 counters */
     uint32_t in_face;
-    char *mat_name;    /* name on the current usemtl line */
-    uint64_t mat_line; /* its line */
+    char *mat_name;        /* name on the current usemtl line */
+    uint64_t mat_line;     /* its line */
+    bool *slot_used;       /* per name slot: some face uses it (opt->used only) */
+    uint64_t unknown_line; /* usemtl line of the last name added to opt->used->unknown */
+    uint32_t unknown_cap;
     bool any_mtllib;
     char *clean; /* a line as vt_obj sees it (usemtl, mtllib) */
     size_t clean_cap;

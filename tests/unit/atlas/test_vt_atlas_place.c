@@ -68,7 +68,8 @@ static void check_valid(struct vt_layout *l)
  * v 0..3); plain is a constant. */
 static void place_shares_entries_and_copies_wrapped_uvs(void)
 {
-    struct vt_atlas_texture textures[] = {{tex_a, id_a, 128, 64, 3}, {tex_n, id_n, 256, 256, 3}};
+    struct vt_atlas_texture textures[] = {{tex_a, id_a, 128, 64, 3, false, false, {0}},
+                                          {tex_n, id_n, 256, 256, 3, false, false, {0}}};
     char red[] = "red", alias[] = "alias", blue[] = "blue", plain[] = "plain";
     struct vt_atlas_material materials[] = {
         material(red, 0, -1, 0, 1, 0, 1), material(blue, 0, 1, 0, 2, 0, 3),
@@ -175,7 +176,8 @@ static void place_shares_entries_and_copies_wrapped_uvs(void)
  * VT_ATLAS_CROP_ALIGN; the summary compares with whole textures. */
 static void place_crops_to_the_texels_used(void)
 {
-    struct vt_atlas_texture textures[] = {{tex_a, id_a, 1024, 1024, 3}, {tex_n, id_n, 256, 256, 3}};
+    struct vt_atlas_texture textures[] = {{tex_a, id_a, 1024, 1024, 3, false, false, {0}},
+                                          {tex_n, id_n, 256, 256, 3, false, false, {0}}};
     char half[] = "half", rep[] = "rep";
     struct vt_atlas_material materials[] = {material(half, 0, -1, 0, 0.5, 0, 1),
                                             material(rep, 1, -1, 0.25, 1.75, 0.5, 0.75)};
@@ -216,8 +218,9 @@ static void place_crops_to_the_texels_used(void)
 /* Densities 65536, 4096, 4096 texels per unit^2: the median 4096; the dense one is scaled 1/4. */
 static void place_evens_out_texel_density(void)
 {
-    struct vt_atlas_texture textures[] = {
-        {tex_a, id_a, 256, 256, 3}, {tex_n, id_n, 256, 256, 3}, {tex_c, id_c, 64, 64, 3}};
+    struct vt_atlas_texture textures[] = {{tex_a, id_a, 256, 256, 3, false, false, {0}},
+                                          {tex_n, id_n, 256, 256, 3, false, false, {0}},
+                                          {tex_c, id_c, 64, 64, 3, false, false, {0}}};
     char a[] = "a", b[] = "b", c[] = "c";
     struct vt_atlas_material materials[] = {material(a, 0, -1, 0, 1, 0, 1),
                                             material(b, 1, -1, 0, 1, 0, 1),
@@ -253,10 +256,10 @@ static void place_evens_out_texel_density(void)
 /* A 2x2 grid of 100x50 pieces laid edge to edge in one group; pieces must have one size. */
 static void place_lays_grid_pieces_edge_to_edge(void)
 {
-    struct vt_atlas_texture textures[] = {{tex_a, id_a, 100, 50, 3},
-                                          {tex_n, id_n, 100, 50, 3},
-                                          {tex_c, id_c, 100, 50, 3},
-                                          {tex_a, id_c, 100, 50, 3}};
+    struct vt_atlas_texture textures[] = {{tex_a, id_a, 100, 50, 3, false, false, {0}},
+                                          {tex_n, id_n, 100, 50, 3, false, false, {0}},
+                                          {tex_c, id_c, 100, 50, 3, false, false, {0}},
+                                          {tex_a, id_c, 100, 50, 3, false, false, {0}}};
     char n0[] = "p0", n1[] = "p1", n2[] = "p2", n3[] = "p3";
     struct vt_atlas_material materials[] = {
         material(n0, 0, -1, 0, 1, 0, 1), material(n1, 1, -1, 0, 1, 0, 1),

@@ -317,11 +317,12 @@ static void mtl_reads_colours_and_keeps_d_and_tr_raw(void)
     VT_CHECK_INT_EQ(mkdir(dir, 0700), 0);
     const char *path = write_file("m/a.mtl", "# exported\nnewmtl red\nKd 1 0 0\nKa 0.1\n"
                                              "Ks 0.5 0.5 0.5\nd 0.5\nillum 2\nNs 10\n"
-                                             "newmtl meshlab\nTr 1.000000\nKd 0.2 0.4 0.6\n");
+                                             "Ke 0.25 0.5 2\nNi 1.45\nvt_alpha test\n"
+                                             "newmtl meshlab\nTr 1.000000\nKd 0.2 0.4 0.6\n"
+                                             "Ke 0.5\nvt_alpha blend\nnewmtl plain\n");
     struct vt_mtl mtl;
     struct vts_error err;
     VT_CHECK_INT_EQ(vt_mtl_read(path, NULL, &mtl, &err), 0);
-    VT_CHECK_INT_EQ(mtl.material_count, 2);
     const struct vt_mtl_material *red = vt_mtl_find(&mtl, "red");
     VT_CHECK(red && red->kd[0] == 1 && red->kd[1] == 0 && red->ka[2] == 0.1);
     VT_CHECK(red && red->d == 0.5 && red->illum == 2 && red->line == 2);
@@ -331,6 +332,15 @@ static void mtl_reads_colours_and_keeps_d_and_tr_raw(void)
     VT_CHECK(ml && (ml->flags & VT_MTL_HAS_D) == 0 && ml->kd[2] == 0.6);
     VT_CHECK(ml && ml->maps[VT_MTL_MAP_KD].file == NULL);
     VT_CHECK(vt_mtl_find(&mtl, "blue") == NULL);
+    /* Ns, Ke and vtpipe's vt_alpha are kept; Ni is not */
+    VT_CHECK(red && red->ns == 10 && (red->flags & VT_MTL_HAS_NS) && red->ke[0] == 0.25 &&
+             red->ke[1] == 0.5 && red->ke[2] == 2 && (red->flags & VT_MTL_HAS_KE));
+    VT_CHECK(red && red->alpha == VT_MTL_ALPHA_TEST);
+    VT_CHECK(ml && ml->ke[0] == 0.5 && ml->ke[2] == 0.5 && ml->alpha == VT_MTL_ALPHA_BLEND);
+    VT_CHECK(ml && (ml->flags & VT_MTL_HAS_NS) == 0 && ml->ns == 0);
+    const struct vt_mtl_material *pl = vt_mtl_find(&mtl, "plain");
+    VT_CHECK(pl && pl->alpha == VT_MTL_ALPHA_AUTO && pl->flags == 0 && pl->ke[1] == 0);
+    VT_CHECK_INT_EQ(mtl.material_count, 3);
     VT_CHECK_INT_EQ(mtl.unknown_statements, 1);
     vt_mtl_release(&mtl);
 }
@@ -470,6 +480,13 @@ static void check_mtl_error(const char *text, const struct vt_obj_limits *limits
 static void mtl_errors_name_file_and_line(void)
 {
     check_mtl_error("newmtl a\nKd 1 x 0\n", NULL, VTS_ERR_BAD_INPUT, "'x.mtl':2: bad number 'x'");
+    check_mtl_error("newmtl a\nNs high\n", NULL, VTS_ERR_BAD_INPUT, "'x.mtl':2: bad number 'high'");
+    check_mtl_error("newmtl a\nKe 1 2\n", NULL, VTS_ERR_BAD_INPUT,
+                    "'x.mtl':2: needs 1 or 3 numbers: 'Ke'");
+    check_mtl_error("newmtl a\n\nvt_alpha cutout\n", NULL, VTS_ERR_BAD_INPUT,
+                    "'x.mtl':3: vt_alpha must be none, test or blend, not 'cutout'");
+    check_mtl_error("newmtl a\nvt_alpha test blend\n", NULL, VTS_ERR_BAD_INPUT,
+                    "'x.mtl':2: vt_alpha must be none, test or blend, not 'test'");
     check_mtl_error("newmtl a\n\nmap_Kd -clamp maybe a.png\n", NULL, VTS_ERR_BAD_INPUT,
                     "'x.mtl':3: expected on or off after '-clamp'");
     check_mtl_error("newmtl a\nmap_Kd -zz 1 a.png\n", NULL, VTS_ERR_BAD_INPUT,
