@@ -356,9 +356,10 @@ static int build_coarse(struct merge *m, struct vts_error *err)
                                         &sink_layer, 1, po.threads, 0, err)))
         return err->status;
     if (sb.seams) { /* the shards built the levels above but along their seams */
-        vt_log(VT_LOG_INFO, "building the tiles along the seams of levels %u..%u",
-               plan.levels_per_pass + 1, po.level_count - 1);
-        vt_progress_start(&m->progress, "seams", "tiles", vt_shard_merge_seam_tiles(&m->set, &po));
+        uint64_t tiles = vt_shard_merge_seam_tiles(&m->set, &po);
+        vt_log(VT_LOG_INFO, "building the %llu tiles along the seams of levels %u..%u",
+               (unsigned long long)tiles, plan.levels_per_pass + 1, po.level_count - 1);
+        vt_progress_start(&m->progress, "seams", "tiles", tiles);
         rc = vt_shard_merge_seams(&m->set, &po, err);
         vt_progress_end(&m->progress);
         return rc;
