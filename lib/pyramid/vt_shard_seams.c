@@ -13,9 +13,10 @@
 #include "vt_pool.h"
 #include "vts.h"
 
-#define GRID_MAX  64u /* parts per axis: 4096 shards are 64 x 64 */
-#define LIST_CAP  (4u * GRID_MAX + 16u)
-#define BAND_ROWS 32u /* coarser rows reduced per job (one read of the finer level) */
+#define GRID_MAX      64u /* parts per axis: 4096 shards are 64 x 64 */
+#define LIST_CAP      (4u * GRID_MAX + 16u)
+#define LEVEL_MEM_MAX ((size_t)64 << 20) /* levels in memory: bounded whatever the image size */
+#define BAND_ROWS     32u /* coarser rows reduced per job (one read of the finer level) */
 
 struct ival {
     int64_t a, b; /* [a, b) */
@@ -42,6 +43,7 @@ struct vt_seams {
     struct vt_kernel kernel;
     struct vt_pixel_mode mode;
     uint32_t k, levels, c, border, channels;
+    size_t mem_max;    /* bytes of a level held in memory, else in a file (LEVEL_MEM_MAX) */
     struct axis ax[2]; /* x, y */
 };
 
@@ -207,6 +209,7 @@ struct vt_seams *vt_seams_create(const struct vt_pyramid_options *o,
     s->c = o->tile_content_px;
     s->border = o->border_px;
     s->channels = in->channels;
+    s->mem_max = LEVEL_MEM_MAX;
     vt_kernel_init(&s->kernel, o->filter);
     s->mode =
         (struct vt_pixel_mode){in->channels, o->colour,
@@ -216,6 +219,11 @@ struct vt_seams *vt_seams_create(const struct vt_pyramid_options *o,
         axis_init(s, &s->ax[1], o->height, ycuts, gy);
     }
     return s;
+}
+
+void vt_seams_set_memory(struct vt_seams *s, size_t bytes)
+{
+    s->mem_max = bytes;
 }
 
 void vt_seams_destroy(struct vt_seams *s)
@@ -273,9 +281,8 @@ uint64_t vt_seams_tile_count(const struct vt_seams *s, uint32_t col, uint32_t ro
 
 /* ---- levels in float files ---- */
 
-/* A level's texels: in memory (calloc: pages never written cost nothing) up to LEVEL_MEM_MAX bytes
+/* A level's texels: in memory (calloc: pages never written cost nothing) up to s->mem_max bytes
  * of the whole level, else in an unlinked float file; either way read through src. */
-#define LEVEL_MEM_MAX ((size_t)512 << 20)
 
 struct level_io {
     struct vt_float_file *file;
@@ -309,7 +316,7 @@ static int level_open(struct vt_seams *s, uint32_t l, struct level_io *io, struc
     uint32_t w = (uint32_t)s->ax[0].ext[l], h = (uint32_t)s->ax[1].ext[l];
     size_t floats;
     io->open = true;
-    if (vt_size_mul3(w, h, s->channels, &floats) && floats <= LEVEL_MEM_MAX / sizeof(float) &&
+    if (vt_size_mul3(w, h, s->channels, &floats) && floats <= s->mem_max / sizeof(float) &&
         (io->mem = calloc(floats, sizeof(float))) != NULL) {
         io->row_floats = (size_t)w * s->channels;
         io->src = (struct vt_source){.info = {.width = w,

@@ -15,6 +15,7 @@
 #define VT_SHARD_SEAMS_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "vt_error.h"
@@ -38,6 +39,10 @@ struct vt_seams *vt_seams_create(const struct vt_pyramid_options *o,
                                  uint32_t gx, const uint32_t *ycuts, uint32_t gy,
                                  struct vts_error *err);
 void vt_seams_destroy(struct vt_seams *s);
+
+/* Levels of up to `bytes` (of floats, the whole level) are held in memory, larger ones in unlinked
+ * temporary files in o->temp_dir (default 64 MiB; 0: always files). */
+void vt_seams_set_memory(struct vt_seams *s, size_t bytes);
 
 /* The carried rectangle of part (col, row) in tile (tx, ty) of level `level` (levels_per_pass ..
  * level_count - 1): false when that part carries nothing there. */

@@ -2,7 +2,8 @@
  * or stores: an image in memory is built whole, then as N parts that build their levels above the
  * first pass and carry their seam texels, then merged from those carried texels; every tile of
  * every level must be emitted exactly once with the single build's bytes, over odd sizes, several
- * part counts, levels per pass, filters, borders and a dropped alpha channel. */
+ * part counts, levels per pass, filters, borders, a dropped alpha channel, and the merge's levels
+ * in memory or in temporary files. */
 #include <pthread.h>
 #include <stdbool.h>
 #include <stdint.h>
@@ -69,6 +70,7 @@ struct params {
     enum vt_filter_kind filter;
     uint32_t out_channels;
     bool compact; /* large enough that the seams carry less than the first pass's last level */
+    bool files;   /* the merge keeps its levels in temporary files, not in memory */
 };
 
 /* A carried rectangle, as a part handed it over. */
@@ -248,6 +250,8 @@ static int build_sharded(struct build *b, uint32_t count, struct vts_error *err)
     VT_CHECK(vt_pyramid_part_cuts(&plan, count, xcuts, &b->gx, ycuts, &gy));
     struct vt_seams *s = seams_of(&mo, count);
     VT_CHECK(s != NULL);
+    if (s && b->p->files)
+        vt_seams_set_memory(s, 0);
     int rc = s ? vt_seams_merge_run(s, read_carried, b, err) : -1;
     vt_seams_destroy(s);
     return rc;
@@ -306,12 +310,12 @@ static void shards_and_merge_equal_the_single_build(void)
 {
     static const uint32_t many[] = {1, 2, 4, 8, 16}, some[] = {2, 4, 16}, few[] = {4, 8};
     const struct params cases[] = {
-        {300, 200, 16, 2, 2, VT_FILTER_LANCZOS3, 4, false},
-        {1001, 777, 30, 1, 1, VT_FILTER_BOX, 4, true},
-        {513, 1025, 14, 3, 3, VT_FILTER_KAISER, 3, false},
-        {777, 301, 12, 2, 2, VT_FILTER_TRIANGLE, 4, false},
-        {2000, 1500, 30, 2, 2, VT_FILTER_LANCZOS3, 4, true},
-        {97, 61, 8, 1, 1, VT_FILTER_LANCZOS3, 4, false},
+        {300, 200, 16, 2, 2, VT_FILTER_LANCZOS3, 4, false, false},
+        {1001, 777, 30, 1, 1, VT_FILTER_BOX, 4, true, true},
+        {513, 1025, 14, 3, 3, VT_FILTER_KAISER, 3, false, false},
+        {777, 301, 12, 2, 2, VT_FILTER_TRIANGLE, 4, false, false},
+        {2000, 1500, 30, 2, 2, VT_FILTER_LANCZOS3, 4, true, true},
+        {97, 61, 8, 1, 1, VT_FILTER_LANCZOS3, 4, false, false},
     };
     check_case(&cases[0], many, 5);
     check_case(&cases[1], some, 3);
@@ -324,7 +328,7 @@ static void shards_and_merge_equal_the_single_build(void)
 /* A wrong carried rectangle (another size than the merge expects) or a failed read is an error. */
 static void merge_stops_at_a_failed_read(void)
 {
-    const struct params p = {300, 200, 16, 2, 2, VT_FILTER_LANCZOS3, 4, false};
+    const struct params p = {300, 200, 16, 2, 2, VT_FILTER_LANCZOS3, 4, false, false};
     make_source(p.w, p.h);
     struct build b;
     build_init(&b, &p);
