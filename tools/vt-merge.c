@@ -317,9 +317,10 @@ static int coarse_progress(void *user, uint64_t done, uint64_t total)
     return 0;
 }
 
-/* Builds the levels above the shards' first pass from their carried texels, with the options
- * the shards recorded (lib/pyramid: vt_shard_merge, vt_pyramid_resume): the same bytes as the
- * single build's passes, encoded with the codec and effort the shards recorded. */
+/* Builds the levels above the shards' first pass (with wrap) or the tiles along their seams
+ * (without) from their carried texels, with the options the shards recorded (lib/pyramid:
+ * vt_shard_merge, vt_pyramid_resume, vt_shard_seams): the same bytes as the single build's passes,
+ * encoded with the codec and effort the shards recorded. */
 static int build_coarse(struct merge *m, struct vts_error *err)
 {
     const struct vts_layer *L = vts_store_layer(m->in[0], 0);
@@ -352,8 +353,18 @@ static int build_coarse(struct merge *m, struct vts_error *err)
         return 0;
     struct vt_pyramid_resume *resume = NULL;
     if (!(m->sink = vt_tile_sink_create(m->out, vts_store_geometry(m->in[0])->tile_payload_px,
-                                        &sink_layer, 1, po.threads, 0, err)) ||
-        !(resume = vt_shard_merge_assemble(&m->set, &po, err)))
+                                        &sink_layer, 1, po.threads, 0, err)))
+        return err->status;
+    if (sb.seams) { /* the shards built the levels above but along their seams */
+        uint64_t tiles = vt_shard_merge_seam_tiles(&m->set, &po);
+        vt_log(VT_LOG_INFO, "building the %llu tiles along the seams of levels %u..%u",
+               (unsigned long long)tiles, plan.levels_per_pass + 1, po.level_count - 1);
+        vt_progress_start(&m->progress, "seams", "tiles", tiles);
+        rc = vt_shard_merge_seams(&m->set, &po, err);
+        vt_progress_end(&m->progress);
+        return rc;
+    }
+    if (!(resume = vt_shard_merge_assemble(&m->set, &po, err)))
         return err->status;
     vt_log(VT_LOG_INFO, "building levels %u..%u from the shards' level %u (%ux%u)",
            plan.levels_per_pass + 1, po.level_count - 1, plan.levels_per_pass, plan.carry_width,

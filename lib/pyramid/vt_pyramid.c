@@ -8,6 +8,7 @@
 #include "internal/vt_float_file.h"
 #include "internal/vt_pyramid_impl.h"
 #include "internal/vt_pyramid_pass.h"
+#include "internal/vt_shard_seams.h"
 #include "internal/vt_tile_cache.h"
 #include "vt_error.h"
 
@@ -48,6 +49,52 @@ bool vt_pyramid_part(const struct vt_pyramid_plan *plan, uint32_t index, uint32_
     return true;
 }
 
+bool vt_pyramid_part_cuts(const struct vt_pyramid_plan *plan, uint32_t count, uint32_t *xcuts,
+                          uint32_t *gx, uint32_t *ycuts, uint32_t *gy)
+{
+    uint32_t x0, y0, x1, y1, m = 0;
+    if (count == 0 || (count & (count - 1)) != 0 || count > 4096)
+        return false;
+    while ((1u << m) < count)
+        m++;
+    *gx = 1u << ((m + 1) / 2);
+    *gy = 1u << (m / 2);
+    for (uint32_t i = 0; i < *gx; i++) {
+        vt_pyramid_part(plan, i, count, &x0, &y0, &x1, &y1);
+        xcuts[i] = x0;
+        xcuts[i + 1] = x1;
+    }
+    for (uint32_t j = 0; j < *gy; j++) {
+        vt_pyramid_part(plan, j * *gx, count, &x0, &y0, &x1, &y1);
+        ycuts[j] = y0;
+        ycuts[j + 1] = y1;
+    }
+    return true;
+}
+
+bool vt_pyramid_part_seams(const struct vt_pyramid_options *o)
+{
+    return o->part_count > 0 && !o->wrap && o->level_count > vt_pyramid_resolved_k(o) + 1;
+}
+
+/* The seams of a shard's build (vt_shard_seams.h) and its column and row in the part grid. */
+static struct vt_seams *part_seams(const struct vt_pyramid_options *o,
+                                   const struct vt_source_info *in, uint32_t *col, uint32_t *row,
+                                   struct vts_error *err)
+{
+    struct vt_pyramid_plan plan;
+    uint32_t xcuts[65], ycuts[65], gx, gy;
+    vt_pyramid_plan(o, &plan);
+    if (!vt_pyramid_part_cuts(&plan, o->part_count, xcuts, &gx, ycuts, &gy) ||
+        o->part_index >= o->part_count) {
+        vt_error_set(err, VTS_ERR_ARG, "invalid shard part %u of %u", o->part_index, o->part_count);
+        return NULL;
+    }
+    *col = o->part_index % gx;
+    *row = o->part_index / gx;
+    return vt_seams_create(o, in, xcuts, gx, ycuts, gy, err);
+}
+
 /* Tiles of a level-r axis that blocks [b0, b1) own (the whole axis: 0 .. blocks). */
 static uint64_t part_tiles(uint32_t size, uint32_t r, uint64_t block, uint32_t c, uint32_t b0,
                            uint32_t b1)
@@ -77,6 +124,13 @@ uint64_t vt_pyramid_tile_count(const struct vt_pyramid_options *o)
         }
         n += tx * ty;
     }
+    uint32_t col, row;
+    struct vt_source_info info = {.channels = 1};
+    struct vt_seams *seams =
+        o->part && vt_pyramid_part_seams(o) ? part_seams(o, &info, &col, &row, NULL) : NULL;
+    if (seams)
+        n += vt_seams_tile_count(seams, col, row);
+    vt_seams_destroy(seams);
     return n;
 }
 
@@ -90,7 +144,9 @@ static int check_options(struct vt_source *const *sources, const struct vt_pyram
         (!o->resume_input && (in->width != o->width || in->height != o->height)) ||
         vts_sample_bytes(o->out_sample) == 0 || in->channels < 1 || in->channels > 4 ||
         (o->part && o->resume_input) ||
-        (o->part && o->level_count > vt_pyramid_resolved_k(o) + 1 && !o->carry))
+        (o->part && o->level_count > vt_pyramid_resolved_k(o) + 1 &&
+         !(vt_pyramid_part_seams(o) ? o->seam_carry != NULL : o->carry != NULL)) ||
+        (o->part_count && o->part_index >= o->part_count))
         return vt_error_set(err, VTS_ERR_ARG, "invalid pyramid options");
     if (o->resume_input) {
         struct vt_pyramid_plan plan;
@@ -150,6 +206,19 @@ static void first_pass(const struct vt_pyramid_options *o, const struct vt_sourc
     }
 }
 
+/* A shard's levels above its first pass, from its texels of the first pass's last level. */
+static int shard_seams(const struct vt_pyramid_options *o, const struct vt_source_info *in,
+                       struct vt_float_file *level_k, uint64_t *done, struct vts_error *err)
+{
+    uint32_t col, row;
+    struct vt_seams *s = part_seams(o, in, &col, &row, err);
+    if (!s)
+        return err ? err->status : VTS_ERR_NOMEM;
+    int rc = vt_seams_shard_run(s, col, row, level_k, done, err);
+    vt_seams_destroy(s);
+    return rc;
+}
+
 int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_options *o,
                      struct vts_error *err)
 {
@@ -162,6 +231,7 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
     struct vt_pyramid_pass p;
     first_pass(o, in, &done, &p);
     bool sequential = in->sequential && !o->resume_input;
+    bool seams = o->part && vt_pyramid_part_seams(o);
     struct vt_source *const *pass_sources = sources;
     struct vt_float_file *prev = NULL;
     struct vt_source temp_source = {0};
@@ -181,8 +251,8 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
         uint32_t left = o->level_count - 1 - p.base;
         p.depth = left < k ? left : k;
         p.next = NULL;
-        p.carry = o->part && p.depth < left;
-        if (p.depth < left && !o->part) {
+        p.carry = o->part && !seams && p.depth < left;
+        if (p.depth < left && (!o->part || seams)) {
             p.next = vt_float_file_create(o->temp_dir, vt_pyramid_level_extent(p.w, p.depth),
                                           vt_pyramid_level_extent(p.h, p.depth), p.channels, err);
             if (!p.next) {
@@ -196,7 +266,9 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
         vt_source_close(&temp_source);
         vt_float_file_destroy(prev);
         prev = p.next;
-        if (rc || !p.next) /* a shard (o->part) stops after its first pass */
+        if (rc == 0 && seams && p.next)
+            rc = shard_seams(o, in, p.next, &done, err);
+        if (rc || !p.next || o->part) /* a shard stops after its first pass (and its seams) */
             break;
         /* the next pass reads this pass's last level, already in working space */
         free(temp_sources);

@@ -34,6 +34,14 @@ typedef int (*vt_pyramid_carry_fn)(void *user, unsigned worker, uint32_t x, uint
                                    uint32_t width, uint32_t height, uint32_t channels,
                                    const float *texels, size_t stride, struct vts_error *err);
 
+/* Sharded builds without wrap (docs/sharding.md, "Seams"): receives a rectangle of texels of
+ * level `level` (levels_per_pass or above) that the merge needs from this shard, width x height
+ * texels of `channels` working floats at (x, y), inside one tile of that level, rows `stride`
+ * floats apart. Called on the calling thread. */
+typedef int (*vt_pyramid_seam_fn)(void *user, uint32_t level, uint32_t x, uint32_t y,
+                                  uint32_t width, uint32_t height, uint32_t channels,
+                                  const float *texels, size_t stride, struct vts_error *err);
+
 /* Progress: tiles done of total; a non-zero return cancels. Called on the calling thread. */
 typedef int (*vt_pyramid_progress_fn)(void *user, uint64_t done, uint64_t total);
 
@@ -60,6 +68,13 @@ struct vt_pyramid_options {
     bool part;
     uint32_t part_x0, part_y0, part_x1, part_y1; /* may be empty: nothing is emitted */
     vt_pyramid_carry_fn carry;
+    /* With part_count set (the part is part_index of vt_pyramid_part(..., part_count)) and without
+     * wrap, the shard goes on above its first pass instead: it builds every texel of the levels
+     * above that it can compute exactly, emits the tiles that lie inside them and hands
+     * seam_carry the texels along the seams between parts that the merge needs (carry is then
+     * not called). */
+    uint32_t part_index, part_count;
+    vt_pyramid_seam_fn seam_carry;
     /* Resume (merging shards): when set, the first pass is skipped; sources[] read the first
      * pass's last level (F32 working texels of resume_input->channels, level levels_per_pass)
      * assembled from the carried parts, and the build emits the levels above it. resume_input
@@ -83,6 +98,16 @@ void vt_pyramid_plan(const struct vt_pyramid_options *o, struct vt_pyramid_plan 
  * (the last ones smaller, possibly empty). Returns false for a bad index or count. */
 bool vt_pyramid_part(const struct vt_pyramid_plan *plan, uint32_t index, uint32_t count,
                      uint32_t *x0, uint32_t *y0, uint32_t *x1, uint32_t *y1);
+
+/* The part grid of vt_pyramid_part(plan, ..., count): *gx columns and *gy rows, the first-pass
+ * block where each begins and ends in xcuts[0 .. *gx] and ycuts[0 .. *gy] (at most 65 each).
+ * Returns false for a bad count. */
+bool vt_pyramid_part_cuts(const struct vt_pyramid_plan *plan, uint32_t count, uint32_t *xcuts,
+                          uint32_t *gx, uint32_t *ycuts, uint32_t *gy);
+
+/* True when the shards of build *o continue above their first pass (part_count set, no wrap,
+ * levels above the first pass): their seam texels go to seam_carry, see vt_shard_seams. */
+bool vt_pyramid_part_seams(const struct vt_pyramid_options *o);
 
 /* Builds the pyramid. sources[0 .. threads-1] are independent handles on the same image (so that
  * workers can decode in parallel); a sequential source needs only sources[0] (others may be

@@ -3,6 +3,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "vt_image.h"
+
 int vt_shard_parse(const char *text, uint32_t *index, uint32_t *count)
 {
     unsigned i = 0, n = 0;
@@ -19,24 +21,27 @@ int vt_shard_parse(const char *text, uint32_t *index, uint32_t *count)
 void vt_shard_build_format(const struct vt_shard_build *b, char *out, size_t cap)
 {
     snprintf(out, cap,
-             "levels-per-pass=%u channels=%u alpha=%u premultiplied=%u subsampling=%u effort=%u",
+             "levels-per-pass=%u channels=%u alpha=%u premultiplied=%u subsampling=%u effort=%u "
+             "carry=%s",
              b->levels_per_pass, b->channels, b->has_alpha ? 1u : 0u, b->premultiplied ? 1u : 0u,
-             b->subsampling, b->effort);
+             b->subsampling, b->effort, b->seams ? "seams" : "level");
 }
 
 int vt_shard_build_parse(const char *text, struct vt_shard_build *out)
 {
     unsigned k, ch, alpha, premul, sub, effort;
+    char carry[8];
     int used = 0;
     if (!text ||
-        sscanf(
-            text,
-            "levels-per-pass=%u channels=%u alpha=%u premultiplied=%u subsampling=%u effort=%u%n",
-            &k, &ch, &alpha, &premul, &sub, &effort, &used) != 6 ||
+        sscanf(text,
+               "levels-per-pass=%u channels=%u alpha=%u premultiplied=%u subsampling=%u effort=%u "
+               "carry=%7[a-z]%n",
+               &k, &ch, &alpha, &premul, &sub, &effort, carry, &used) != 7 ||
         text[used] != '\0' || k < 1 || k > 6 || ch < 1 || ch > 4 || alpha > 1 || premul > 1 ||
-        effort > 9)
+        effort > 9 || (strcmp(carry, "seams") != 0 && strcmp(carry, "level") != 0))
         return -1;
-    *out = (struct vt_shard_build){k, ch, alpha == 1, premul == 1, sub, effort};
+    *out = (struct vt_shard_build){
+        k, ch, alpha == 1, premul == 1, sub, effort, strcmp(carry, "seams") == 0};
     return 0;
 }
 
@@ -58,27 +63,29 @@ static float get_le32(const unsigned char *s)
     return f;
 }
 
-void vt_shard_pack(unsigned char *payload, uint32_t payload_px, uint32_t border,
-                   const float *texels, uint32_t width, uint32_t height, uint32_t channels,
-                   size_t stride)
+void vt_shard_pack(unsigned char *payload, const float *texels, uint32_t width, uint32_t height,
+                   uint32_t channels, size_t stride)
 {
-    size_t row_bytes = (size_t)payload_px * channels * 4;
-    memset(payload, 0, row_bytes * payload_px);
+    size_t row_floats = (size_t)width * channels;
     for (uint32_t y = 0; y < height; y++) {
-        unsigned char *d =
-            payload + (size_t)(border + y) * row_bytes + (size_t)border * channels * 4;
         const float *s = texels + (size_t)y * stride;
-        for (size_t i = 0; i < (size_t)width * channels; i++)
-            put_le32(d + 4 * i, s[i]);
+        unsigned char *d = payload + (size_t)y * row_floats * 4;
+        if (vt_host_is_little_endian())
+            memcpy(d, s, row_floats * 4);
+        else
+            for (size_t i = 0; i < row_floats; i++)
+                put_le32(d + 4 * i, s[i]);
     }
 }
 
-void vt_shard_unpack_row(const unsigned char *payload, uint32_t payload_px, uint32_t border,
-                         uint32_t channels, uint32_t row, uint32_t count, float *out)
+void vt_shard_unpack_row(const unsigned char *payload, uint32_t width, uint32_t channels,
+                         uint32_t row, float *out)
 {
-    size_t row_bytes = (size_t)payload_px * channels * 4;
-    const unsigned char *s =
-        payload + (size_t)(border + row) * row_bytes + (size_t)border * channels * 4;
-    for (size_t i = 0; i < (size_t)count * channels; i++)
-        out[i] = get_le32(s + 4 * i);
+    size_t row_floats = (size_t)width * channels;
+    const unsigned char *s = payload + (size_t)row * row_floats * 4;
+    if (vt_host_is_little_endian())
+        memcpy(out, s, row_floats * 4);
+    else
+        for (size_t i = 0; i < row_floats; i++)
+            out[i] = get_le32(s + 4 * i);
 }

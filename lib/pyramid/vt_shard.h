@@ -2,12 +2,16 @@
  * vt-merge reads back to finish the build.
  *
  * A shard store has the single build's geometry, its layer, and one extra last layer named
- * VT_SHARD_LAYER_NAME (RAW, F32, the input's channel count) that holds, at level levels_per_pass
- * only, the float texels the shard's first-pass blocks computed of that level: one tile per block,
- * the texels in the tile's content area (border and texels past the level's edge are 0). Its
- * metadata is the single build's plus VT_SHARD_KEY=I/N, VT_SHARD_BUILD_KEY (what the remaining
- * passes need) and VT_SHARD_INPUT_KEY (size and time of the input, to refuse shards of another
- * build). A merge of the complete set drops the extra layer and the shard keys. */
+ * VT_SHARD_LAYER_NAME (RAW, F32, the input's channel count) that holds the float texels the merge
+ * needs from the shard: without wrap (carry=seams), the rectangles along the seams between parts
+ * at every level from levels_per_pass up (vt_shard_seams.h); with wrap (carry=level), every
+ * texel the shard's first-pass blocks computed of level levels_per_pass, one tile per block. Each
+ * payload holds the texels of one rectangle inside its tile's content area, rows top to bottom,
+ * little-endian, nothing else (the merge derives the rectangle from the geometry): it is not a
+ * RAW tile of payload size. Its metadata is the single build's plus VT_SHARD_KEY=I/N,
+ * VT_SHARD_BUILD_KEY (what the remaining levels need) and VT_SHARD_INPUT_KEY (size and time of
+ * the input, to refuse shards of another build). A merge of the complete set drops the extra
+ * layer and the shard keys. */
 #ifndef VT_SHARD_H
 #define VT_SHARD_H
 
@@ -30,6 +34,8 @@ struct vt_shard_build {
     bool has_alpha, premultiplied;
     uint32_t subsampling; /* jpeg chroma subsampling: 420 or 444 */
     uint32_t effort;      /* codec effort (png level, bc mode) */
+    bool seams;           /* carry=seams (no wrap: the shards built the levels above their first
+                             pass but along the seams), else carry=level */
 };
 
 /* Parses "I/N" (1 <= I <= N, N a power of two up to VT_SHARD_MAX_COUNT). Returns 0 or -1. */
@@ -39,14 +45,13 @@ int vt_shard_parse(const char *text, uint32_t *index, uint32_t *count);
 void vt_shard_build_format(const struct vt_shard_build *b, char *out, size_t cap);
 int vt_shard_build_parse(const char *text, struct vt_shard_build *out);
 
-/* Packs width x height texels of `channels` floats (rows `stride` floats apart) into a RAW F32
- * payload of payload_px square texels at (border, border), little-endian, zeros elsewhere. */
-void vt_shard_pack(unsigned char *payload, uint32_t payload_px, uint32_t border,
-                   const float *texels, uint32_t width, uint32_t height, uint32_t channels,
-                   size_t stride);
+/* Packs width x height texels of `channels` floats (rows `stride` floats apart) into a carried
+ * payload: width * height * channels little-endian floats. */
+void vt_shard_pack(unsigned char *payload, const float *texels, uint32_t width, uint32_t height,
+                   uint32_t channels, size_t stride);
 
-/* Unpacks `count` texels of row `row` of the content area of such a payload into out. */
-void vt_shard_unpack_row(const unsigned char *payload, uint32_t payload_px, uint32_t border,
-                         uint32_t channels, uint32_t row, uint32_t count, float *out);
+/* Unpacks row `row` of such a payload of rows `width` texels wide into out. */
+void vt_shard_unpack_row(const unsigned char *payload, uint32_t width, uint32_t channels,
+                         uint32_t row, float *out);
 
 #endif

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "internal/vt_shard_seams.h"
 #include "vt_error.h"
 
 /* ---- tiles ---- */
@@ -194,7 +195,8 @@ int vt_shard_merge_options(const struct vt_shard_merge *m, struct vt_pyramid_opt
     if (g->layer_count != 2 || strncmp(F->name, VT_SHARD_LAYER_NAME, VTS_LAYER_NAME_BYTES) != 0 ||
         F->codec != VTS_CODEC_RAW || F->sample != VTS_SAMPLE_F32 ||
         vt_shard_build_parse(vts_store_meta_find(s0, VT_SHARD_BUILD_KEY), build) ||
-        F->channels != build->channels || !filter_name || vt_filter_parse(filter_name, &filter))
+        F->channels != build->channels || !filter_name || vt_filter_parse(filter_name, &filter) ||
+        (build->seams && (g->flags & VTS_STORE_WRAP_X) != 0))
         return vt_error_set(
             err, VTS_ERR_BAD_INPUT,
             "'%s': not a well-formed vt-tiles shard (layer table, %s or filter metadata)",
@@ -224,10 +226,32 @@ int vt_shard_merge_options(const struct vt_shard_merge *m, struct vt_pyramid_opt
 /* Reading the carried tiles: a buffer for any payload of the inputs. */
 struct carried_reader {
     const struct vt_shard_merge *m;
-    uint32_t level, border, payload_px, channels;
+    uint32_t level, channels;
     unsigned char *payload;
     size_t capacity;
+    int *part_input; /* seams: input of each part (column + row * columns) */
+    uint32_t columns;
 };
+
+/* Reads carried payload (level, tx, ty) of input k, which must hold width x height texels, into
+ * texels. */
+static int read_payload(const struct carried_reader *c, int k, uint32_t level, uint32_t tx,
+                        uint32_t ty, uint32_t width, uint32_t height, float *texels, size_t stride,
+                        struct vts_error *err)
+{
+    const struct vt_shard_merge *m = c->m;
+    size_t len = 0, want = (size_t)width * height * c->channels * 4;
+    int rc = vt_shard_merge_read(m, k, 1, level, tx, ty, c->payload, c->capacity, &len, err);
+    if (rc)
+        return rc;
+    if (len != want)
+        return vt_error_set(err, VTS_ERR_BAD_INPUT,
+                            "'%s': carried tile %u,%u of level %u has %zu bytes, not %zu",
+                            m->names[k], tx, ty, level, len, want);
+    for (uint32_t y = 0; y < height; y++)
+        vt_shard_unpack_row(c->payload, width, c->channels, y, texels + y * stride);
+    return 0;
+}
 
 /* vt_pyramid_level_fn over the shards: tile (tx, ty) of the carried layer, from the first input
  * that stores it. */
@@ -248,17 +272,17 @@ static int read_carried(void *user, uint32_t tx, uint32_t ty, uint32_t width, ui
         return vt_error_set(err, VTS_ERR_BAD_INPUT,
                             "no shard holds the carried texels of tile %u,%u of level %u", tx, ty,
                             c->level);
-    size_t len = 0, want = (size_t)c->payload_px * c->payload_px * c->channels * 4;
-    rc = vt_shard_merge_read(m, owner, 1, c->level, tx, ty, c->payload, c->capacity, &len, err);
-    if (rc)
-        return rc;
-    if (len != want)
-        return vt_error_set(err, VTS_ERR_BAD_INPUT,
-                            "'%s': carried tile %u,%u of level %u has %zu bytes, not %zu",
-                            m->names[owner], tx, ty, c->level, len, want);
-    for (uint32_t y = 0; y < height; y++)
-        vt_shard_unpack_row(c->payload, c->payload_px, c->border, c->channels, y, width,
-                            texels + y * stride);
+    return read_payload(c, owner, c->level, tx, ty, width, height, texels, stride, err);
+}
+
+static int alloc_payload(const struct vt_shard_merge *m, struct carried_reader *c,
+                         struct vts_error *err)
+{
+    for (int i = 0; i < m->count; i++)
+        if (vts_store_max_payload(m->stores[i]) > c->capacity)
+            c->capacity = vts_store_max_payload(m->stores[i]);
+    if (!(c->payload = malloc(c->capacity + 1)))
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for tile buffers");
     return 0;
 }
 
@@ -266,20 +290,78 @@ struct vt_pyramid_resume *vt_shard_merge_assemble(const struct vt_shard_merge *m
                                                   const struct vt_pyramid_options *o,
                                                   struct vts_error *err)
 {
-    const struct vts_geometry *g = vts_store_geometry(m->stores[0]);
     struct vt_pyramid_plan plan;
     vt_pyramid_plan(o, &plan);
     struct carried_reader c = {
-        m, plan.levels_per_pass, g->border_px, g->tile_payload_px, o->resume_input->channels, NULL,
-        0};
-    for (int i = 0; i < m->count; i++)
-        if (vts_store_max_payload(m->stores[i]) > c.capacity)
-            c.capacity = vts_store_max_payload(m->stores[i]);
-    if (!(c.payload = malloc(c.capacity + 1))) {
-        vt_error_set(err, VTS_ERR_NOMEM, "out of memory for tile buffers");
+        .m = m, .level = plan.levels_per_pass, .channels = o->resume_input->channels};
+    if (alloc_payload(m, &c, err) != 0)
         return NULL;
-    }
     struct vt_pyramid_resume *r = vt_pyramid_resume_create(o, read_carried, &c, err);
     free(c.payload);
     return r;
+}
+
+/* ---- shards of vt-tiles --shard without wrap: the seams ---- */
+
+/* vt_seams_read_fn over the shards: the input of the part. */
+static int read_seam(void *user, uint32_t col, uint32_t row, uint32_t level, uint32_t tx,
+                     uint32_t ty, const struct vt_seams_rect *r, float *texels, size_t stride,
+                     struct vts_error *err)
+{
+    const struct carried_reader *c = user;
+    int k = c->part_input[col + row * c->columns];
+    return read_payload(c, k, level, tx, ty, r->width, r->height, texels, stride, err);
+}
+
+/* The seams of the build, and (part_input not NULL) the input of each part. */
+static struct vt_seams *merge_seams(const struct vt_shard_merge *m,
+                                    const struct vt_pyramid_options *o, int **part_input,
+                                    uint32_t *columns, struct vts_error *err)
+{
+    struct vt_pyramid_plan plan;
+    uint32_t xcuts[65], ycuts[65], gx, gy, index, count;
+    vt_pyramid_plan(o, &plan);
+    if (!vt_pyramid_part_cuts(&plan, (uint32_t)m->count, xcuts, &gx, ycuts, &gy)) {
+        vt_error_set(err, VTS_ERR_BAD_INPUT, "%d shards: not a power of two", m->count);
+        return NULL;
+    }
+    if (part_input) {
+        if (!(*part_input = malloc((size_t)m->count * sizeof **part_input))) {
+            vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
+            return NULL;
+        }
+        for (int k = 0; k < m->count; k++) /* vt_shard_merge_check() made sure of these */
+            if (vt_shard_parse(vts_store_meta_find(m->stores[k], VT_SHARD_KEY), &index, &count) ==
+                    0 &&
+                index <= (uint32_t)m->count)
+                (*part_input)[index - 1] = k;
+        *columns = gx;
+    }
+    return vt_seams_create(o, o->resume_input, xcuts, gx, ycuts, gy, err);
+}
+
+uint64_t vt_shard_merge_seam_tiles(const struct vt_shard_merge *m,
+                                   const struct vt_pyramid_options *o)
+{
+    struct vt_seams *s = merge_seams(m, o, NULL, NULL, NULL);
+    uint64_t n = s ? vt_seams_tile_count(s, UINT32_MAX, UINT32_MAX) : 0;
+    vt_seams_destroy(s);
+    return n;
+}
+
+int vt_shard_merge_seams(const struct vt_shard_merge *m, const struct vt_pyramid_options *o,
+                         struct vts_error *err)
+{
+    struct vt_pyramid_plan plan;
+    vt_pyramid_plan(o, &plan);
+    struct carried_reader c = {
+        .m = m, .level = plan.levels_per_pass, .channels = o->resume_input->channels};
+    struct vt_seams *s = merge_seams(m, o, &c.part_input, &c.columns, err);
+    int rc = s ? alloc_payload(m, &c, err) : (err ? err->status : VTS_ERR_NOMEM);
+    if (rc == 0)
+        rc = vt_seams_merge_run(s, read_seam, &c, err);
+    vt_seams_destroy(s);
+    free(c.part_input);
+    free(c.payload);
+    return rc;
 }

@@ -69,4 +69,16 @@ struct vt_pyramid_resume *vt_shard_merge_assemble(const struct vt_shard_merge *m
                                                   const struct vt_pyramid_options *o,
                                                   struct vts_error *err);
 
+/* Without wrap (shard.build carry=seams): the shards built the levels above their first pass but
+ * along the seams between parts. Reads their carried texels (layer 1), computes the strips along
+ * the seams and emits the tiles no shard could through o->emit (options from
+ * vt_shard_merge_options(); worker 0, progress through o->progress). 0, or the first error with
+ * err naming the input and tile (an unreadable, missing or wrong-sized carried tile). */
+int vt_shard_merge_seams(const struct vt_shard_merge *m, const struct vt_pyramid_options *o,
+                         struct vts_error *err);
+
+/* Tiles vt_shard_merge_seams() emits (for progress). */
+uint64_t vt_shard_merge_seam_tiles(const struct vt_shard_merge *m,
+                                   const struct vt_pyramid_options *o);
+
 #endif

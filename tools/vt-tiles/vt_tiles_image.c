@@ -23,8 +23,8 @@ struct run {
     const struct vt_codec *codec;
     struct vt_codec_params params;
     struct vts_writer *writer;
-    struct vt_tile_sink *sink; /* layer 0; its scratch buffers also pack the carried texels */
-    uint32_t carry_level, payload_px, border, content; /* shards: the carried level's tiles */
+    struct vt_tile_sink *sink;     /* layer 0; its scratch buffers also pack the carried texels */
+    uint32_t carry_level, content; /* shards: the carried level (with wrap), the tiles' content */
     struct vt_progress progress;
 };
 
@@ -35,17 +35,33 @@ static int emit_tile(void *user, unsigned worker, uint32_t level, uint32_t tx, u
     return vt_tile_sink_put(r->sink, worker, 0, level, tx, ty, payload, err);
 }
 
-/* A shard's carried texels: one tile of the extra layer (vt_shard.h) per first-pass block. */
+/* A shard's carried texels (vt_shard.h): one payload of the extra layer per rectangle, in the
+ * tile of `level` that holds it. */
+static int carry_at(struct run *r, unsigned worker, uint32_t level, uint32_t x, uint32_t y,
+                    uint32_t width, uint32_t height, uint32_t channels, const float *texels,
+                    size_t stride, struct vts_error *err)
+{
+    unsigned char *buf = vt_tile_sink_scratch(r->sink, worker, NULL);
+    vt_shard_pack(buf, texels, width, height, channels, stride);
+    size_t len = (size_t)width * height * channels * 4;
+    return vts_writer_put(r->writer, 1, level, x / r->content, y / r->content, buf, len, err);
+}
+
+/* With wrap: every first-pass block's texels of the carried level. */
 static int carry_tile(void *user, unsigned worker, uint32_t x, uint32_t y, uint32_t width,
                       uint32_t height, uint32_t channels, const float *texels, size_t stride,
                       struct vts_error *err)
 {
     struct run *r = user;
-    unsigned char *buf = vt_tile_sink_scratch(r->sink, worker, NULL);
-    vt_shard_pack(buf, r->payload_px, r->border, texels, width, height, channels, stride);
-    size_t len = (size_t)r->payload_px * r->payload_px * channels * 4;
-    return vts_writer_put(r->writer, 1, r->carry_level, x / r->content, y / r->content, buf, len,
-                          err);
+    return carry_at(r, worker, r->carry_level, x, y, width, height, channels, texels, stride, err);
+}
+
+/* Without wrap: the texels along the seams the merge needs (worker 0: the calling thread). */
+static int carry_seam(void *user, uint32_t level, uint32_t x, uint32_t y, uint32_t width,
+                      uint32_t height, uint32_t channels, const float *texels, size_t stride,
+                      struct vts_error *err)
+{
+    return carry_at(user, 0, level, x, y, width, height, channels, texels, stride, err);
 }
 
 /* Shard metadata (after the single build's): shard=I/N, what the merge needs, the input's id. */
@@ -224,11 +240,9 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
     struct vts_layer layers[2] = {layer,
                                   {VTS_CODEC_RAW, (uint8_t)in->channels, VTS_SAMPLE_F32,
                                    (uint8_t)colour, 0, 0, VT_SHARD_LAYER_NAME}};
-    if (o->shard) { /* + the carried texels: payload_px^2 floats, beside the layer (vt_shard.h) */
+    if (o->shard) { /* + the carried texels: at most a tile's content of floats (vt_shard.h) */
         g.layer_count = 2;
-        carry = (size_t)g.tile_payload_px * g.tile_payload_px * in->channels * 4;
-        r.payload_px = g.tile_payload_px;
-        r.border = g.border_px;
+        carry = (size_t)g.tile_content_px * g.tile_content_px * in->channels * 4;
         r.content = g.tile_content_px;
     }
     if (!(r.writer = vts_writer_create(o->output, &g, layers, &err)) ||
@@ -261,11 +275,16 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
     }
     struct vt_pyramid_plan plan;
     vt_pyramid_plan(&po, &plan);
-    struct vt_shard_build sb = {plan.levels_per_pass, in->channels,   in->has_alpha,
-                                in->premultiplied,    o->subsampling, (uint32_t)r.params.effort};
+    struct vt_shard_build sb = {
+        plan.levels_per_pass,      in->channels, in->has_alpha, in->premultiplied, o->subsampling,
+        (uint32_t)r.params.effort, false};
     if (o->shard) {
         po.part = true;
         po.carry = carry_tile;
+        po.seam_carry = carry_seam;
+        po.part_index = o->shard - 1;
+        po.part_count = o->shard_count;
+        sb.seams = vt_pyramid_part_seams(&po);
         r.carry_level = plan.levels_per_pass;
         vt_pyramid_part(&plan, o->shard - 1, o->shard_count, &po.part_x0, &po.part_y0, &po.part_x1,
                         &po.part_y1);

@@ -5,7 +5,9 @@
  *   -> vt_pyramid_pass.c (runs one pass: margins, the blocks of each row on the pool, the band)
  *   -> vt_pyramid_block.c (one block: tiles, reductions, the next pass's texels)
  *   -> vt_pyramid_read.c (regions of a source with clamped or wrapped edges; bands of rows).
- * No file calls a function of a file above it. */
+ * No file calls a function of a file above it. Beside them, vt_shard_seams.c (the levels of a
+ * sharded build above its first pass, without wrap) is called by vt_pyramid.c and
+ * vt_shard_merge.c and calls vt_pyramid_read.c and the float pass files only. */
 #ifndef VT_PYRAMID_IMPL_H
 #define VT_PYRAMID_IMPL_H
 
