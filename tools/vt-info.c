@@ -13,6 +13,7 @@
 #include "vt_atomic_file.h"
 #include "vt_level_stats.h"
 #include "vt_output_path.h"
+#include "vt_shard.h"
 #include "vt_stdin_spool.h"
 #include "vt_store_stats.h"
 #include "vt_tile_reader.h"
@@ -397,6 +398,13 @@ static int run_summary(const struct vts_store *s, bool json)
 
 /* ---- --verify and --extract ---- */
 
+/* True for the carried-texels layer of a vt-tiles --shard store. */
+static bool is_shard_carry(const struct vts_store *s, uint32_t layer)
+{
+    const struct vts_layer *l = vts_store_layer(s, layer);
+    return l && strcmp(l->name, VT_SHARD_LAYER_NAME) == 0 && vts_store_meta_find(s, VT_SHARD_KEY);
+}
+
 static int run_verify(const struct vts_store *s)
 {
     const struct vts_geometry *g = vts_store_geometry(s);
@@ -411,6 +419,9 @@ static int run_verify(const struct vts_store *s)
     for (uint32_t layer = 0; layer < g->layer_count && rc == 0; layer++) {
         vt_tile_reader_release(&r);
         rc = vt_tile_reader_init(&r, s, layer, &err);
+        /* a shard's carried texels are float rectangles, not tiles of the layer's shape: their
+         * checksums are checked, vt-merge reads them (docs/sharding.md) */
+        r.crc_only = is_shard_carry(s, layer);
         for (uint32_t level = 0; level < g->level_count && rc == 0; level++) {
             struct vts_level L;
             vts_store_level(s, level, &L);

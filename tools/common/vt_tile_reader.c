@@ -52,7 +52,7 @@ int vt_tile_reader_read(struct vt_tile_reader *r, uint32_t level, uint32_t tx, u
                             vts_store_max_payload(r->store), &len, 0, &why);
     if (rc == 0 && len == 0)
         memset(r->img.pixels, 0, r->img.stride * r->img.height);
-    else if (rc == 0)
+    else if (rc == 0 && !r->crc_only)
         rc = r->codec->decode(r->payload, len, &r->img, &why);
     *stored = len > 0;
     if (rc == 0)

@@ -19,6 +19,7 @@ struct vt_tile_reader {
     const struct vt_codec *codec;
     unsigned char *payload; /* vts_store_max_payload() bytes */
     struct vt_image img;    /* the last tile read: payload edge square, the layer's shape */
+    bool crc_only;          /* set by the caller: reads check the CRC and do not decode */
 };
 
 /* Prepares to read tiles of layer (< layer count) of store. Returns 0, or VTS_ERR_UNSUPPORTED (no

@@ -16,3 +16,5 @@ for n in 2 8 64; do
   echo "ok $n shards merged equal the single build"
 done
 "$VT_INFO" s8-3.vts | grep -E '^layers:|^  shard(=|.build)'
+# --verify reads every tile of a shard: its image layer decoded, its carried texels checksummed
+"$VT_INFO" --verify -v s8-3.vts 2>&1
