@@ -316,8 +316,7 @@ static int write_deps(struct vt_atomic_file *f, const char *target, char *const 
 static void print_summary(const struct options *o, const struct vt_layout *l,
                           const struct vt_atlas_place_report *r, uint32_t texture_files)
 {
-    if (vt_log_get_level() < VT_LOG_WARN)
-        return;
+    /* on stderr with the tool's prefix, as vt-offset's (-q silences it) */
     char layers[256] = "";
     for (uint32_t k = 0; k < l->layer_count; k++) {
         strncat(layers, k ? ", " : "", sizeof layers - strlen(layers) - 1);
@@ -327,20 +326,22 @@ static void print_summary(const struct options *o, const struct vt_layout *l,
     if (r->shared_cells)
         snprintf(shared, sizeof shared, "; %u materials share %u cell%s", r->shared,
                  r->shared_cells, r->shared_cells == 1 ? "" : "s");
-    printf(
-        "%s: %u entries (%u constant, %u replicated, %u rescaled%s) from %u texture files; layers %s\n",
+    vt_log(
+        VT_LOG_WARN,
+        "wrote '%s': %u entries (%u constant, %u replicated, %u rescaled%s) from %u texture files; layers %s",
         o->output, l->entry_count, r->constant, r->replicated, r->scaled, shared, texture_files,
         layers);
-    printf("atlas %ux%u (%ux%u tiles of %u), tiles used %llu, empty %llu, fill %.1f%%\n", l->width,
-           l->height, r->pack.tiles_x, r->pack.tiles_y, l->tile_content,
+    vt_log(VT_LOG_WARN, "atlas %ux%u (%ux%u tiles of %u), tiles used %llu, empty %llu, fill %.1f%%",
+           l->width, l->height, r->pack.tiles_x, r->pack.tiles_y, l->tile_content,
            (unsigned long long)r->pack.tiles_used, (unsigned long long)r->pack.tiles_empty,
            100.0 * r->pack.fill_ratio);
     char area[96] = "";
     if (r->whole_area)
         snprintf(area, sizeof area, "; atlas area %.1f%% of whole textures",
                  100.0 * (double)l->width * l->height / (double)r->whole_area);
-    printf("charts %u (%u moved by whole repeats); entries: %u fit, %u replicated, %u split "
-           "(vt-offset cuts their faces), %u cropped%s\n",
+    vt_log(VT_LOG_WARN,
+           "charts %u (%u moved by whole repeats); entries: %u fit, %u replicated, %u split "
+           "(vt-offset cuts their faces), %u cropped%s",
            r->charts, r->moved_charts, r->fit, r->replicated, r->split, r->cropped, area);
     if (o->place.density)
         vt_log(VT_LOG_INFO, "target texel density %g texels per world unit^2 (median)",

@@ -53,8 +53,9 @@ static void usage(void)
         "                      (default: OUT with .mtl instead of .obj; with -o -:\n"
         "                      required, and the mtllib line names it as given)\n"
         "      --store NAME    the store the MTL's maps name (NAME#layer), as written\n"
-        "                      (default: OUT's file name with .vts instead of .obj; with -o -,\n"
-        "                      the MTL's with .vts instead of .mtl)\n"
+        "                      (default: OUT's file name with .vts instead of .obj, NAME.vts\n"
+        "                      for NAME.vt.obj; with -o -, the MTL's with .vts instead of\n"
+        "                      .mtl, NAME.vts for NAME.vt.mtl)\n"
         "      --precision N   decimal places of the written coordinates, 1..17 (default: the\n"
         "                      fewest keeping the round-off under 1e-4 texel of the atlas)\n"
         "  -q, --quiet         print errors only\n"
@@ -142,13 +143,21 @@ static char *with_extension(const char *path, const char *old_ext, const char *e
     return out;
 }
 
-/* --store's default: OUT's file name with .vts instead of .obj; with OUT "-", the MTL's with .vts
- * instead of .mtl. malloc'ed; NULL when out of memory (or mtl_path NULL). */
+/* --store's default: OUT's file name with .vts instead of .obj (.vt.obj: .vts); with OUT "-", the
+ * MTL's with .vts instead of .mtl (.vt.mtl: .vts). malloc'ed; NULL when out of memory (or mtl_path
+ * NULL). */
 static char *default_store(const char *out_path, const char *mtl_path)
 {
+    char *s = NULL;
     if (!vt_output_path_is_stdio(out_path))
-        return with_extension(base_name(out_path), ".obj", ".vts");
-    return mtl_path ? with_extension(base_name(mtl_path), ".mtl", ".vts") : NULL;
+        s = with_extension(base_name(out_path), ".obj", ".vts");
+    else if (mtl_path)
+        s = with_extension(base_name(mtl_path), ".mtl", ".vts");
+    /* NAME.vt.obj names NAME.vts, the store scripts/vt.mk builds next to it */
+    size_t n = s ? strlen(s) : 0;
+    if (n > 7 && strcasecmp(s + n - 7, ".vt.vts") == 0)
+        memmove(s + n - 7, ".vts", 5);
+    return s;
 }
 
 static bool same_directory(const char *a, const char *b)

@@ -8,3 +8,6 @@ grep map_Kd atlas.mtl
 "$VT_OFFSET" -q scene.obj atlas.json -o default.obj
 cat default.obj
 grep map_Kd default.mtl
+# the default store of NAME.vt.obj is NAME.vts, the one scripts/vt.mk builds next to it
+"$VT_OFFSET" -q scene.obj atlas.json -o city.vt.obj
+grep map_Kd city.vt.mtl
