@@ -111,15 +111,16 @@ int32_t vt_atlas_tile_classify(const struct vt_atlas_tile *t, uint32_t L, uint32
  * padding and the gutter before x/y repeat the texture's edge. A wrap entry's chain is read modulo
  * its level's size instead: texel -1 is texel width - 1, so the gutter, the padding and the
  * borders at its edges show the opposite edge, as the repeating texture does. */
-static int owned_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, uint32_t s,
-                       uint32_t e, uint32_t L, int64_t X, int64_t Y, const uint8_t **out,
-                       struct vts_error *err)
+static int owned_run(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, uint32_t s,
+                     uint32_t e, uint32_t L, int64_t X, int64_t Y, const uint8_t **out,
+                     uint32_t *run, struct vts_error *err)
 {
     const struct vt_atlas_chain_info *ci = &t->chains[(size_t)e * t->nslots + s];
     assert(L < ci->levels);
     const struct vt_layout_entry *en = &t->lay->entries[e];
     int64_t lw = ci->fill ? 1 : ceil_shift(ci->w0, L), lh = ci->fill ? 1 : ceil_shift(ci->h0, L);
     int64_t i = X - (int64_t)(en->x >> L), j = Y - (int64_t)(en->y >> L);
+    bool clamped = !en->wrap && (i < 0 || i >= lw);
     if (en->wrap) {
         i %= lw;
         j %= lh;
@@ -143,7 +144,17 @@ static int owned_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, 
     int64_t x0 = i & ~(int64_t)m;
     uint32_t bw = lw - x0 < VT_BLOCK_CACHE_EDGE ? (uint32_t)(lw - x0) : VT_BLOCK_CACHE_EDGE;
     *out = w->last_px + ((size_t)(j & m) * bw + (size_t)(i & m)) * t->slots[s].fmt.channels;
+    /* texels X + 1 ... read the next ones of the block's row until its end (the chain's) */
+    *run = clamped ? 1 : bw - (uint32_t)(i & m);
     return 0;
+}
+
+static int owned_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, uint32_t s,
+                       uint32_t e, uint32_t L, int64_t X, int64_t Y, const uint8_t **out,
+                       struct vts_error *err)
+{
+    uint32_t run;
+    return owned_run(t, w, s, e, L, X, Y, out, &run, err);
 }
 
 void vt_atlas_tile_unpin(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w)
@@ -270,8 +281,24 @@ int vt_atlas_tile_fill_payload(struct vt_atlas_tile *t, struct vt_atlas_tile_wor
         int64_t Yn = Y < 0 ? 0 : Y >= lh ? lh - 1 : Y;
         int64_t Yc = Yn < cy0 ? cy0 : Yn >= cy0 + chh ? cy0 + chh - 1 : Yn;
         uint8_t *o = vt_image_at(p, 0, j);
+        const int32_t *cls = w->cls + (size_t)(Yc - cy0) * t->content;
         for (uint32_t i = 0; i < t->payload; i++, o += ch) {
             int64_t X = (int64_t)cx0 - bd + i;
+            if (Y == Yc && X >= cx0 && X < (int64_t)cx0 + cw && cls[X - cx0] >= 0) {
+                /* content texels of one owner: runs of a block's row (no group, no clamp) */
+                uint32_t c = (uint32_t)(X - cx0), n;
+                const uint8_t *src;
+                int rc = owned_run(t, w, s, (uint32_t)cls[c], L, X, Y, &src, &n, err);
+                if (rc)
+                    return rc;
+                uint32_t m = 1;
+                while (m < n && c + m < cw && cls[c + m] == cls[c])
+                    m++;
+                memcpy(o, src, (size_t)m * ch);
+                i += m - 1;
+                o += (size_t)(m - 1) * ch;
+                continue;
+            }
             int64_t Xn = X < 0 ? 0 : X >= lw ? lw - 1 : X;
             int64_t Xc = Xn < cx0 ? cx0 : Xn >= cx0 + cw ? cx0 + cw - 1 : Xn;
             int32_t k = w->cls[(size_t)(Yc - cy0) * t->content + (size_t)(Xc - cx0)];

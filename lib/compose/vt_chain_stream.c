@@ -12,19 +12,36 @@
 #define MAX_STAGES (2 * VTS_MAX_LEVELS + 32)
 
 /* One 2:1 reduction: finer rows [row0, row0 + nrows) of a fw x fh level are buffered (working
- * floats) until the coarser rows that read them are made. */
+ * floats) until the coarser rows that read them are made.
+ *
+ * With wrap-around edges (a wrap entry) the finer rows arrive rotated: rows rot .. fh - 1, then
+ * 0 .. rot - 1 (row0 and nrows count positions in that stream). The coarser rows are made in the
+ * order y0 .. dh - 1, 0 .. y0 - 1, y0 being the first whose taps start at or after row rot, so
+ * that each one waits only for rows that come before it in the stream, except for the last few,
+ * whose taps run past the stream's end into its first rows: those first nhead rows are kept
+ * (head) until the end. The coarser level then streams out rotated by y0 (the next stage's rot);
+ * y0 stays at about the kernel's margin. A small level (fewer rows than a few kernels) is held
+ * whole (small) and reduced once its last row is in, in order (y0 = 0). Rows are stored padded
+ * with the columns the wrapped taps read: pw texels from column `first`. */
 struct stage {
     uint32_t fw, fh, dw, dh;
     float *buf;
     uint32_t row0, nrows, cap; /* cap: rows buf holds */
-    uint32_t next;             /* next coarser row to make */
+    uint32_t next;             /* coarser rows made (with wrap: in the stream's order) */
     int level;                 /* chain level it makes, or -1 before level 0 */
+    bool wrap, small;
+    uint32_t rot, y0, nhead, pw;
+    float *head;
 };
 
-/* Rows of one chain level gathered until a row of blocks is complete. */
+/* Rows of one chain level gathered until a row of blocks is complete. The rows arrive rotated
+ * by rot (a wrap entry): the row of blocks holding row rot gets its first rows last, so it is
+ * gathered apart (split) and emitted after the level's last row. */
 struct level_acc {
-    uint32_t w, h, y; /* y: rows of the level done */
-    uint8_t *rows;    /* VT_CHAIN_STREAM_EDGE rows */
+    uint32_t w, h, y; /* y: rows of the level received */
+    uint32_t rot;
+    uint8_t *rows;  /* VT_CHAIN_STREAM_EDGE rows */
+    uint8_t *split; /* the same for the row of blocks holding row rot, when rot % EDGE != 0 */
 };
 
 struct vt_chain_stream {
@@ -35,6 +52,8 @@ struct vt_chain_stream {
     struct level_acc acc[VTS_MAX_LEVELS];
     float *out, *scratch, *conv; /* a band of coarser rows, the filter's scratch, converted rows */
     size_t out_n, scratch_n, conv_n;
+    float *gather; /* the finer rows of a wrapped band, gathered in order */
+    size_t gather_n;
     uint8_t *u8, *block; /* a band of 8-bit rows; one block */
     size_t u8_n;
     vt_chain_stream_emit_fn emit;
@@ -49,8 +68,7 @@ static uint32_t ceil_shift(uint32_t v, uint32_t k)
 bool vt_chain_stream_fits(const struct vt_mip_chain_spec *s, uint32_t tw, uint32_t th,
                           uint32_t *pre)
 {
-    if (s->wrap || s->crop_x || s->crop_y || s->crop_width != s->width ||
-        s->crop_height != s->height)
+    if (s->crop_x || s->crop_y || s->crop_width != s->width || s->crop_height != s->height)
         return false;
     for (uint32_t k = 0; k < 32 && ceil_shift(tw, k) >= s->width; k++)
         if (ceil_shift(tw, k) == s->width && ceil_shift(th, k) == s->height &&
@@ -77,25 +95,29 @@ static int reserve(void **p, size_t *cap, size_t n, size_t elem, struct vts_erro
     return 0;
 }
 
-/* Rows [y, y + n) of a level (8-bit, tight, w wide) into its accumulator; full rows of blocks are
- * emitted. */
+/* The next n rows of a level (8-bit, tight, w wide) into its accumulator; full rows of blocks
+ * are emitted. */
 static int level_rows(struct vt_chain_stream *cs, uint32_t l, const uint8_t *px, uint32_t n,
                       size_t stride, struct vts_error *err)
 {
     struct level_acc *a = &cs->acc[l];
     size_t rb = (size_t)a->w * cs->ch;
+    const uint32_t E = VT_CHAIN_STREAM_EDGE;
     for (uint32_t r = 0; r < n; r++) {
-        uint32_t in_band = a->y % VT_CHAIN_STREAM_EDGE;
-        memcpy(a->rows + in_band * rb, px + r * stride, rb);
+        assert(a->y < a->h);
+        uint32_t y = (uint32_t)(((uint64_t)a->rot + a->y) % a->h);
+        bool split = a->split && y / E == a->rot / E;
+        uint8_t *band = split ? a->split : a->rows;
+        memcpy(band + (y % E) * rb, px + r * stride, rb);
         a->y++;
-        if (a->y % VT_CHAIN_STREAM_EDGE != 0 && a->y != a->h)
+        if (split ? a->y != a->h : y % E != E - 1 && y != a->h - 1)
             continue;
-        uint32_t by = (a->y - 1) / VT_CHAIN_STREAM_EDGE, bh = in_band + 1;
-        for (uint32_t bx = 0; bx * VT_CHAIN_STREAM_EDGE < a->w; bx++) {
-            uint32_t x0 = bx * VT_CHAIN_STREAM_EDGE;
-            uint32_t bw = a->w - x0 < VT_CHAIN_STREAM_EDGE ? a->w - x0 : VT_CHAIN_STREAM_EDGE;
+        uint32_t by = y / E, bh = a->h - by * E < E ? a->h - by * E : E;
+        for (uint32_t bx = 0; bx * E < a->w; bx++) {
+            uint32_t x0 = bx * E;
+            uint32_t bw = a->w - x0 < E ? a->w - x0 : E;
             for (uint32_t j = 0; j < bh; j++)
-                memcpy(cs->block + (size_t)j * bw * cs->ch, a->rows + j * rb + (size_t)x0 * cs->ch,
+                memcpy(cs->block + (size_t)j * bw * cs->ch, band + j * rb + (size_t)x0 * cs->ch,
                        (size_t)bw * cs->ch);
             int rc = cs->emit(cs->user, l, bx, by, cs->block, bw, bh, err);
             if (rc)
@@ -107,6 +129,159 @@ static int level_rows(struct vt_chain_stream *cs, uint32_t l, const uint8_t *px,
 
 static int stage_feed(struct vt_chain_stream *cs, uint32_t i, const float *rows, uint32_t n,
                       struct vts_error *err);
+
+/* ---- wrap-around stages ---- */
+
+static uint32_t wrap_index(int64_t v, uint32_t n)
+{
+    int64_t r = v % (int64_t)n;
+    return (uint32_t)(r < 0 ? r + n : r);
+}
+
+/* The coarser row made e-th (e < dh) by a wrapped stage. */
+static uint32_t wrap_row(const struct stage *s, uint32_t e)
+{
+    return s->small ? e : (uint32_t)(((uint64_t)s->y0 + e) % s->dh);
+}
+
+/* Stream position of the first finer row that coarser row e reads (its taps run on from there,
+ * past the stream's end into the head for the last rows). */
+static uint32_t wrap_first(const struct stage *s, const struct vt_kernel *k, uint32_t e)
+{
+    return wrap_index(2 * (int64_t)wrap_row(s, e) + k->first - s->rot, s->fh);
+}
+
+static bool wrap_ready(const struct stage *s, const struct vt_kernel *k, uint32_t e)
+{
+    uint64_t last = (uint64_t)wrap_first(s, k, e) + (uint64_t)k->count - 1;
+    uint32_t have = s->row0 + s->nrows;
+    return s->small || last >= s->fh ? have == s->fh : last < have;
+}
+
+/* Plans a wrapped stage whose finer rows arrive rotated by rot: small or not, y0 and the head. */
+static void wrap_plan(struct stage *s, const struct vt_kernel *k, uint32_t rot)
+{
+    s->wrap = true;
+    s->rot = rot;
+    s->pw = 2 * (s->dw - 1) + (uint32_t)k->count;
+    s->small = (uint64_t)s->fh < 2 * ((uint64_t)k->count + rot) + 8;
+    s->y0 = s->small ? 0 : (uint32_t)(((int64_t)rot - k->first + 1) / 2);
+    s->nhead = 0;
+    for (uint32_t e = 0; !s->small && e < s->dh; e++) {
+        uint64_t end = (uint64_t)wrap_first(s, k, e) + (uint64_t)k->count;
+        if (end > s->fh && end - s->fh > s->nhead)
+            s->nhead = (uint32_t)(end - s->fh);
+    }
+    assert(s->small || (s->y0 < s->dh && s->nhead < s->fh));
+}
+
+/* Finer row at stream position p: in the buffer, or kept in the head. */
+static const float *wrap_row_at(const struct stage *s, uint32_t p, size_t rf)
+{
+    if (p >= s->row0 && p < s->row0 + s->nrows)
+        return s->buf + (size_t)(p - s->row0) * rf;
+    assert(p < s->nhead);
+    return s->head + (size_t)p * rf;
+}
+
+static int stage_output(struct vt_chain_stream *cs, uint32_t i, uint32_t n, struct vts_error *err);
+
+/* Makes coarser rows e .. e + n - 1 (consecutive rows of the level) into cs->out. */
+static int wrap_reduce(struct vt_chain_stream *cs, struct stage *s, uint32_t e, uint32_t n,
+                       struct vts_error *err)
+{
+    const struct vt_kernel *k = &cs->kern;
+    size_t rf = (size_t)s->pw * cs->ch;
+    uint32_t ya = wrap_row(s, e), rows = 2 * (n - 1) + (uint32_t)k->count;
+    uint32_t p0 = wrap_first(s, k, e);
+    const float *px;
+    if ((uint64_t)p0 + rows <= s->fh && p0 >= s->row0 && p0 + rows <= s->row0 + s->nrows) {
+        px = s->buf + (size_t)(p0 - s->row0) * rf; /* contiguous in the buffer */
+    } else {
+        int rc = reserve((void **)&cs->gather, &cs->gather_n, rows * rf, sizeof(float), err);
+        if (rc)
+            return rc;
+        for (uint32_t r = 0; r < rows; r++)
+            memcpy(cs->gather + r * rf, wrap_row_at(s, wrap_index((int64_t)p0 + r, s->fh), rf),
+                   rf * sizeof(float));
+        px = cs->gather;
+    }
+    struct vt_fregion src = {k->first, 2 * (int64_t)ya + k->first, s->pw, rows,
+                             cs->ch,   (float *)(uintptr_t)px};
+    struct vt_fregion dst = {0, ya, s->dw, n, cs->ch, NULL};
+    struct vt_edges edges = {s->fw, s->fh, true, true};
+    int rc = reserve((void **)&cs->out, &cs->out_n, (size_t)s->dw * n * cs->ch, sizeof(float), err);
+    size_t sn = vt_filter_reduce_scratch(k, &src, &dst);
+    if (rc == 0)
+        rc = reserve((void **)&cs->scratch, &cs->scratch_n, sn ? sn : 1, sizeof(float), err);
+    if (rc)
+        return rc;
+    dst.px = cs->out;
+    if ((rc = vt_filter_reduce(k, &edges, &src, &dst, cs->scratch, sn, err)) != 0)
+        return rc;
+    if (cs->mode.colour == VTS_COLOUR_NORMAL)
+        vt_filter_renormalize(&dst);
+    return 0;
+}
+
+/* Makes every coarser row of wrapped stage i that can be made, in the stream's order. */
+static int wrap_run(struct vt_chain_stream *cs, uint32_t i, struct vts_error *err)
+{
+    struct stage *s = &cs->st[i];
+    const struct vt_kernel *k = &cs->kern;
+    size_t rf = (size_t)s->pw * cs->ch;
+    while (s->next < s->dh && wrap_ready(s, k, s->next)) {
+        uint32_t e = s->next, n = 1, ya = wrap_row(s, e);
+        while (e + n < s->dh && ya + n < s->dh && wrap_ready(s, k, e + n))
+            n++;
+        int rc = wrap_reduce(cs, s, e, n, err);
+        if (rc)
+            return rc;
+        s->next = e + n;
+        /* drop the buffered rows no later coarser row reads (the head keeps the first ones) */
+        uint32_t have = s->row0 + s->nrows;
+        uint32_t keep = s->small ? s->row0 : s->next < s->dh ? wrap_first(s, k, s->next) : have;
+        if (keep > s->row0) {
+            uint32_t drop = keep - s->row0 < s->nrows ? keep - s->row0 : s->nrows;
+            memmove(s->buf, s->buf + drop * rf, (s->nrows - drop) * rf * sizeof(float));
+            s->row0 += drop;
+            s->nrows -= drop;
+        }
+        if ((rc = stage_output(cs, i, n, err)) != 0)
+            return rc;
+    }
+    return 0;
+}
+
+/* The next n finer rows (fw wide) into wrapped stage i, padded; the first ones also to its head. */
+static int wrap_feed(struct vt_chain_stream *cs, uint32_t i, const float *rows, uint32_t n,
+                     struct vts_error *err)
+{
+    struct stage *s = &cs->st[i];
+    size_t rf = (size_t)s->pw * cs->ch, tf = cs->ch * sizeof(float);
+    if (s->nrows + n > s->cap) {
+        size_t cap = s->small ? s->fh : s->nrows + n + 8;
+        if (reserve((void **)&s->buf, &(size_t){0}, cap * rf, sizeof(float), err))
+            return err ? err->status : VTS_ERR_NOMEM;
+        s->cap = (uint32_t)cap;
+    }
+    for (uint32_t r = 0; r < n; r++) {
+        const float *in = rows + (size_t)r * s->fw * cs->ch;
+        float *o = s->buf + (size_t)(s->nrows + r) * rf;
+        uint32_t x = wrap_index(cs->kern.first, s->fw);
+        for (uint32_t a = 0; a < s->pw;) {
+            uint32_t run = s->fw - x < s->pw - a ? s->fw - x : s->pw - a;
+            memcpy(o + (size_t)a * cs->ch, in + (size_t)x * cs->ch, run * tf);
+            a += run;
+            x = 0;
+        }
+        uint32_t p = s->row0 + s->nrows + r;
+        if (p < s->nhead)
+            memcpy(s->head + (size_t)p * rf, o, rf * sizeof(float));
+    }
+    s->nrows += n;
+    return wrap_run(cs, i, err);
+}
 
 /* Coarser rows [y0, y0 + n) of stage i are made (cs->out): stored and/or passed on. */
 static int stage_output(struct vt_chain_stream *cs, uint32_t i, uint32_t n, struct vts_error *err)
@@ -184,6 +359,8 @@ static int stage_feed(struct vt_chain_stream *cs, uint32_t i, const float *rows,
                       struct vts_error *err)
 {
     struct stage *s = &cs->st[i];
+    if (s->wrap)
+        return wrap_feed(cs, i, rows, n, err);
     size_t rf = (size_t)s->fw * cs->ch;
     if (s->nrows + n > s->cap) {
         size_t cap = s->nrows + n + 8;
@@ -247,27 +424,38 @@ struct vt_chain_stream *vt_chain_stream_create(const struct vt_mip_chain_spec *s
     cs->nstages = pre + s->level_count - 1;
     cs->emit = emit;
     cs->user = user;
-    uint32_t w = tw, h = th;
+    uint32_t w = tw, h = th, rot = 0;
+    bool ok = true;
     for (uint32_t i = 0; i < cs->nstages; i++) {
-        cs->st[i] = (struct stage){w,
-                                   h,
-                                   ceil_shift(w, 1),
-                                   ceil_shift(h, 1),
-                                   NULL,
-                                   0,
-                                   0,
-                                   0,
-                                   0,
-                                   i < pre ? -1 : (int)(i - pre + 1)};
-        w = ceil_shift(w, 1);
-        h = ceil_shift(h, 1);
+        struct stage *st = &cs->st[i];
+        *st = (struct stage){.fw = w,
+                             .fh = h,
+                             .dw = ceil_shift(w, 1),
+                             .dh = ceil_shift(h, 1),
+                             .level = i < pre ? -1 : (int)(i - pre + 1)};
+        if (s->wrap) {
+            wrap_plan(st, &cs->kern, rot);
+            rot = st->y0;
+            size_t hn = (size_t)st->nhead * st->pw * cs->ch;
+            ok = ok && (hn == 0 || (st->head = malloc(hn * sizeof(float))));
+        }
+        if (st->level >= 0)
+            cs->acc[st->level].rot = rot;
+        else if (i + 1 == pre)
+            cs->acc[0].rot = rot;
+        w = st->dw;
+        h = st->dh;
     }
-    bool ok = (cs->block = malloc((size_t)VT_CHAIN_STREAM_EDGE * VT_CHAIN_STREAM_EDGE * cs->ch));
+    ok = ok && (cs->block = malloc((size_t)VT_CHAIN_STREAM_EDGE * VT_CHAIN_STREAM_EDGE * cs->ch));
     for (uint32_t l = 0; ok && l < cs->nlevels && l < VTS_MAX_LEVELS; l++) {
         struct level_acc *a = &cs->acc[l];
         a->w = ceil_shift(s->width, l);
         a->h = ceil_shift(s->height, l);
-        ok = (a->rows = malloc((size_t)a->w * cs->ch * VT_CHAIN_STREAM_EDGE));
+        a->rot %= a->h;
+        size_t band = (size_t)a->w * cs->ch * VT_CHAIN_STREAM_EDGE;
+        ok = (a->rows = malloc(band));
+        if (ok && a->rot % VT_CHAIN_STREAM_EDGE)
+            ok = (a->split = malloc(band));
     }
     if (!ok) {
         vt_chain_stream_destroy(cs);
@@ -281,10 +469,15 @@ void vt_chain_stream_destroy(struct vt_chain_stream *cs)
 {
     if (!cs)
         return;
-    for (uint32_t i = 0; i < cs->nstages; i++)
+    for (uint32_t i = 0; i < cs->nstages; i++) {
         free(cs->st[i].buf);
-    for (uint32_t l = 0; l < VTS_MAX_LEVELS; l++)
+        free(cs->st[i].head);
+    }
+    for (uint32_t l = 0; l < VTS_MAX_LEVELS; l++) {
         free(cs->acc[l].rows);
+        free(cs->acc[l].split);
+    }
+    free(cs->gather);
     free(cs->out);
     free(cs->scratch);
     free(cs->conv);

@@ -3,9 +3,12 @@
  * is handed out in blocks of at most VT_CHAIN_STREAM_EDGE x VT_CHAIN_STREAM_EDGE texels as soon as
  * its rows are done. The texels are those of vt_mip_chain_from_source() for the same spec, bit for
  * bit (vt_filter_reduce gives the same bits whatever the region split), for the cases it streams:
- * one whole copy without wrap (crop = the whole texture), the texture at the entry's size or at
- * 2^k times it (its own mip level k: the input rows are reduced k times first). Memory: a few rows
- * of each level (kernel taps + a band), plus one row of blocks per level. */
+ * one whole copy (crop = the whole texture), clamped or wrapped, the texture at the entry's size
+ * or at 2^k times it (its own mip level k: the input rows are reduced k times first). A wrapped
+ * level's first rows wait for its last ones: each level below streams out rotated by a few rows
+ * (vt_chain_stream.c). Memory: a few rows of each level (kernel taps + a band; with wrap also the
+ * first rows the last ones read, and whole the levels of fewer than ~2 kernels of rows), plus
+ * one or two rows of blocks per level. */
 #ifndef VT_CHAIN_STREAM_H
 #define VT_CHAIN_STREAM_H
 

@@ -52,14 +52,15 @@ static int got_block(void *user, uint32_t level, uint32_t bx, uint32_t by, const
 
 /* Streams tex (tw x th) into the chain of an entry of ew x eh texels, band heights varying, and
  * compares every level with vt_mip_chain_from_image's. Returns the texels that differ. */
-static uint64_t stream_vs_whole(uint32_t tw, uint32_t th, uint32_t ew, uint32_t eh, uint32_t ch,
-                                uint32_t colour, enum vt_filter_kind filter, uint32_t levels)
+static uint64_t stream_vs_whole_wrap(uint32_t tw, uint32_t th, uint32_t ew, uint32_t eh,
+                                     uint32_t ch, uint32_t colour, enum vt_filter_kind filter,
+                                     uint32_t levels, bool wrap)
 {
     struct vt_image tex;
     fill_texture(&tex, tw, th, ch, tw + th);
     struct vt_source_info in = {tw, th, ch, VTS_SAMPLE_U8, colour, ch == 4, false, true, 0, 0, ""};
     struct vt_mip_chain_spec s = {
-        ew, eh, 0, 0, ew, eh, false, levels, ch == 4 ? 3 : ch, ch == 4, colour, filter, 1ull << 30};
+        ew, eh, 0, 0, ew, eh, wrap, levels, ch == 4 ? 3 : ch, ch == 4, colour, filter, 1ull << 30};
     struct vt_mip_chain whole;
     VT_CHECK_INT_EQ(vt_mip_chain_from_image(&whole, &s, &in, &tex, NULL), 0);
     struct got g = {0};
@@ -90,6 +91,12 @@ static uint64_t stream_vs_whole(uint32_t tw, uint32_t th, uint32_t ew, uint32_t 
     return diff;
 }
 
+static uint64_t stream_vs_whole(uint32_t tw, uint32_t th, uint32_t ew, uint32_t eh, uint32_t ch,
+                                uint32_t colour, enum vt_filter_kind filter, uint32_t levels)
+{
+    return stream_vs_whole_wrap(tw, th, ew, eh, ch, colour, filter, levels, false);
+}
+
 static void a_streamed_chain_equals_the_whole_chain(void)
 {
     VT_CHECK_INT_EQ(stream_vs_whole(131, 77, 131, 77, 3, VTS_COLOUR_SRGB, VT_FILTER_BOX, 8), 0);
@@ -101,6 +108,31 @@ static void a_streamed_chain_equals_the_whole_chain(void)
     /* the texture's own mip level 2 (scale 1/4), then the chain */
     VT_CHECK_INT_EQ(stream_vs_whole(259, 130, 65, 33, 4, VTS_COLOUR_SRGB, VT_FILTER_LANCZOS3, 4),
                     0);
+}
+
+/* Wrap entries: the first rows of each level wait for the last ones (the rotated stream), odd
+ * sizes straddle the seam, small levels are held whole; every filter. */
+static void a_streamed_wrap_chain_equals_the_whole_chain(void)
+{
+    static const enum vt_filter_kind f[4] = {VT_FILTER_BOX, VT_FILTER_TRIANGLE, VT_FILTER_LANCZOS3,
+                                             VT_FILTER_KAISER};
+    for (int i = 0; i < 4; i++) {
+        VT_CHECK_INT_EQ(stream_vs_whole_wrap(131, 77, 131, 77, 3, VTS_COLOUR_SRGB, f[i], 8, true),
+                        0);
+        VT_CHECK_INT_EQ(stream_vs_whole_wrap(200, 301, 200, 301, 4, VTS_COLOUR_SRGB, f[i], 9, true),
+                        0);
+        VT_CHECK_INT_EQ(stream_vs_whole_wrap(64, 256, 64, 256, 1, VTS_COLOUR_DATA, f[i], 9, true),
+                        0);
+        VT_CHECK_INT_EQ(stream_vs_whole_wrap(5, 3, 5, 3, 3, VTS_COLOUR_LINEAR, f[i], 3, true), 0);
+    }
+    VT_CHECK_INT_EQ(
+        stream_vs_whole_wrap(97, 330, 97, 330, 3, VTS_COLOUR_NORMAL, VT_FILTER_KAISER, 5, true), 0);
+    /* the texture's own mip level 2, wrapped, then the chain */
+    VT_CHECK_INT_EQ(
+        stream_vs_whole_wrap(259, 530, 65, 133, 4, VTS_COLOUR_SRGB, VT_FILTER_LANCZOS3, 6, true),
+        0);
+    VT_CHECK_INT_EQ(
+        stream_vs_whole_wrap(256, 256, 128, 128, 3, VTS_COLOUR_SRGB, VT_FILTER_BOX, 8, true), 0);
 }
 
 static void a_wrong_texel_is_caught(void)
@@ -121,7 +153,8 @@ static void a_wrong_texel_is_caught(void)
     vt_mip_chain_release(&b);
     vt_image_release(&tex);
     uint32_t pre;
-    s.wrap = true; /* not streamed: built whole */
+    s.crop_x = 3; /* a crop is not streamed: built whole */
+    s.crop_width = 61;
     VT_CHECK(!vt_chain_stream_fits(&s, 64, 64, &pre));
 }
 
@@ -220,11 +253,12 @@ static void a_build_decodes_each_file_once_within_its_budget(void)
         fill_texture(&textures[i], tex_w[i], tex_h[i], i == 1 ? 4 : 3, (uint32_t)i);
         n += snprintf(json + n, sizeof json - (size_t)n,
                       "%s{\"name\": \"e%d\", \"x\": %d, \"y\": 0, \"width\": %u, \"height\": %u, "
-                      "\"cell_width\": 512, \"cell_height\": 512, \"alignment\": 4, "
+                      "\"cell_width\": 512, \"cell_height\": 512, \"alignment\": 4, %s"
                       "\"textures\": [{\"path\": \"%d.png\", \"width\": %u, \"height\": %u}, "
                       "{\"path\": \"%d.png\", \"width\": %u, \"height\": %u}]}",
-                      i ? ", " : "", i, i * 512, tex_w[i], tex_h[i], i, tex_w[i], tex_h[i], i,
-                      tex_w[i], tex_h[i]);
+                      i ? ", " : "", i, i * 512, tex_w[i], tex_h[i],
+                      i % 2 == 0 ? "\"wrap\": true, " : "", i, tex_w[i], tex_h[i], i, tex_w[i],
+                      tex_h[i]);
     }
     snprintf(json + n, sizeof json - (size_t)n, "]}");
     struct vt_layout lay;
@@ -235,7 +269,8 @@ static void a_build_decodes_each_file_once_within_its_budget(void)
                                        .layers = layers,
                                        .layer_count = 2,
                                        .threads = 2,
-                                       .cache_bytes = 200000, /* a fraction of the chains */
+                                       .filter = VT_FILTER_LANCZOS3, /* wrap rows rotated */
+                                       .cache_bytes = 200000,        /* a fraction of the chains */
                                        .open = open_mem};
     struct vts_error err = {0};
     struct vt_atlas_build *b = vt_atlas_build_create(&o, &err);
@@ -254,6 +289,29 @@ static void a_build_decodes_each_file_once_within_its_budget(void)
     struct vt_atlas_layer_format f;
     vt_atlas_build_format(b, 0, &f);
     VT_CHECK(f.alpha); /* texture 1's alpha is not opaque */
+    /* the streamed wrap entries (0 and 2) hold the texels of their whole chains */
+    for (int i = 0; b && i < NTEX; i += 2) {
+        struct vt_source_info in = {
+            tex_w[i], tex_h[i], 3, VTS_SAMPLE_U8, VTS_COLOUR_SRGB, false, false, true, 0, 0, ""};
+        struct vt_mip_chain_spec s = {
+            tex_w[i],        tex_h[i],           0,         0, tex_w[i], tex_h[i], true, 3, 3, true,
+            VTS_COLOUR_SRGB, VT_FILTER_LANCZOS3, 1ull << 30};
+        struct vt_mip_chain whole;
+        VT_CHECK_INT_EQ(vt_mip_chain_from_image(&whole, &s, &in, &textures[i], NULL), 0);
+        for (uint32_t l = 0; l < whole.level_count; l++) {
+            const struct vt_image *lv = &whole.levels[l];
+            struct vt_image got;
+            vt_image_alloc(&got, lv->width, lv->height, 4, VTS_SAMPLE_U8, NULL);
+            VT_CHECK_INT_EQ(vt_atlas_build_render(b, 0, l, (uint32_t)(i * 512) >> l, 0, &got, &err),
+                            0);
+            uint64_t diff = 0;
+            for (uint32_t y = 0; y < lv->height; y++)
+                diff += memcmp(vt_image_at(lv, 0, y), vt_image_at(&got, 0, y), lv->width * 4) != 0;
+            VT_CHECK_INT_EQ(diff, 0);
+            vt_image_release(&got);
+        }
+        vt_mip_chain_release(&whole);
+    }
     vt_atlas_build_destroy(b);
     vt_layout_release(&lay);
     for (int i = 0; i < NTEX; i++)
@@ -263,6 +321,7 @@ static void a_build_decodes_each_file_once_within_its_budget(void)
 int main(void)
 {
     VT_RUN(a_streamed_chain_equals_the_whole_chain);
+    VT_RUN(a_streamed_wrap_chain_equals_the_whole_chain);
     VT_RUN(a_wrong_texel_is_caught);
     VT_RUN(the_block_cache_holds_its_budget_and_reads_back_what_spilled);
     VT_RUN(a_build_decodes_each_file_once_within_its_budget);
