@@ -154,6 +154,17 @@ static int set_metadata(struct layout_run *r, struct vts_error *err)
         if (rc)
             return rc;
     }
+    /* what each material needs (atlas.json's materials: layers, constants, alpha mode), for
+     * renderers that group faces by features (docs/atlas-format.md, "Materials") */
+    if (r->lay.material_count) {
+        char *materials = vt_layout_materials_meta(&r->lay, (size_t)15 << 20, err);
+        if (!materials)
+            return err->status;
+        int rc = vts_writer_set_meta(r->writer, VT_LAYOUT_MATERIALS_KEY, materials, err);
+        free(materials);
+        if (rc)
+            return rc;
+    }
     return 0;
 }
 
