@@ -10,6 +10,7 @@
 #include "vt_checked.h"
 #include "vt_error.h"
 #include "vt_pool.h"
+#include "vt_source.h"
 #include "vts.h"
 
 #define BAND_ROWS 64u /* texture rows decoded at a time */
@@ -171,39 +172,6 @@ static void key_spec(const struct chains_run *r, uint32_t key, bool alpha,
                                        .max_pixels = r->o->max_pixels};
 }
 
-static bool band_opaque(const struct vt_image *b)
-{
-    size_t sb = vt_sample_bytes(b->sample), tb = vt_image_texel_bytes(b);
-    for (uint32_t y = 0; y < b->height; y++) {
-        const unsigned char *row = vt_image_at(b, 0, y);
-        for (uint32_t x = 0; x < b->width; x++) {
-            const unsigned char *a = row + x * tb + tb - sb;
-            float f;
-            uint16_t h;
-            switch (b->sample) {
-            case VTS_SAMPLE_U8:
-                if (a[0] != 0xff)
-                    return false;
-                break;
-            case VTS_SAMPLE_U16:
-                if (a[0] != 0xff || a[1] != 0xff)
-                    return false;
-                break;
-            case VTS_SAMPLE_F16:
-                memcpy(&h, a, 2);
-                if (h < 0x3c00 || (h & 0x8000))
-                    return false;
-                break;
-            default:
-                memcpy(&f, a, 4);
-                if (!(f >= 1.0f))
-                    return false;
-            }
-        }
-    }
-    return true;
-}
-
 /* What one decode of a file feeds: per key, a stream or (when the stream cannot build its chain)
  * the whole decoded image. */
 struct file_job {
@@ -221,7 +189,7 @@ struct file_job {
 static int feed_band(struct file_job *j, const struct vt_image *band, struct vts_error *err)
 {
     if (j->check_alpha && j->opaque)
-        j->opaque = band_opaque(band);
+        j->opaque = vt_image_alpha_opaque(band);
     for (uint32_t i = 0; i < j->n; i++) {
         if (!j->cs[i])
             continue;

@@ -30,7 +30,7 @@ void vt_source_close(struct vt_source *src)
     memset(src, 0, sizeof *src);
 }
 
-static bool band_opaque(const struct vt_image *b)
+bool vt_image_alpha_opaque(const struct vt_image *b)
 {
     size_t sb = vt_sample_bytes(b->sample), tb = vt_image_texel_bytes(b);
     for (uint32_t y = 0; y < b->height; y++) {
@@ -75,7 +75,7 @@ int vt_source_alpha_opaque(struct vt_source *src, bool *opaque, struct vts_error
     for (uint32_t y = 0; rc == 0 && y < src->info.height && *opaque; y += rows) {
         band.height = src->info.height - y < rows ? src->info.height - y : rows;
         rc = vt_source_read(src, 0, y, &band, err);
-        *opaque = rc == 0 && band_opaque(&band);
+        *opaque = rc == 0 && vt_image_alpha_opaque(&band);
     }
     vt_image_release(&band);
     return rc;

@@ -47,6 +47,10 @@ int vt_source_read(struct vt_source *src, uint32_t x, uint32_t y, struct vt_imag
  * its maximum (1.0 for floats). Sources without alpha are opaque. */
 int vt_source_alpha_opaque(struct vt_source *src, bool *opaque, struct vts_error *err);
 
+/* True when every alpha sample of img (its last channel) is at its maximum (1.0 for floats;
+ * NaN is not). Call only for images with an alpha channel. */
+bool vt_image_alpha_opaque(const struct vt_image *img);
+
 /* Closes the source (ops->close) and zeroes it. Accepts NULL and an already closed source. */
 void vt_source_close(struct vt_source *src);
 
