@@ -1,8 +1,11 @@
 /* vt-view geometry: quad or OBJ. */
 #include "vtv_mesh.h"
 
+#include <stdbool.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "vt_error.h"
 #include "vt_obj.h"
@@ -59,7 +62,51 @@ struct obj_ctx {
     struct vtv_mesh *m;
     uint32_t cap;
     const char *path;
+    char *mtl; /* the first mtllib file, resolved (malloc'ed) */
 };
+
+static int on_mtllib(void *user, const struct vt_obj *obj, const char *mtl_path, uint64_t line,
+                     struct vts_error *err)
+{
+    struct obj_ctx *ctx = user;
+    (void)obj, (void)line;
+    if (!ctx->mtl && !(ctx->mtl = strdup(mtl_path)))
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
+    return 0;
+}
+
+/* The scene's UVs are the atlas's only when vt-offset wrote it: its MTL's maps name the store
+ * (map_Kd scene.vts#diffuse). An MTL that maps textures but no store belongs to the scene before
+ * vt-offset, whose UVs mean nothing on the store: refused. An MTL that cannot be read, or maps
+ * nothing, is not judged. */
+static int check_mtl(const char *obj_path, const char *mtl_path, struct vts_error *err)
+{
+    FILE *f = fopen(mtl_path, "r");
+    if (!f)
+        return 0;
+    char line[4096], first[256] = "";
+    bool store = false;
+    while (!store && fgets(line, sizeof line, f)) {
+        const char *p = line + strspn(line, " \t");
+        if (strncmp(p, "map_", 4) != 0 && strncmp(p, "norm", 4) != 0 &&
+            strncmp(p, "bump", 4) != 0 && strncmp(p, "disp", 4) != 0)
+            continue;
+        for (const char *q = p; *q && !store; q++)
+            store = strncasecmp(q, ".vts", 4) == 0;
+        if (!first[0]) {
+            snprintf(first, sizeof first, "%s", p);
+            first[strcspn(first, "\r\n")] = '\0';
+        }
+    }
+    fclose(f);
+    if (store || !first[0])
+        return 0;
+    return vt_error_set(err, VTS_ERR_BAD_INPUT,
+                        "'%s' is not a vt-offset output: its MTL '%s' maps textures ('%s'), not "
+                        "the store, so its UVs do not lie on the atlas: view the .vt.obj vt-offset "
+                        "writes from it",
+                        obj_path, mtl_path, first);
+}
 
 static void corner(const struct vt_obj *obj, const struct vt_obj_corner *c, float out[5])
 {
@@ -103,13 +150,16 @@ int vtv_mesh_read_obj(struct vtv_mesh *m, const char *path, struct vts_error *er
         m->lo[k] = 1e300;
         m->hi[k] = -1e300;
     }
-    struct obj_ctx ctx = {m, 0, path};
+    struct obj_ctx ctx = {m, 0, path, NULL};
     struct vt_obj *obj = vt_obj_create(NULL, err);
     if (!obj)
         return err->status;
-    struct vt_obj_callbacks cb = {.face = on_face, .user = &ctx};
+    struct vt_obj_callbacks cb = {.face = on_face, .mtllib = on_mtllib, .user = &ctx};
     int st = vt_obj_read(obj, path, &cb, err);
     vt_obj_destroy(obj);
+    if (st == 0 && ctx.mtl)
+        st = check_mtl(path, ctx.mtl, err);
+    free(ctx.mtl);
     if (st == 0 && m->index_count == 0)
         st = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': no faces", path);
     if (st != 0)
