@@ -20,6 +20,8 @@ static void put(struct mtl_out *o, const char *s)
         o->rc = o->out->write(o->out->user, s, strlen(s), o->err);
 }
 
+static void putf(struct mtl_out *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
 static void putf(struct mtl_out *o, const char *fmt, ...)
 {
     char line[512];
