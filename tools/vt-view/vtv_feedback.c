@@ -63,7 +63,8 @@ int vtv_feedback_reduce(struct vtv_feedback *f, const struct vtv_cache *c, const
             continue;
         f->keys[nk++] = vtv_cache_index(c, p[2], p[0], p[1]);
     }
-    qsort(f->keys, nk, sizeof(*f->keys), cmp_u64);
+    if (nk) /* keys is NULL until pixels ask for a tile */
+        qsort(f->keys, nk, sizeof(*f->keys), cmp_u64);
     for (size_t i = 0; i < nk;) {
         size_t j = i;
         while (j < nk && f->keys[j] == f->keys[i])
@@ -85,7 +86,8 @@ int vtv_feedback_reduce(struct vtv_feedback *f, const struct vtv_cache *c, const
         }
         i = j;
     }
-    qsort(f->items, f->count, sizeof(*f->items), cmp_index);
+    if (f->count) /* items is NULL until pixels ask for a tile */
+        qsort(f->items, f->count, sizeof(*f->items), cmp_index);
     size_t out = 0;
     for (size_t i = 0; i < f->count; i++) {
         if (out > 0 && f->items[out - 1].index == f->items[i].index)
@@ -94,7 +96,8 @@ int vtv_feedback_reduce(struct vtv_feedback *f, const struct vtv_cache *c, const
             f->items[out++] = f->items[i];
     }
     f->count = out;
-    qsort(f->items, f->count, sizeof(*f->items), cmp_priority);
+    if (f->count)
+        qsort(f->items, f->count, sizeof(*f->items), cmp_priority);
     return 0;
 }
 
