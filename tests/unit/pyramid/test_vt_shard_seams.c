@@ -12,55 +12,20 @@
 #include <string.h>
 
 #include "internal/vt_shard_seams.h"
+#include "pyramid_test_image.h"
 #include "vt_pyramid.h"
 #include "vt_test.h"
 
 enum { CH = 4, THREADS = 2 };
 
-/* ---- an image in memory as a random-access source ---- */
-
-static int memory_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,
-                              struct vts_error *err)
-{
-    (void)err;
-    const struct vt_image *img = ctx;
-    for (uint32_t r = 0; r < dst->height; r++)
-        memcpy((char *)dst->pixels + (size_t)r * dst->stride, vt_image_at(img, x, y + r),
-               (size_t)dst->width * vt_image_texel_bytes(img));
-    return 0;
-}
-
-static void memory_close(void *ctx)
-{
-    (void)ctx;
-}
-
-static const struct vt_source_ops memory_ops = {memory_read_region, memory_close};
+/* ---- an image in memory as a random-access source (pyramid_test_image.h) ---- */
 
 static struct vt_image image;
 static struct vt_source source;
 
 static void make_source(uint32_t w, uint32_t h)
 {
-    vt_image_release(&image);
-    vt_image_alloc(&image, w, h, CH, VTS_SAMPLE_U8, NULL);
-    for (uint32_t y = 0; y < h; y++)
-        for (uint32_t x = 0; x < w; x++) {
-            unsigned char *p = vt_image_at(&image, x, y);
-            p[0] = (unsigned char)(x * 3 + y);
-            p[1] = (unsigned char)((x ^ y) * 5);
-            p[2] = (unsigned char)(y * 7 + (x >> 3));
-            p[3] = (unsigned char)(x < 40 ? 0 : 128 + (x + y) % 128); /* some transparent tiles */
-        }
-    source = (struct vt_source){.info = {.width = w,
-                                         .height = h,
-                                         .channels = CH,
-                                         .sample = VTS_SAMPLE_U8,
-                                         .colour = VTS_COLOUR_SRGB,
-                                         .has_alpha = true},
-                                .ops = &memory_ops,
-                                .ctx = &image};
-    snprintf(source.name, sizeof source.name, "memory");
+    pyramid_test_source(&image, &source, w, h);
 }
 
 /* ---- one case ---- */
