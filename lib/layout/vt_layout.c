@@ -508,6 +508,14 @@ const struct vt_layout_material *vt_layout_material_find(const struct vt_layout 
     return NULL;
 }
 
+const char *vt_layout_colour_name(uint32_t colour)
+{
+    static const char *const names[] = {"srgb", "linear", "normal", "data"};
+    return colour >= VTS_COLOUR_SRGB && colour <= VTS_COLOUR_SRGB + 3
+               ? names[colour - VTS_COLOUR_SRGB]
+               : "?";
+}
+
 const char *vt_layout_alpha_name(uint32_t alpha)
 {
     static const char *const names[] = {"none", "test", "blend"};

@@ -231,6 +231,10 @@ bool vt_layout_uv_covered(const struct vt_layout_entry *e, double u, double v);
 const struct vt_layout_material *vt_layout_material_find(const struct vt_layout *layout,
                                                          const char *name);
 
+/* The atlas.json name of a layer colour (enum vts_colour: "srgb", "linear", "normal", "data"; "?"
+ * out of range). */
+const char *vt_layout_colour_name(uint32_t colour);
+
 /* The name of alpha mode a ("none", "test", "blend"; "?" out of range). */
 const char *vt_layout_alpha_name(uint32_t alpha);
 
