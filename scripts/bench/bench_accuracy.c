@@ -25,6 +25,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench_util.h"
 #include "vt_codec.h"
 #include "vt_filter.h"
 #include "vt_image.h"
@@ -39,28 +40,6 @@ static double now_s(void)
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
 }
-
-static void die(const char *what, const struct vts_error *err)
-{
-    fprintf(stderr, "vt-bench-accuracy: %s: %s\n", what, err ? err->message : "failed");
-    exit(1);
-}
-
-static void *xmalloc(size_t n)
-{
-    void *p = malloc(n ? n : 1);
-    if (!p) {
-        fprintf(stderr, "vt-bench-accuracy: out of memory\n");
-        exit(1);
-    }
-    return p;
-}
-
-/* Tight 8-bit RGB image. */
-struct rgb {
-    uint32_t w, h;
-    uint8_t *px;
-};
 
 /* Loads a PNG as 8-bit RGB: grey is expanded, alpha dropped, 16-bit reduced to 8. */
 static struct rgb load_rgb(const char *path)
@@ -88,16 +67,6 @@ static struct rgb load_rgb(const char *path)
     }
     vt_image_release(&img);
     return out;
-}
-
-/* Mirror index into [0, n) without repeating the edge texel (n >= 2). */
-static uint32_t mirror(int64_t i, uint32_t n)
-{
-    int64_t period = 2 * (int64_t)n - 2;
-    i %= period;
-    if (i < 0)
-        i += period;
-    return (uint32_t)(i < n ? i : period - i);
 }
 
 /* ---- metrics ---- */
@@ -497,6 +466,7 @@ static void bench_filters(const char *name, const struct rgb *full, int runs)
 
 int main(int argc, char **argv)
 {
+    bench_name = "vt-bench-accuracy";
     const char *tsv_path = NULL, *md_path = NULL;
     int runs = 3, i = 1;
     for (; i < argc && argv[i][0] == '-'; i++) {

@@ -20,6 +20,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench_util.h"
 #include "vt_codec.h"
 #include "vt_image.h"
 #include "vt_png_file.h"
@@ -33,27 +34,6 @@ static double cpu_s(void)
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
 }
-
-static void die(const char *what, const struct vts_error *err)
-{
-    fprintf(stderr, "vt-bench-bc: %s: %s\n", what, err ? err->message : "failed");
-    exit(1);
-}
-
-static void *xmalloc(size_t n)
-{
-    void *p = malloc(n ? n : 1);
-    if (!p) {
-        fprintf(stderr, "vt-bench-bc: out of memory\n");
-        exit(1);
-    }
-    return p;
-}
-
-struct rgb {
-    uint32_t w, h;
-    uint8_t *px; /* tight 8-bit RGB */
-};
 
 static struct rgb from_image(const struct vt_image *img)
 {
@@ -75,15 +55,6 @@ static struct rgb from_image(const struct vt_image *img)
         }
     }
     return out;
-}
-
-static uint32_t mirror(int64_t i, uint32_t n)
-{
-    int64_t period = 2 * (int64_t)n - 2;
-    i %= period;
-    if (i < 0)
-        i += period;
-    return (uint32_t)(i < n ? i : period - i);
 }
 
 struct encoder {
@@ -217,6 +188,7 @@ static void bench_image(const char *name, const struct rgb *src, int runs)
 
 int main(int argc, char **argv)
 {
+    bench_name = "vt-bench-bc";
     int runs = 3, i = 1;
     uint32_t synth = 0;
     const char *md_path = NULL;
