@@ -97,6 +97,27 @@ static int reserve(void **p, size_t *cap, size_t n, size_t elem, struct vts_erro
 
 /* The next n rows of a level (8-bit, tight, w wide) into its accumulator; full rows of blocks
  * are emitted. */
+/* Reduces src into dst (dst.px unset: its rows go to cs->out, grown as needed, with the scratch
+ * the reduction needs), renormalising normals. */
+static int reduce_out(struct vt_chain_stream *cs, const struct vt_kernel *k,
+                      const struct vt_edges *edges, const struct vt_fregion *src,
+                      struct vt_fregion *dst, struct vts_error *err)
+{
+    int rc = reserve((void **)&cs->out, &cs->out_n, (size_t)dst->width * dst->height * cs->ch,
+                     sizeof(float), err);
+    size_t sn = vt_filter_reduce_scratch(k, src, dst);
+    if (rc == 0)
+        rc = reserve((void **)&cs->scratch, &cs->scratch_n, sn ? sn : 1, sizeof(float), err);
+    if (rc)
+        return rc;
+    dst->px = cs->out;
+    if ((rc = vt_filter_reduce(k, edges, src, dst, cs->scratch, sn, err)) != 0)
+        return rc;
+    if (cs->mode.colour == VTS_COLOUR_NORMAL)
+        vt_filter_renormalize(dst);
+    return 0;
+}
+
 static int level_rows(struct vt_chain_stream *cs, uint32_t l, const uint8_t *px, uint32_t n,
                       size_t stride, struct vts_error *err)
 {
@@ -210,18 +231,7 @@ static int wrap_reduce(struct vt_chain_stream *cs, struct stage *s, uint32_t e, 
                              cs->ch,   (float *)(uintptr_t)px};
     struct vt_fregion dst = {0, ya, s->dw, n, cs->ch, NULL};
     struct vt_edges edges = {s->fw, s->fh, true, true};
-    int rc = reserve((void **)&cs->out, &cs->out_n, (size_t)s->dw * n * cs->ch, sizeof(float), err);
-    size_t sn = vt_filter_reduce_scratch(k, &src, &dst);
-    if (rc == 0)
-        rc = reserve((void **)&cs->scratch, &cs->scratch_n, sn ? sn : 1, sizeof(float), err);
-    if (rc)
-        return rc;
-    dst.px = cs->out;
-    if ((rc = vt_filter_reduce(k, &edges, &src, &dst, cs->scratch, sn, err)) != 0)
-        return rc;
-    if (cs->mode.colour == VTS_COLOUR_NORMAL)
-        vt_filter_renormalize(&dst);
-    return 0;
+    return reduce_out(cs, k, &edges, &src, &dst, err);
 }
 
 /* Makes every coarser row of wrapped stage i that can be made, in the stream's order. */
@@ -332,17 +342,9 @@ static int stage_run(struct vt_chain_stream *cs, uint32_t i, struct vts_error *e
     struct vt_fregion src = {0, lo, s->fw, hi - lo + 1, cs->ch, s->buf + (lo - s->row0) * rf};
     struct vt_fregion dst = {0, s->next, s->dw, n, cs->ch, NULL};
     struct vt_edges edges = {s->fw, s->fh, false, false};
-    int rc = reserve((void **)&cs->out, &cs->out_n, (size_t)s->dw * n * cs->ch, sizeof(float), err);
-    size_t sn = vt_filter_reduce_scratch(k, &src, &dst);
-    if (rc == 0)
-        rc = reserve((void **)&cs->scratch, &cs->scratch_n, sn ? sn : 1, sizeof(float), err);
+    int rc = reduce_out(cs, k, &edges, &src, &dst, err);
     if (rc)
         return rc;
-    dst.px = cs->out;
-    if ((rc = vt_filter_reduce(k, &edges, &src, &dst, cs->scratch, sn, err)) != 0)
-        return rc;
-    if (cs->mode.colour == VTS_COLOUR_NORMAL)
-        vt_filter_renormalize(&dst);
     s->next = y1;
     /* drop the finer rows no later coarser row reads */
     uint32_t keep = s->next < s->dh ? clamp_row(2 * (int64_t)s->next + k->first, s->fh) : have;
