@@ -109,8 +109,12 @@ static void iiif_json(struct text *t, const struct vt_export_plan *plan, const c
     text_json_string(t, id);
     text_add(t,
              ",\n  \"type\": \"ImageService3\",\n  \"protocol\": \"http://iiif.io/api/image\",\n"
-             "  \"profile\": \"level0\",\n  \"width\": %u,\n  \"height\": %u,\n  \"sizes\": [",
+             "  \"profile\": \"level0\",\n  \"width\": %u,\n  \"height\": %u,\n",
              plan->width, plan->height);
+    /* Level 0 promises jpg; png tiles are an extra format, and the preferred one for clients. */
+    if (strcmp(plan->ext, "png") == 0)
+        text_add(t, "  \"extraFormats\": [\"png\"],\n  \"preferredFormats\": [\"png\"],\n");
+    text_add(t, "  \"sizes\": [");
     const char *sep = "";
     for (uint32_t j = plan->level_count; j-- > 1;) {
         if (vt_export_tiles_x(plan, j) != 1 || vt_export_tiles_y(plan, j) != 1)
