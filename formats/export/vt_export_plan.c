@@ -27,28 +27,35 @@ static uint32_t ceil_shift(uint32_t size, uint32_t j)
     return v ? (uint32_t)v : 1;
 }
 
-void vt_export_plan_init(struct vt_export_plan *plan, const struct vts_store *store,
-                         const struct vt_export_params *p)
+void vt_export_plan_make(struct vt_export_plan *plan, enum vt_export_layout layout, uint32_t width,
+                         uint32_t height, uint32_t tile_px, uint32_t overlap_px, const char *ext)
 {
-    const struct vts_geometry *g = vts_store_geometry(store);
-    *plan = (struct vt_export_plan){.layout = p->layout,
-                                    .width = g->width,
-                                    .height = g->height,
-                                    .tile_px = p->tile_px,
-                                    .overlap_px = p->layout == VT_EXPORT_DZI ? p->overlap_px : 0,
-                                    .ext = p->codec->fourcc == VTS_CODEC_JPEG ? "jpg" : "png"};
+    *plan = (struct vt_export_plan){.layout = layout,
+                                    .width = width,
+                                    .height = height,
+                                    .tile_px = tile_px,
+                                    .overlap_px = layout == VT_EXPORT_DZI ? overlap_px : 0,
+                                    .ext = ext};
     uint32_t top = 0;
-    if (p->layout == VT_EXPORT_DZI) {
+    if (layout == VT_EXPORT_DZI) {
         /* Deep Zoom: level 0 is 1x1, each level doubles: N = ceil(log2(max(w, h))). */
-        uint32_t edge = g->width > g->height ? g->width : g->height;
+        uint32_t edge = width > height ? width : height;
         while (top < 32 && (1ull << top) < edge)
             top++;
     } else {
         /* IIIF and XYZ: down to the first level that fits one tile. */
-        while (ceil_shift(g->width, top) > p->tile_px || ceil_shift(g->height, top) > p->tile_px)
+        while (ceil_shift(width, top) > tile_px || ceil_shift(height, top) > tile_px)
             top++;
     }
     plan->level_count = top + 1;
+}
+
+void vt_export_plan_init(struct vt_export_plan *plan, const struct vts_store *store,
+                         const struct vt_export_params *p)
+{
+    const struct vts_geometry *g = vts_store_geometry(store);
+    vt_export_plan_make(plan, p->layout, g->width, g->height, p->tile_px, p->overlap_px,
+                        p->codec->fourcc == VTS_CODEC_JPEG ? "jpg" : "png");
 }
 
 uint32_t vt_export_level_width(const struct vt_export_plan *plan, uint32_t j)

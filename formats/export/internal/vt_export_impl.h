@@ -25,6 +25,12 @@ struct vt_export_rect {
     uint32_t x0, y0, x1, y1;
 };
 
+/* The plan of a width x height image (tile_px >= 1; overlap_px for DZI only, ignored otherwise;
+ * ext "png" or "jpg"). */
+void vt_export_plan_make(struct vt_export_plan *plan, enum vt_export_layout layout, uint32_t width,
+                         uint32_t height, uint32_t tile_px, uint32_t overlap_px, const char *ext);
+
+/* The plan of p's export of store. */
 void vt_export_plan_init(struct vt_export_plan *plan, const struct vts_store *store,
                          const struct vt_export_params *p);
 

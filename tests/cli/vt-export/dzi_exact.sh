@@ -1,6 +1,7 @@
 # Deep Zoom, PNG tiles: every tile of every store level equals the same rectangle of
 # vt-info --extract of that level (the checker computes the tile grid itself), the descriptor is
-# as Deep Zoom defines it, and the levels coarser than the store's go down to 1x1. Two tiles of
+# as Deep Zoom defines it, and the levels coarser than the store's go down to 1x1, reduced from
+# the store's coarsest level in linear light. Two tiles of
 # the same size swapped, and a level shifted by one texel, fail the same check.
 set -euo pipefail
 [ -n "${VT_PYTHON:-}" ] || { echo "skip: no Python 3 with numpy and PIL (scripts/setup)"; exit 77; }
@@ -14,7 +15,9 @@ for l in 0 1 2 3 4; do
   "$VT_INFO" --extract $l -o e$l.png s.vts
   levels+=("$l:e$l.png")
 done
-"$VT_PYTHON" "$VT_EXPORT_CHECK" out --layout dzi --name s --levels "${levels[@]}"
+"$VT_PYTHON" "$VT_EXPORT_CHECK" out --layout dzi --name s --levels "${levels[@]}" --coarse 4:e4.png
+rc=0; "$VT_PYTHON" "$VT_EXPORT_CHECK" out --layout dzi --name s --levels 4:e4.png --coarse 4:e3.png || rc=$?
+echo "coarse levels from the wrong level: exit $rc"
 "$VT_PYTHON" -c 'from PIL import Image; print("level 0:", Image.open("out/s_files/0/0_0.png").size)'
 cp -r out swapped
 mv swapped/s_files/10/1_1.png t.png

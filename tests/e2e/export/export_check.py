@@ -6,9 +6,12 @@ equal the same rectangle of that level's extract, texel for texel (PNG tiles), o
 PSNR (--psnr, JPEG tiles).
 
   export_check.py DIR --layout dzi|iiif|xyz --levels J:EXTRACT.png [J:EXTRACT.png ...]
-                  [--name NAME] [--psnr DB]
+                  [--name NAME] [--psnr DB] [--coarse J:EXTRACT.png]
 
-J is the store level (the full image reduced 2^J times). Prints one "ok ..." line per level and
+J is the store level (the full image reduced 2^J times). --coarse (Deep Zoom, an 8-bit sRGB
+RGB layer): the levels coarser than J, which the store does not have, must be within 1 code of
+a reduction written here: 2x2 box means in linear light, an odd edge's last texel repeated
+(clamped), kept in floats, from the extract of level J. Prints one "ok ..." line per level and
 exits 0, or prints what differs first and exits 1. Every file of DIR must be one the layout
 names (no missing, no extra tiles)."""
 import argparse
@@ -90,6 +93,45 @@ def xyz_plan(d, w, h, t, ext):
     return tiles, []
 
 
+def srgb_to_linear(c):
+    c = c / 255.0
+    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+
+
+def linear_to_srgb(v):
+    return np.where(v <= 0.0031308, v * 12.92, 1.055 * v ** (1 / 2.4) - 0.055) * 255
+
+
+def box_half(a):
+    h, w = a.shape[:2]
+    ys, xs = np.arange((h + 1) // 2), np.arange((w + 1) // 2)
+    y0, y1 = 2 * ys, np.minimum(2 * ys + 1, h - 1)
+    x0, x1 = 2 * xs, np.minimum(2 * xs + 1, w - 1)
+    return (a[y0][:, x0] + a[y0][:, x1] + a[y1][:, x0] + a[y1][:, x1]) / 4
+
+
+def check_coarse(tiles, spec, d):
+    j, path = spec.split(":", 1)
+    j = int(j)
+    levels = {}
+    for p, tj, rect, _ in tiles:
+        levels.setdefault(tj, []).append((p, rect))
+    a = srgb_to_linear(np.asarray(Image.open(path).convert("RGB")).astype(np.float64))
+    for k in range(j + 1, max(levels) + 1):
+        a = box_half(a)
+        want = np.round(linear_to_srgb(a))
+        for p, (x0, y0, x1, y1) in levels[k]:
+            got = np.asarray(Image.open(os.path.join(d, p)).convert("RGB")).astype(np.float64)
+            ref = want[y0:y1, x0:x1]
+            if got.shape != ref.shape or np.abs(got - ref).max() > 1:
+                print(f"{p}: not the reduction of level {j} "
+                      f"({got.shape[1]}x{got.shape[0]}, expected {ref.shape[1]}x{ref.shape[0]})")
+                return False
+    print(f"ok levels {j + 1}..{max(levels)}: within 1 code of the box reduction of level {j} "
+          "in linear light")
+    return True
+
+
 def psnr(a, b):
     mse = np.mean((a.astype(np.float64) - b.astype(np.float64)) ** 2)
     return float("inf") if mse == 0 else 10 * math.log10(255.0 ** 2 / mse)
@@ -103,6 +145,7 @@ def main():
     ap.add_argument("--name")
     ap.add_argument("--psnr", type=float)
     ap.add_argument("--xyz", help="W,H,TILE,EXT of an XYZ export (it has no descriptor)")
+    ap.add_argument("--coarse")
     a = ap.parse_args()
     extracts = {}
     for spec in a.levels:
@@ -157,6 +200,8 @@ def main():
         how = "exact" if a.psnr is None else f"PSNR >= {a.psnr} dB"
         print(f"ok level {j}: {count} tiles equal the extract ({how})")
     print(f"ok {len(expected)} files, as the {a.layout} layout names them")
+    if a.coarse and not check_coarse(tiles, a.coarse, a.dir):
+        return 1
     return 0
 
 
