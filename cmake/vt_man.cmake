@@ -29,6 +29,6 @@ ${NAME} \\- ${summary}
 ${help}.fi
 .SH SEE ALSO
 The page docs/cli/${NAME}.md of the vtpipe sources, and vt-atlas(1), vt-offset(1), vt-tiles(1),
-vt-info(1), vt-convert(1), vt-merge(1), vt-view(1).
+vt-info(1), vt-convert(1), vt-merge(1), vt-export(1), vt-view(1).
 ")
 file(RENAME ${OUT}.tmp ${OUT})

@@ -44,6 +44,8 @@ static void usage(FILE *f)
                "PLY with wedge texture coordinates, restores the original materials in the OBJ\n"
                "meshlabserver wrote, and checks the result against the input.\n"
                "  -o, --output FILE  the file to write\n"
+               "  --restore          the original materials back into MeshLab's OBJ\n"
+               "  --check            compare OUT.obj with IN.obj; writes nothing\n"
                "  --same-faces       --check: face I must have the corners of input triangle I\n"
                "  --tolerance T      --check: largest difference (default 1e-6)\n"
                "  -q, --quiet        errors only\n"

@@ -4,7 +4,9 @@
 # generated store. Also: only the public headers are installed, and libvts.so exports nothing
 # but vts_* (the check is shown to fail on a symbol list with an internal name). The same for
 # libvts-decode (vts_decode_* only; consumers through vts-decode.pc and vts::decode) and the
-# installed vtpipe Python package, which must load the prefix's libvts-decode.
+# installed vtpipe Python package, which must load the prefix's libvts-decode. The moved prefix's
+# tools run with the build tree hidden (a private mount namespace): vt-tiles reads a TGA through
+# its own OpenImageIO module and vt-export exports the store.
 # usage: check_install.sh BUILD_DIR SOURCE_DIR VT_SYNTH
 set -euo pipefail
 build=$1 src=$2 synth=$3
@@ -120,7 +122,7 @@ if cmake -S "$tmp/cm" -B "$tmp/cm/b99" -DCMAKE_PREFIX_PATH="$tmp/prefix" -DWANT=
 fi
 
 # Man pages, bash completion, the make rules and vt-obj2ply.
-tools="vt-atlas vt-convert vt-info vt-merge vt-obj2ply vt-offset vt-tiles vt-view"
+tools="vt-atlas vt-convert vt-export vt-info vt-merge vt-obj2ply vt-offset vt-tiles vt-view"
 for t in $tools; do
   test -x "$tmp/prefix/bin/$t" || fail "$t not installed"
   page=$tmp/prefix/share/man/man1/$t.1
@@ -153,6 +155,34 @@ if ls "$tmp"/prefix/lib*/vtpipe/libvt_oiio.so >/dev/null 2>&1; then
     fail "the moved vt-tiles did not load its own module: $(grep -o 'file=[^ ]*oiio[^ ]*' "$tmp/ld.txt" | head -1)"
   ! grep -q "file=$build" "$tmp/ld.txt" || fail "the installed vt-tiles opened a file of the build tree"
   echo "OpenImageIO module: the moved prefix's own"
+
+  # The same with the build tree gone: a private mount namespace binds an empty folder over it
+  # (other tests running meanwhile still see it), then the moved tools read the TGA and export it.
+  mkdir "$tmp/empty"
+  hidden_run() {
+    unshare --map-root-user --mount bash -c '
+      set -e; mount --bind "$1" "$2"; [ -z "$(ls -A "$2")" ]
+      unset VT_OIIO_MODULE
+      "$3/bin/vt-tiles" -q "$4/x.tga" -o "$4/h.vts"
+      "$3/bin/vt-export" -q "$4/h.vts" -o "$4/h" --format png --html \
+        --openseadragon "$4/osd.js"
+      "$3/bin/vt-info" --extract 0 -o "$4/h0.png" "$4/h.vts"' hidden "$tmp/empty" "$build" \
+      "$tmp/moved" "$tmp"
+  }
+  echo 'var OpenSeadragon = null;' >"$tmp/osd.js"
+  if unshare --map-root-user --mount true 2>/dev/null; then
+    hidden_run || fail "the moved tools failed with the build tree hidden"
+    /usr/bin/python3 -c "
+from PIL import Image
+a, b = Image.open('$tmp/h/h_files/7/0_0.png'), Image.open('$tmp/h0.png')
+assert a.size == b.size == (70, 50) and a.tobytes() == b.tobytes(), 'tile != extract'
+assert Image.open('$tmp/h/h_files/0/0_0.png').size == (1, 1)" ||
+      fail "vt-export with the build tree hidden: the tile is not the extract"
+    test -f "$tmp/h/index.html" || fail "no index.html"
+    echo "build tree hidden: the moved vt-tiles read a TGA, vt-export exported it (tile = extract)"
+  else
+    echo "build tree hidden: not tried (unshare --map-root-user --mount is not permitted here)"
+  fi
   mv "$tmp/moved" "$tmp/prefix"
 fi
 echo "ok: install"
