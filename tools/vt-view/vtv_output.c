@@ -76,6 +76,16 @@ int vtv_write_stats(const char *path, const struct vtv_run_info *info,
     fprintf(f, "  \"cache_tiles\": %u,\n  \"uploads_per_frame\": %u,\n  \"sync\": %s,\n",
             info->cache_tiles, info->uploads_per_frame, info->sync ? "true" : "false");
     fprintf(f, "  \"physical_format\": \"%s\",\n", info->physical_format);
+    fputs("  \"variants\": [", f);
+    for (uint32_t i = 0; i < info->variant_count; i++) {
+        const struct vtv_variant *v = &info->variants[i];
+        fprintf(f, "%s{\"features\": [", i ? ", " : "");
+        for (unsigned k = 0, n = 0; k < VTV_F_COUNT; k++)
+            if (v->features & (1u << k))
+                fprintf(f, "%s\"%s\"", n++ ? ", " : "", vtv_feature_name(k));
+        fprintf(f, "], \"faces\": %llu}", (unsigned long long)v->faces);
+    }
+    fputs("],\n", f);
     fputs("  \"frames\": [", f);
     for (size_t i = 0; i < count; i++) {
         fputs(i ? ",\n    " : "\n    ", f);

@@ -117,7 +117,7 @@ static void collect_ahead(struct vtv_stream *s)
         }
 }
 
-int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, uint32_t layer,
+int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, const uint32_t *layers,
                     uint32_t slots, uint32_t threads, bool sync, uint32_t budget, bool bc_upload,
                     const struct vtv_stream_options *opt, struct vtv_render *render,
                     struct vts_error *err)
@@ -136,18 +136,33 @@ int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, uint32_
         return vt_error_set(err, VTS_ERR_ARG,
                             "--cache %u is too small: the coarsest level alone has %u tiles", slots,
                             top->tiles_x * top->tiles_y);
-    if (layer >= vts_store_geometry(store)->layer_count)
-        return vt_error_set(err, VTS_ERR_ARG, "%s: no layer %u", vts_store_name(store), layer);
-    const struct vts_layer *info = vts_store_layer(store, layer);
-    bool srgb = info->colour == VTS_COLOUR_SRGB;
+    /* one physical texture per map kind in use, one loader reading all of them per tile */
+    struct vtv_phys_layer phys[VTV_MAP_COUNT];
+    uint32_t order[VTV_LOADER_MAX_LAYERS], n = 0;
+    unsigned compressed = 0;
     uint32_t pp = vts_store_geometry(store)->tile_payload_px;
-    uint32_t bc =
-        bc_upload && vtv_render_bc_format(render, info->codec, srgb, pp) ? info->codec : 0;
-    st = vtv_render_set_cache(render, &s->cache, vts_store_geometry(store), srgb, bc, err);
+    memset(phys, 0, sizeof(phys));
+    for (int k = 0; k < VTV_MAP_COUNT; k++) {
+        if (layers[k] == UINT32_MAX)
+            continue;
+        if (layers[k] >= vts_store_geometry(store)->layer_count)
+            return vt_error_set(err, VTS_ERR_ARG, "%s: no layer %u", vts_store_name(store),
+                                layers[k]);
+        const struct vts_layer *info = vts_store_layer(store, layers[k]);
+        phys[k].used = true;
+        phys[k].srgb = info->colour == VTS_COLOUR_SRGB;
+        if (bc_upload && vtv_render_bc_format(render, info->codec, phys[k].srgb, pp)) {
+            phys[k].bc_codec = info->codec;
+            compressed |= 1u << n;
+        }
+        order[n++] = layers[k];
+    }
+    if (n == 0)
+        return vt_error_set(err, VTS_ERR_ARG, "no layer to show");
+    st = vtv_render_set_cache(render, &s->cache, vts_store_geometry(store), phys, err);
     if (st != 0)
         return st;
-    s->loader =
-        vtv_loader_create(store, layer, sync ? 0 : threads, bc ? VTV_LOADER_COMPRESSED : 0, err);
+    s->loader = vtv_loader_create_layers(store, order, n, sync ? 0 : threads, compressed, err);
     if (!s->loader)
         return err->status;
     uint32_t cap = vtv_loader_queue_capacity(s->loader);

@@ -61,9 +61,12 @@ struct vtv_stream {
 };
 
 /* Opens the cache (slots tiles), the loader (threads; 0 with sync) and uploads every tile of the
- * coarsest level, which stays resident. bc_upload: BC1/BC3 blocks go to a compressed physical
- * texture as stored when the GL can take them (else they are decoded on the CPU). */
-int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, uint32_t layer,
+ * coarsest level, which stays resident. layers: per map kind (enum vtv_map) the store layer drawn
+ * for it, or UINT32_MAX; each one used gets a physical texture with the same slots, and the loader
+ * reads all of them per tile position (one residency decision per position). bc_upload: BC1/BC3
+ * blocks go to a compressed physical texture as stored when the GL can take them (else they are
+ * decoded on the CPU). */
+int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, const uint32_t *layers,
                     uint32_t slots, uint32_t threads, bool sync, uint32_t budget, bool bc_upload,
                     const struct vtv_stream_options *opt, struct vtv_render *render,
                     struct vts_error *err);
