@@ -377,16 +377,15 @@ static void bind_textures(const struct vtv_render *r)
 }
 
 /* Blended groups: over what is drawn, without writing depth (not sorted among themselves). */
-static void set_blend(bool on)
+static void set_blend(bool on, bool colour)
 {
-    if (on) {
+    if (on && colour) {
         glEnablei(GL_BLEND, 0);
         glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-        glDepthMask(GL_FALSE);
-    } else {
+    } else if (colour) {
         glDisablei(GL_BLEND, 0);
-        glDepthMask(GL_TRUE);
     }
+    glDepthMask(on ? GL_FALSE : GL_TRUE);
 }
 
 /* Draws every group with its variant's program of kind (uniforms set by setup for each program
@@ -410,12 +409,14 @@ static void draw_groups(struct vtv_render *r, enum vtv_program_kind kind, const 
         }
         if (kind == VTV_PROG_VT)
             vtv_render_material_uniforms(r, p, &g->mat, v);
-        bool blend = kind == VTV_PROG_VT && (g->features & VTV_F_ALPHA_BLEND);
+        /* blended groups come last; they write no depth (the tile-determination pass: their
+           requests replace those of what is behind them, a constant one asks for nothing) */
+        bool blend = g->features & VTV_F_ALPHA_BLEND;
         if (blend)
-            set_blend(true);
+            set_blend(true, kind == VTV_PROG_VT);
         glDrawArrays(GL_TRIANGLES, (GLint)g->first, (GLsizei)g->count);
         if (blend)
-            set_blend(false);
+            set_blend(false, kind == VTV_PROG_VT);
     }
     glBindVertexArray(0);
     glUseProgram(0);

@@ -191,6 +191,10 @@ static const char vt_body[] =
     "        OK1 = false;\n"
     "        fb = used0 > want0;\n"
     "    }\n"
+    "#if !defined(F_DIFFUSE_MAP) && !defined(F_NORMAL_MAP) && !defined(F_SPECULAR_MAP) && "
+    "!defined(F_ALPHA_MAP)\n"
+    "    fb = false; /* a constant: no tile wanted, none missing */\n"
+    "#endif\n"
     "    vec4 c = vt_material();\n"
     "    if (u_debug == 1) {\n"
     "        c = vec4(mix(level_colour(used0), c.rgb, 0.25), 1.0);\n"
@@ -206,7 +210,7 @@ static const char vt_body[] =
 /* Tile determination: the level the main pass wants; cut-outs are discarded with the coverage
  * read through the page table (the wanted tile or its resident ancestor), so that nothing behind
  * a hole is hidden and no tile is asked for where nothing is drawn. A material without any map
- * asks for no tile (it still occludes). */
+ * asks for no tile (it still occludes, unless it is blended: then it leaves what is behind). */
 static const char feedback_body[] =
     "layout(location = 0) out uvec4 o_request;\n"
     "void main() {\n"
@@ -230,6 +234,8 @@ static const char feedback_body[] =
     "#if defined(F_DIFFUSE_MAP) || defined(F_NORMAL_MAP) || defined(F_SPECULAR_MAP) || "
     "defined(F_ALPHA_MAP)\n"
     "    o_request = uvec4(uint(tc.x), uint(tc.y), uint(want), 1u);\n"
+    "#elif defined(F_ALPHA_BLEND)\n"
+    "    discard;\n"
     "#else\n"
     "    o_request = uvec4(0u);\n"
     "#endif\n"
