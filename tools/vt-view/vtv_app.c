@@ -29,6 +29,7 @@ void vtv_options_default(struct vtv_options *o)
     o->threads = 2;
     o->ram_tiles = UINT32_MAX; /* as many as the physical cache */
     o->prefetch = true;
+    o->auto_lod = true;
     const float dir[3] = {0.3f, 0.8f, 0.5f}, colour[3] = {0.85f, 0.85f, 0.85f},
                 ambient[3] = {0.15f, 0.15f, 0.15f};
     memcpy(o->light_dir, dir, sizeof(dir));
@@ -235,7 +236,9 @@ static int setup(struct app *a, struct vts_error *err)
         struct vtv_stream_options so = {.ram_tiles = o->ram_tiles == UINT32_MAX ? o->cache_tiles
                                                                                 : o->ram_tiles,
                                         .prefetch = o->prefetch,
-                                        .reads = o->reads};
+                                        .reads = o->reads,
+                                        .auto_lod = o->auto_lod,
+                                        .lod_bias = o->lod_bias};
         st = vtv_stream_init(&a->stream, a->store, a->layers, o->cache_tiles, o->threads, o->sync,
                              o->uploads, !o->no_bc_upload, &so, &a->render, err);
     }

@@ -34,6 +34,8 @@ static const char usage_text[] =
     "                        ahead into the RAM cache (default on)\n"
     "  --reads N             with --sync: tiles read from the store per frame at most\n"
     "                        (default 0 = no limit), the I/O budget of a deterministic run\n"
+    "  --lod-bias auto|N     levels added to the level of detail: auto (default) raises it\n"
+    "                        while the wanted tiles outgrow --cache, N (0..16) fixes it\n"
     "  -j, --threads N       loader threads (default 2)\n"
     "  --sync                load tiles on the render thread (deterministic statistics)\n"
     "  --reference           render with one plain mipmapped GL texture (level 0 of the store)\n"
@@ -78,6 +80,7 @@ enum {
     OPT_LIGHT,
     OPT_LIGHT_COLOUR,
     OPT_AMBIENT,
+    OPT_LOD_BIAS,
     OPT_VERSION,
 };
 
@@ -144,6 +147,7 @@ int main(int argc, char **argv)
         {"light", required_argument, NULL, OPT_LIGHT},
         {"light-colour", required_argument, NULL, OPT_LIGHT_COLOUR},
         {"ambient", required_argument, NULL, OPT_AMBIENT},
+        {"lod-bias", required_argument, NULL, OPT_LOD_BIAS},
         {"quiet", no_argument, NULL, 'q'},
         {"verbose", no_argument, NULL, 'v'},
         {"help", no_argument, NULL, 'h'},
@@ -267,6 +271,15 @@ int main(int argc, char **argv)
             if (parse_vec3(optarg, 0, 1e6, o.ambient) != 0)
                 return vt_usage_error("--ambient '%s': expected R,G,B >= 0", optarg);
             break;
+        case OPT_LOD_BIAS: {
+            char *end;
+            double b = strtod(optarg, &end);
+            o.auto_lod = strcmp(optarg, "auto") == 0;
+            if (!o.auto_lod && (end == optarg || *end || !(b >= 0 && b <= 16)))
+                return vt_usage_error("--lod-bias '%s': expected auto or 0..16", optarg);
+            o.lod_bias = o.auto_lod ? 0.0f : (float)b;
+            break;
+        }
         case 'q':
             verbosity = VT_LOG_ERROR;
             break;

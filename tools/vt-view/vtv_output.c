@@ -51,9 +51,9 @@ static void frame_json(FILE *f, const struct vtv_frame_stats *s)
             "{\"requested\": %" PRIu64 ", \"loaded\": %" PRIu64 ", \"resident\": %" PRIu64
             ", \"uploads\": %" PRIu64 ", \"fallback_pixels\": %" PRIu64 ", \"empty\": %" PRIu64
             ", \"failed\": %" PRIu64 ", \"ram_hits\": %" PRIu64 ", \"reads\": %" PRIu64
-            ", \"prefetched\": %" PRIu64 ", \"missed_by_level\": [",
+            ", \"prefetched\": %" PRIu64 ", \"lod_bias\": %g, \"missed_by_level\": [",
             s->requested, s->loaded, s->resident, s->uploads, s->fallback_pixels, s->empty,
-            s->failed, s->ram_hits, s->reads, s->prefetched);
+            s->failed, s->ram_hits, s->reads, s->prefetched, (double)s->lod_bias);
     for (uint32_t l = 0; l < s->levels && l < VTS_MAX_LEVELS; l++)
         fprintf(f, "%s%u", l ? ", " : "", s->missed[l]);
     fputs("]}", f);

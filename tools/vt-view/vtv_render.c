@@ -439,7 +439,7 @@ static void begin_main(const struct vtv_render *r)
 static void setup_vt(struct vtv_render *r, GLuint p, const struct vtv_view *v, void *user)
 {
     (void)user;
-    common_uniforms(r, p, v, 0.0f);
+    common_uniforms(r, p, v, r->lod_bias);
     glUniform2f(glGetUniformLocation(p, "u_jitter"), 0.0f, 0.0f);
     glUniform1i(glGetUniformLocation(p, "u_debug"), v->debug);
 }
@@ -463,7 +463,7 @@ static void setup_feedback(struct vtv_render *r, GLuint p, const struct vtv_view
 {
     const float *jitter = user;
     /* At 1/k of the resolution the gradients are k times larger: bias back to full resolution. */
-    common_uniforms(r, p, v, log2f((float)r->fb_width / (float)r->width));
+    common_uniforms(r, p, v, log2f((float)r->fb_width / (float)r->width) + r->lod_bias);
     glUniform2f(glGetUniformLocation(p, "u_jitter"), jitter[0], jitter[1]);
 }
 

@@ -66,6 +66,7 @@ struct vtv_render {
     bool srgb;        /* the frame is sRGB-encoded (the diffuse layer is sRGB): shading in linear */
     GLenum bc_format; /* the diffuse physical texture's compressed format, or 0 */
     struct vtv_light light;
+    float lod_bias; /* levels added to the level of detail of both passes (vtv_stream's) */
 };
 
 struct vtv_view {

@@ -25,6 +25,7 @@ struct vtv_frame_stats {
     uint64_t ram_hits;        /* uploads served by the RAM cache (no read, no decode) */
     uint64_t reads;           /* tiles read and decoded this frame (--sync; demand + prefetch) */
     uint64_t prefetched;      /* tiles read ahead of demand into the RAM cache this frame */
+    float lod_bias;           /* levels added to the level of detail in this frame */
     uint32_t levels;          /* entries of missed */
     uint32_t missed[VTS_MAX_LEVELS]; /* per level: tiles wanted that were not resident */
     double ms;                       /* wall time of the frame */
@@ -35,6 +36,8 @@ struct vtv_stream_options {
     uint32_t ram_tiles; /* RAM cache of decoded payloads, in tiles (0: none) */
     bool prefetch;      /* read the neighbours and the next finer tiles of wanted ones ahead */
     uint32_t reads;     /* --sync: tiles read from the store per frame at most (0: no limit) */
+    bool auto_lod;      /* raise the level of detail when the tiles wanted outgrow the cache */
+    float lod_bias;     /* the bias when not auto_lod (levels, >= 0) */
 };
 
 struct vtv_stream {

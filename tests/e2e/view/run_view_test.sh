@@ -74,21 +74,58 @@ bad_borders)
   done
   ;;
 small_cache)
-  # 6 slots for a view that needs ~20 tiles: still renders, counts fallbacks, never errors.
+  # 6 slots for a view that needs ~20 tiles: still renders, counts fallbacks, never errors (the
+  # level of detail fixed: --lod-bias 0; case lod_auto covers the automatic bias).
   store good.vts
-  vt good.vts --camera min.cam --frames 24 --sync --cache 6 --screenshot small.png --stats small.json
+  vt good.vts --camera min.cam --frames 24 --sync --cache 6 --lod-bias 0 --screenshot small.png \
+    --stats small.json
   "$check" stat small.json resident == 6 || fail "cache not full"
   "$check" stat small.json fallback_pixels '>' 0 || fail "no fallback counted"
   "$check" stat small.json failed == 0 || fail "failed tiles"
   "$check" dark small.png 0 || fail "unrendered pixels"
   # loader threads: the same once the cache is full
-  until_loaded 24 small.json resident == 6 -- good.vts --camera min.cam --cache 6 \
+  until_loaded 24 small.json resident == 6 -- good.vts --camera min.cam --cache 6 --lod-bias 0 \
     --screenshot small.png || fail "cache not full"
   "$check" stat small.json fallback_pixels '>' 0 || fail "no fallback counted"
   "$check" stat small.json failed == 0 || fail "failed tiles"
   "$check" dark small.png 0 || fail "unrendered pixels"
   vt good.vts --camera min.cam --frames 1 --reference --screenshot ref.png
   "$check" psnr small.png ref.png --min 20 || fail "small cache shows garbage"
+  ;;
+lod_auto)
+  # An over-committed cache (8 slots for a view that wants ~20 tiles): the automatic level-of-detail
+  # bias wants one level coarser instead, so every frame completes (0 fallback pixels once the
+  # tiles are in) at a bounded PSNR loss; with the bias fixed at 0 the same view keeps showing
+  # fallbacks. A cache large enough never biases.
+  store good.vts
+  vt good.vts --camera min.cam --frames 24 --sync --cache 8 --screenshot auto.png --stats auto.json
+  vt good.vts --camera min.cam --frames 24 --sync --cache 8 --lod-bias 0 --screenshot fixed.png \
+    --stats fixed.json
+  vt good.vts --camera min.cam --frames 1 --reference --screenshot ref.png
+  "$check" stat auto.json fallback_pixels == 0 || fail "auto: fallback after convergence"
+  "$check" stat auto.json lod_bias == 1 || fail "auto: not one level coarser"
+  "$check" stat auto.json requested '<=' 8 || fail "auto: more tiles wanted than slots"
+  "$check" psnr auto.png ref.png --min 30 || fail "auto: PSNR loss not bounded"
+  "$check" stat fixed.json fallback_pixels '>' 10000 || fail "fixed: no fallback to avoid"
+  "$check" stat fixed.json lod_bias == 0 || fail "fixed: biased"
+  vt good.vts --camera min.cam --frames 24 --sync --stats big.json
+  "$check" stat big.json lod_bias == 0 || fail "a large cache biased"
+  "$check" stat big.json fallback_pixels == 0 || fail "a large cache: fallback"
+  # a moving camera (the 4-view path of sync_stats, each view held 6 frames) never thrashes: once
+  # each view converged no frame uploads or misses anything
+  printf '%s\n' "100 100 2" "100 100 2" "100 100 2" "100 100 2" "100 100 2" "100 100 2" \
+    "400 380 0.9" "400 380 0.9" "400 380 0.9" "400 380 0.9" "400 380 0.9" "400 380 0.9" \
+    "256 256 0.41" "256 256 0.41" "256 256 0.41" "256 256 0.41" "256 256 0.41" "256 256 0.41" \
+    "300 150 1.5" "300 150 1.5" "300 150 1.5" "300 150 1.5" "300 150 1.5" "300 150 1.5" >path.cam
+  vt good.vts --camera path.cam --frames 24 --sync --cache 8 --stats path.json
+  python3 - path.json <<'PY' || fail "thrashing on the path"
+import json, sys
+frames = json.load(open(sys.argv[1]))["frames"]
+for view in range(4):
+    last = frames[view * 6 + 5]
+    assert last["fallback_pixels"] == 0 and last["uploads"] == 0, (view, last)
+print("each view converged within 6 frames, biases", [f["lod_bias"] for f in frames])
+PY
   ;;
 empty_tiles)
   # Level-0 tiles (1,1) and (2,0) stored with length 0: their 64x64 pixels show level 1.
