@@ -384,6 +384,36 @@ scene_effects)
   render effects.vts opaque.vt.obj fix bilinear opaque
   ! grep -q '"alpha_' vt_opaque.json || fail "an alpha variant for an opaque scene"
   [ "$(grep -o '"features"' vt_opaque.json | wc -l)" = 4 ] || fail "opaque: not 4 variants"
+  # a map naming a layer the store lacks: one line, exit 1
+  sed 's/#normal$/#nosuch/' effects.vt.mtl >bad.vt.mtl
+  sed 's/^mtllib .*/mtllib bad.vt.mtl/' effects.vt.obj >bad.vt.obj
+  rc=0
+  vt effects.vts bad.vt.obj --frames 1 2>bad.err || rc=$?
+  [ $rc = 1 ] || fail "a missing layer: exit $rc"
+  grep -qF "effects.vts: no layer 'nosuch' (the norm/bump maps of the scene 'bad.vt.obj' name it)" \
+    bad.err || fail "a missing layer: $(cat bad.err)"
+  ;;
+normal_tilt)
+  # The tangent frame against an independent expectation (vtv_make_effects --tilt): a normal map
+  # leaning towards +u +v on three grey quads (UVs as laid, u mirrored, v mirrored) under a light
+  # from +x +y: the first is the brightest (122 against 74, predicted 120 against 72 from the
+  # shading formula); a tangent or a bitangent of the wrong sign darkens it. Virtual texture and
+  # reference alike.
+  mkdir tex
+  "$make_effects" --tilt .
+  "$atlas" tilt.obj -o atlas.json --tile-size 64 --border 4 -q
+  "$offset" tilt.obj atlas.json -o tilt.vt.obj -q
+  "$layout_tiles" --layout atlas.json -o tilt.vts --codec png -q
+  echo "0 0.4 2.4 0 0.4 0 50" >tilt.cam
+  vt tilt.vts tilt.vt.obj --camera tilt.cam --frames 20 --sync --light 1,1,0.4 --screenshot vt.png
+  vt tilt.vts tilt.vt.obj --camera tilt.cam --frames 1 --reference --reference-scene tilt.obj \
+    --light 1,1,0.4 --screenshot ref.png
+  "$check" psnr vt.png ref.png --min 40 || fail "against the reference"
+  for f in vt ref; do
+    "$check" mean $f.png 46 120 16 16 --min 110 || fail "$f: as laid, not lit towards +u +v"
+    "$check" mean $f.png 120 120 16 16 --max 85 || fail "$f: u mirrored, lit towards +u"
+    "$check" mean $f.png 194 120 16 16 --max 85 || fail "$f: v mirrored, lit towards +v"
+  done
   ;;
 scene_repeat | scene_repeat_split)
   # Repeating materials as real scenes have them (tests/e2e/view/vtv_make_scene.c --repeat): a
