@@ -384,6 +384,16 @@ scene_effects)
   render effects.vts opaque.vt.obj fix bilinear opaque
   ! grep -q '"alpha_' vt_opaque.json || fail "an alpha variant for an opaque scene"
   [ "$(grep -o '"features"' vt_opaque.json | wc -l)" = 4 ] || fail "opaque: not 4 variants"
+  # the reference applies -s and -o per map: the mask's map_Kd with -s 2 2 1 -o 0.25 0.5 0 draws
+  # what the OBJ with the mask's texcoords scaled and offset so draws (its vt are the 9th to 12th)
+  sed 's|^map_Kd tex/mask.png|map_Kd -s 2 2 1 -o 0.25 0.5 0 tex/mask.png|' effects.mtl >so.mtl
+  sed 's/effects\.mtl/so.mtl/' effects.obj >so.obj
+  awk '$1 == "vt" { n++; if (n >= 9 && n <= 12) { $2 = $2 * 2 + 0.25; $3 = $3 * 2 + 0.5 } } { print }' \
+    effects.obj >moved.obj
+  ref so.obj fix bilinear so
+  ref moved.obj fix bilinear moved
+  "$check" psnr ref_so.png ref_moved.png --min 50 || fail "-s/-o not applied as texcoords"
+  "$check" psnr ref_so.png ref_bilinear.png --max 35 || fail "-s/-o ignored"
   # a map naming a layer the store lacks: one line, exit 1
   sed 's/#normal$/#nosuch/' effects.vt.mtl >bad.vt.mtl
   sed 's/^mtllib .*/mtllib bad.vt.mtl/' effects.vt.obj >bad.vt.obj
