@@ -241,6 +241,8 @@ static int setup(struct app *a, struct vts_error *err)
                                         .lod_bias = o->lod_bias};
         st = vtv_stream_init(&a->stream, a->store, a->layers, o->cache_tiles, o->threads, o->sync,
                              o->uploads, !o->no_bc_upload, &so, &a->render, err);
+        /* the frame encodes as the reference's: by the diffuse layer, else the shown one */
+        a->render.srgb = srgb;
     }
     if (st != 0)
         return st;
