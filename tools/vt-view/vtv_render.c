@@ -59,6 +59,31 @@ static GLuint program(enum vtv_program_kind kind, unsigned features, struct vts_
     return p;
 }
 
+/* The tile determination depends only on the coverage features and on whether any map is
+ * sampled: variants that differ in shading share its program (fewer programs for LLVM to
+ * compile on the first frame). */
+static GLuint feedback_program(struct vtv_render *r, unsigned features, struct vts_error *err)
+{
+    const unsigned maps =
+        VTV_F_DIFFUSE_MAP | VTV_F_NORMAL_MAP | VTV_F_SPECULAR_MAP | VTV_F_ALPHA_MAP;
+    unsigned key = features & (VTV_F_ALPHA_TEST | VTV_F_ALPHA_MAP | VTV_F_ALPHA_BLEND);
+    if (features & maps)
+        key |= VTV_F_DIFFUSE_MAP;
+    for (uint32_t i = 0; i < r->feedback_count; i++)
+        if (r->feedback_keys[i] == key)
+            return r->feedback_progs[i];
+    if (r->feedback_count == VTV_MAX_VARIANTS) {
+        vt_error_set(err, VTS_ERR_LIMIT, "more than %d shader variants", VTV_MAX_VARIANTS);
+        return 0;
+    }
+    GLuint p = program(VTV_PROG_FEEDBACK, key, err);
+    if (p) {
+        r->feedback_keys[r->feedback_count] = key;
+        r->feedback_progs[r->feedback_count++] = p;
+    }
+    return p;
+}
+
 struct vtv_variant *vtv_render_variant(struct vtv_render *r, unsigned features, unsigned kinds,
                                        struct vts_error *err)
 {
@@ -77,7 +102,9 @@ struct vtv_variant *vtv_render_variant(struct vtv_render *r, unsigned features, 
     }
     for (int k = 0; k < VTV_PROG_KINDS; k++)
         if ((kinds & (1u << k)) && !v->prog[k] &&
-            !(v->prog[k] = program((enum vtv_program_kind)k, features, err)))
+            !(v->prog[k] = k == VTV_PROG_FEEDBACK
+                               ? feedback_program(r, features, err)
+                               : program((enum vtv_program_kind)k, features, err)))
             return NULL;
     return v;
 }
@@ -142,8 +169,10 @@ void vtv_render_free(struct vtv_render *r)
 {
     for (uint32_t i = 0; i < r->variant_count; i++)
         for (int k = 0; k < VTV_PROG_KINDS; k++)
-            if (r->variants[i].prog[k])
+            if (r->variants[i].prog[k] && k != VTV_PROG_FEEDBACK)
                 glDeleteProgram(r->variants[i].prog[k]);
+    for (uint32_t i = 0; i < r->feedback_count; i++)
+        glDeleteProgram(r->feedback_progs[i]);
     glDeleteTextures(VTV_MAP_COUNT, r->tex_phys);
     GLuint tex[2] = {r->tex_pt, r->tex_reference};
     glDeleteTextures(2, tex);

@@ -18,7 +18,8 @@
 /* One shader variant: the programs of one feature set (enum vtv_feature bits). */
 struct vtv_variant {
     unsigned features;
-    GLuint prog[VTV_PROG_KINDS]; /* 0: not compiled (not needed by this run) */
+    GLuint prog[VTV_PROG_KINDS]; /* 0: not compiled (not needed by this run); the feedback one is
+                                    shared (owned by struct vtv_render) */
     uint64_t faces;              /* OBJ faces drawn with it */
 };
 
@@ -44,6 +45,11 @@ struct vtv_render {
     uint32_t fb_width, fb_height; /* tile-determination pass */
     struct vtv_variant variants[VTV_MAX_VARIANTS];
     uint32_t variant_count;
+    /* tile-determination programs, shared by variants with the same coverage features (their
+       key), owned here */
+    unsigned feedback_keys[VTV_MAX_VARIANTS];
+    GLuint feedback_progs[VTV_MAX_VARIANTS];
+    uint32_t feedback_count;
     GLuint vao, vbo;
     const struct vtv_mesh_group *groups; /* the scene's (owned by its struct vtv_mesh) */
     uint32_t group_count;
