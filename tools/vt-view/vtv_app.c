@@ -29,6 +29,12 @@ void vtv_options_default(struct vtv_options *o)
     o->threads = 2;
     o->ram_tiles = UINT32_MAX; /* as many as the physical cache */
     o->prefetch = true;
+    o->auto_lod = true;
+    const float dir[3] = {0.3f, 0.8f, 0.5f}, colour[3] = {0.85f, 0.85f, 0.85f},
+                ambient[3] = {0.15f, 0.15f, 0.15f};
+    memcpy(o->light_dir, dir, sizeof(dir));
+    memcpy(o->light_colour, colour, sizeof(colour));
+    memcpy(o->ambient, ambient, sizeof(ambient));
 }
 
 static double now_s(void)
@@ -77,7 +83,51 @@ struct app {
     uint8_t *shot;
     bool three_d, trilinear;
     int debug;
+    uint32_t layers[VTV_MAP_COUNT]; /* store layer per map kind, UINT32_MAX: none */
 };
+
+/* The store layer of each map kind the scene's materials name (the shown layer for a map naming
+ * the store alone); at least the diffuse one (the shown layer when no material maps anything). */
+static int map_layers(struct app *a, uint32_t shown, struct vts_error *err)
+{
+    static const char *const stmt[VTV_MAP_COUNT] = {"map_Kd", "norm/bump", "map_Ks", "map_d"};
+    bool any = false;
+    for (int k = 0; k < VTV_MAP_COUNT; k++) {
+        const char *name = a->mesh.layers[k];
+        a->layers[k] = UINT32_MAX;
+        if (!name)
+            continue;
+        any = true;
+        if (!name[0]) {
+            a->layers[k] = shown;
+            continue;
+        }
+        const struct vts_geometry *g = vts_store_geometry(a->store);
+        for (uint32_t i = 0; i < g->layer_count && a->layers[k] == UINT32_MAX; i++)
+            if (strcmp(vts_store_layer(a->store, i)->name, name) == 0)
+                a->layers[k] = i;
+        if (a->layers[k] == UINT32_MAX)
+            return vt_error_set(err, VTS_ERR_BAD_INPUT,
+                                "%s: no layer '%s' (the %s maps of the scene '%s' name it)",
+                                a->o->store_path, name, stmt[k], a->o->obj_path);
+    }
+    if (!any)
+        a->layers[VTV_MAP_DIFFUSE] = shown;
+    return 0;
+}
+
+static void set_light(struct vtv_render *r, const struct vtv_options *o)
+{
+    double l = 0;
+    for (int k = 0; k < 3; k++)
+        l += (double)o->light_dir[k] * o->light_dir[k];
+    l = sqrt(l);
+    for (int k = 0; k < 3; k++) {
+        r->light.dir[k] = (float)(o->light_dir[k] / l);
+        r->light.colour[k] = o->light_colour[k];
+        r->light.ambient[k] = o->ambient[k];
+    }
+}
 
 static void frame_view(struct app *a, uint64_t frame, struct vtv_view *v)
 {
@@ -98,9 +148,8 @@ static void frame_view(struct app *a, uint64_t frame, struct vtv_view *v)
     }
     v->trilinear = a->trilinear;
     v->debug = a->debug;
-    /* 3D: cut-out textures (alpha) are cut out, as a renderer's alpha test would; 2D shows the
-     * texels as they are. */
-    v->alpha_test = a->three_d ? 0.5f : 0.0f;
+    for (int k = 0; k < 3; k++)
+        v->eye[k] = a->three_d ? (float)cam.v[k] : 0.0f;
 }
 
 static void apply_input(struct app *a, const struct vtv_input *in)
@@ -135,8 +184,14 @@ static int setup(struct app *a, struct vts_error *err)
         return vt_error_set(err, VTS_ERR_ARG, "%s: no layer '%s'", o->store_path, o->layer_name);
     const struct vts_geometry *g = vts_store_geometry(a->store);
     a->three_d = o->obj_path != NULL;
-    int st = a->three_d ? vtv_mesh_read_obj(&a->mesh, o->obj_path, err)
+    /* materials: 3D, unless --layer asks for one layer as it is, or the plain reference (the
+     * store's level 0 through the scene) is drawn */
+    bool materials = a->three_d && !o->layer_name && !(o->reference && !o->reference_scene);
+    int st = a->three_d ? vtv_mesh_read_obj(&a->mesh, o->obj_path, materials, err)
                         : vtv_mesh_quad(&a->mesh, g->width, g->height, err);
+    if (st != 0)
+        return st;
+    st = map_layers(a, layer, err);
     if (st != 0)
         return st;
     if (o->camera_path) {
@@ -157,12 +212,20 @@ static int setup(struct app *a, struct vts_error *err)
     st = vtv_render_init(&a->render, o->width, o->height, fw, fh, err);
     if (st != 0)
         return st;
-    vtv_render_set_mesh(&a->render, a->mesh.vertices, a->mesh.vertex_count, a->mesh.indices,
-                        a->mesh.index_count);
-    bool srgb = vts_store_layer(a->store, layer)->colour == VTS_COLOUR_SRGB;
+    set_light(&a->render, o);
+    if (!o->reference_scene) {
+        st = vtv_render_set_mesh(&a->render, &a->mesh,
+                                 o->reference ? 1u << VTV_PROG_REFERENCE
+                                              : (1u << VTV_PROG_VT) | (1u << VTV_PROG_FEEDBACK),
+                                 err);
+        if (st != 0)
+            return st;
+    }
+    uint32_t shown = a->layers[VTV_MAP_DIFFUSE] != UINT32_MAX ? a->layers[VTV_MAP_DIFFUSE] : layer;
+    bool srgb = vts_store_layer(a->store, shown)->colour == VTS_COLOUR_SRGB;
     if (o->reference_scene) {
         a->render.srgb = srgb; /* the frame encodes as the virtual-texture pass's would */
-        st = vtv_reference_scene_load(&a->ref_scene, o->reference_scene, srgb, err);
+        st = vtv_reference_scene_load(&a->ref_scene, &a->render, o->reference_scene, srgb, err);
     } else if (o->reference) {
         uint8_t *img = vtv_stream_level0(a->store, layer, err);
         if (!img)
@@ -173,9 +236,13 @@ static int setup(struct app *a, struct vts_error *err)
         struct vtv_stream_options so = {.ram_tiles = o->ram_tiles == UINT32_MAX ? o->cache_tiles
                                                                                 : o->ram_tiles,
                                         .prefetch = o->prefetch,
-                                        .reads = o->reads};
-        st = vtv_stream_init(&a->stream, a->store, layer, o->cache_tiles, o->threads, o->sync,
+                                        .reads = o->reads,
+                                        .auto_lod = o->auto_lod,
+                                        .lod_bias = o->lod_bias};
+        st = vtv_stream_init(&a->stream, a->store, a->layers, o->cache_tiles, o->threads, o->sync,
                              o->uploads, !o->no_bc_upload, &so, &a->render, err);
+        /* the frame encodes as the reference's: by the diffuse layer, else the shown one */
+        a->render.srgb = srgb;
     }
     if (st != 0)
         return st;
@@ -290,6 +357,8 @@ static int loop(struct app *a, struct vts_error *err)
             .cache_tiles = o->cache_tiles,
             .uploads_per_frame = o->uploads,
             .sync = o->sync,
+            .variants = a->render.variants,
+            .variant_count = a->render.variant_count,
             .physical_format = o->reference               ? "none"
                                : a->render.bc_format != 0 ? "bc"
                                : a->render.srgb           ? "srgb8_alpha8"

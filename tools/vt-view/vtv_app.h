@@ -14,6 +14,9 @@ struct vtv_options {
     uint32_t width, height, orbit, frames, feedback_div, cache_tiles, uploads, threads;
     uint32_t ram_tiles; /* --ram-cache (UINT32_MAX: as --cache) */
     uint32_t reads;     /* --reads: --sync reads per frame (0: no limit) */
+    float light_dir[3], light_colour[3], ambient[3]; /* --light, --light-colour, --ambient */
+    bool auto_lod;                                   /* --lod-bias auto (default) */
+    float lod_bias;                                  /* --lod-bias N */
 };
 
 void vtv_options_default(struct vtv_options *o);

@@ -1,6 +1,7 @@
 /* vt-view tile loader: read + decode + convert to RGBA8, synchronously or on threads. */
 #include "vtv_loader.h"
 
+#include <assert.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,17 +19,24 @@
 struct scratch {
     void *payload;
     size_t capacity;
-    struct vt_image img;
+    struct vt_image img[VTV_LOADER_MAX_LAYERS];
+};
+
+/* One layer the loader reads. */
+struct loader_layer {
+    uint32_t index;
+    const struct vt_codec *codec;
+    struct vts_layer info;
+    size_t bc_bytes; /* > 0: hand over BC blocks of this size instead of decoding */
 };
 
 struct vtv_loader {
     const struct vts_store *store;
-    uint32_t layer;
-    const struct vt_codec *codec;
-    struct vts_layer info;
+    struct loader_layer layers[VTV_LOADER_MAX_LAYERS];
+    uint32_t layer_count;
     uint32_t payload_px;
     uint32_t max_payload;
-    size_t bc_bytes; /* > 0: hand over BC blocks of this size instead of decoding */
+    size_t stride; /* bytes of one layer in a result: payload_px^2 * 4 */
     /* threads */
     pthread_t *threads;
     uint32_t thread_count;
@@ -98,12 +106,62 @@ static struct vtv_load *new_result(struct vtv_loader *l)
     if (!r && !(r = calloc(1, sizeof(*r))))
         return NULL;
     memset(r, 0, sizeof(*r));
-    r->rgba = rgba ? rgba : malloc((size_t)l->payload_px * l->payload_px * 4);
+    r->rgba = rgba ? rgba : malloc(l->stride * l->layer_count);
     if (!r->rgba) {
         free(r);
         return NULL;
     }
     return r;
+}
+
+/* Reads and decodes layer k of tile (level, x, y) into dst (one layer's slice of a result);
+ * *empty when it is stored empty. Returns 0 or a status with the message in err. */
+static int load_layer(struct vtv_loader *l, struct scratch *sc, uint32_t k, uint32_t level,
+                      uint32_t x, uint32_t y, uint8_t *dst, bool *empty, size_t *read,
+                      struct vts_error *err)
+{
+    const struct loader_layer *ly = &l->layers[k];
+    size_t len = 0;
+    int st = 0;
+    if (!sc->img[k].pixels)
+        st = vt_image_alloc(&sc->img[k], l->payload_px, l->payload_px, ly->info.channels,
+                            ly->info.sample, err);
+    if (st == 0)
+        st = vts_store_read(l->store, ly->index, level, x, y, sc->payload, sc->capacity, &len, 0,
+                            err);
+    *empty = st == 0 && len == 0;
+    *read += len;
+    if (st != 0 || len == 0)
+        return st;
+    if (ly->bc_bytes) {
+        if (len != ly->bc_bytes)
+            return vt_error_set(
+                err, VTS_ERR_BAD_INPUT,
+                "'%s': tile %u,%u of level %u: %zu bytes of BC blocks, expected %zu",
+                vts_store_name(l->store), x, y, level, len, ly->bc_bytes);
+        memcpy(dst, sc->payload, len);
+        return 0;
+    }
+    struct vts_error e = {0};
+    st = ly->codec->decode(sc->payload, len, &sc->img[k], &e);
+    if (st != 0) /* the codec's message does not say which tile */
+        return vt_error_set(err, st, "'%s': tile %u,%u of level %u: %s", vts_store_name(l->store),
+                            x, y, level, e.message);
+    to_rgba8(&sc->img[k], dst);
+    return 0;
+}
+
+/* What a layer stored empty shows when other layers of the tile are not: a flat normal, else
+ * transparent black (BC blocks of zeros). */
+static void fill_empty(const struct vtv_loader *l, uint32_t k, uint8_t *dst)
+{
+    memset(dst, 0, l->stride);
+    if (l->layers[k].bc_bytes || l->layers[k].info.colour != VTS_COLOUR_NORMAL)
+        return;
+    for (size_t i = 0; i < l->stride; i += 4) {
+        dst[i] = dst[i + 1] = 128;
+        dst[i + 2] = dst[i + 3] = 255;
+    }
 }
 
 static struct vtv_load *load(struct vtv_loader *l, struct scratch *sc, uint64_t index,
@@ -117,7 +175,7 @@ static struct vtv_load *load(struct vtv_loader *l, struct scratch *sc, uint64_t 
     r->x = x;
     r->y = y;
     struct vts_error err = {0};
-    size_t len = 0, need = l->max_payload ? l->max_payload : 1;
+    size_t need = l->max_payload ? l->max_payload : 1;
     int st = 0;
     if (sc->capacity < need) {
         free(sc->payload);
@@ -127,34 +185,19 @@ static struct vtv_load *load(struct vtv_loader *l, struct scratch *sc, uint64_t 
         else
             sc->capacity = need;
     }
-    if (st == 0 && !sc->img.pixels)
-        st = vt_image_alloc(&sc->img, l->payload_px, l->payload_px, l->info.channels,
-                            l->info.sample, &err);
-    if (st == 0)
-        st = vts_store_read(l->store, l->layer, level, x, y, sc->payload, sc->capacity, &len, 0,
-                            &err);
-    if (st == 0 && len == 0)
-        r->empty = true;
-    r->bytes_read = len;
-    if (st == 0 && len > 0 && l->bc_bytes) {
-        if (len != l->bc_bytes)
-            st = vt_error_set(&err, VTS_ERR_BAD_INPUT,
-                              "'%s': tile %u,%u of level %u: %zu bytes of BC blocks, expected %zu",
-                              vts_store_name(l->store), x, y, level, len, l->bc_bytes);
-        else
-            memcpy(r->rgba, sc->payload, len);
-        r->bytes = len;
-    } else if (st == 0 && len > 0) {
-        st = l->codec->decode(sc->payload, len, &sc->img, &err);
-        if (st == 0)
-            to_rgba8(&sc->img, r->rgba);
-        else /* the codec's message does not say which tile */
-            snprintf(r->error, sizeof(r->error), "'%s': tile %u,%u of level %u: %s",
-                     vts_store_name(l->store), x, y, level, err.message);
-        r->bytes = (size_t)l->payload_px * l->payload_px * 4;
+    bool empty[VTV_LOADER_MAX_LAYERS] = {false}, all_empty = true;
+    for (uint32_t k = 0; k < l->layer_count && st == 0; k++) {
+        st = load_layer(l, sc, k, level, x, y, r->rgba + k * l->stride, &empty[k], &r->bytes_read,
+                        &err);
+        all_empty &= empty[k];
     }
+    r->empty = st == 0 && all_empty;
+    for (uint32_t k = 0; k < l->layer_count && st == 0 && !r->empty; k++)
+        if (empty[k])
+            fill_empty(l, k, r->rgba + k * l->stride);
+    r->bytes = l->stride * l->layer_count;
     r->status = st;
-    if (st != 0 && !r->error[0])
+    if (st != 0)
         snprintf(r->error, sizeof(r->error), "%s", err.message);
     if (st != 0 || r->empty) {
         free(r->rgba);
@@ -166,7 +209,8 @@ static struct vtv_load *load(struct vtv_loader *l, struct scratch *sc, uint64_t 
 static void scratch_free(struct scratch *sc)
 {
     free(sc->payload);
-    vt_image_release(&sc->img);
+    for (uint32_t k = 0; k < VTV_LOADER_MAX_LAYERS; k++)
+        vt_image_release(&sc->img[k]);
     memset(sc, 0, sizeof(*sc));
 }
 
@@ -241,45 +285,65 @@ static void *worker(void *arg)
     return NULL;
 }
 
-struct vtv_loader *vtv_loader_create(const struct vts_store *store, uint32_t layer,
-                                     uint32_t threads, unsigned flags, struct vts_error *err)
+/* Checks layer index of store and fills ly; NULL error otherwise. */
+static int setup_layer(const struct vts_store *store, uint32_t index, bool compressed,
+                       uint32_t payload_px, struct loader_layer *ly, struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(store);
-    if (layer >= g->layer_count) {
-        vt_error_set(err, VTS_ERR_ARG, "%s: no layer %u (the store has %u)", vts_store_name(store),
-                     layer, g->layer_count);
-        return NULL;
-    }
-    const struct vts_layer *info = vts_store_layer(store, layer);
+    if (index >= g->layer_count)
+        return vt_error_set(err, VTS_ERR_ARG, "%s: no layer %u (the store has %u)",
+                            vts_store_name(store), index, g->layer_count);
+    const struct vts_layer *info = vts_store_layer(store, index);
     const struct vt_codec *codec = vt_codec_by_fourcc(info->codec);
     if (!codec) {
         char name[5];
         vts_codec_name(info->codec, name);
-        vt_error_set(err, VTS_ERR_UNSUPPORTED, "%s: codec '%s' is not built into vt-view",
-                     vts_store_name(store), name);
-        return NULL;
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED, "%s: codec '%s' is not built into vt-view",
+                            vts_store_name(store), name);
     }
-    if (info->sample != VTS_SAMPLE_U8 && info->sample != VTS_SAMPLE_U16) {
-        vt_error_set(err, VTS_ERR_UNSUPPORTED,
-                     "%s: layer '%s' has %s samples; vt-view shows u8 and u16",
-                     vts_store_name(store), info->name, vts_sample_name(info->sample));
-        return NULL;
-    }
+    if (info->sample != VTS_SAMPLE_U8 && info->sample != VTS_SAMPLE_U16)
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
+                            "%s: layer '%s' has %s samples; vt-view shows u8 and u16",
+                            vts_store_name(store), info->name, vts_sample_name(info->sample));
+    ly->index = index;
+    ly->codec = codec;
+    ly->info = *info;
+    ly->bc_bytes = 0;
+    if (compressed && (info->codec == VTS_CODEC_BC1 || info->codec == VTS_CODEC_BC3))
+        ly->bc_bytes =
+            (size_t)(payload_px / 4) * (payload_px / 4) * (info->codec == VTS_CODEC_BC1 ? 8u : 16u);
+    return 0;
+}
+
+struct vtv_loader *vtv_loader_create(const struct vts_store *store, uint32_t layer,
+                                     uint32_t threads, unsigned flags, struct vts_error *err)
+{
+    return vtv_loader_create_layers(store, &layer, 1, threads,
+                                    (flags & VTV_LOADER_COMPRESSED) ? 1u : 0u, err);
+}
+
+struct vtv_loader *vtv_loader_create_layers(const struct vts_store *store, const uint32_t *layers,
+                                            uint32_t layer_count, uint32_t threads,
+                                            unsigned compressed_mask, struct vts_error *err)
+{
+    const struct vts_geometry *g = vts_store_geometry(store);
     struct vtv_loader *l = calloc(1, sizeof(*l));
     if (!l) {
         vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
         return NULL;
     }
+    assert(layer_count >= 1 && layer_count <= VTV_LOADER_MAX_LAYERS);
     l->store = store;
-    l->layer = layer;
-    l->codec = codec;
-    l->info = *info;
     l->payload_px = g->tile_payload_px;
+    l->stride = (size_t)l->payload_px * l->payload_px * 4;
     l->max_payload = vts_store_max_payload(store);
-    if ((flags & VTV_LOADER_COMPRESSED) &&
-        (info->codec == VTS_CODEC_BC1 || info->codec == VTS_CODEC_BC3))
-        l->bc_bytes = (size_t)(l->payload_px / 4) * (l->payload_px / 4) *
-                      (info->codec == VTS_CODEC_BC1 ? 8u : 16u);
+    for (uint32_t k = 0; k < layer_count; k++)
+        if (setup_layer(store, layers[k], (compressed_mask >> k) & 1u, l->payload_px, &l->layers[k],
+                        err) != 0) {
+            free(l);
+            return NULL;
+        }
+    l->layer_count = layer_count;
     pthread_mutex_init(&l->mu, NULL);
     pthread_cond_init(&l->wake, NULL);
     pthread_cond_init(&l->idle, NULL);

@@ -16,14 +16,18 @@ struct vtv_load {
     bool empty;      /* stored with length 0 */
     int status;      /* 0 or a negative vt_status (message in error) */
     char error[512]; /* when status != 0 */
-    uint8_t *rgba;   /* payload_px^2 RGBA8 texels (with VTV_LOADER_COMPRESSED: the BC1/BC3
-                        blocks as stored); NULL when empty or failed */
-    size_t bytes;    /* bytes in rgba */
+    uint8_t *rgba;   /* per layer of the loader, in its order, payload_px^2 * 4 bytes: RGBA8
+                        texels (a compressed BC1/BC3 layer: its blocks as stored, first); NULL
+                        when empty (every layer stored empty) or failed */
+    size_t bytes;    /* bytes in rgba: layers * payload_px^2 * 4 */
     size_t bytes_read;
     struct vtv_load *next;
 };
 
 struct vtv_loader;
+
+/* Layers one loader reads for each tile position (diffuse, normal, specular, alpha). */
+#define VTV_LOADER_MAX_LAYERS 4
 
 enum vtv_loader_flags {
     VTV_LOADER_COMPRESSED = 1u << 0, /* BC1/BC3 layers: hand over the blocks, do not decode */
@@ -35,6 +39,14 @@ enum vtv_loader_flags {
  * u8/u16). */
 struct vtv_loader *vtv_loader_create(const struct vts_store *store, uint32_t layer,
                                      uint32_t threads, unsigned flags, struct vts_error *err);
+/* Reads the same tile position of each of layer_count layers (1..VTV_LOADER_MAX_LAYERS) into one
+ * result, so that a tile's layers arrive together; bit k of compressed_mask: layer k hands over
+ * its BC1/BC3 blocks. A tile is empty when every layer is stored empty; a layer stored empty
+ * while others are not shows a flat normal (normal layers) or zeros. A failure of any layer fails
+ * the tile. */
+struct vtv_loader *vtv_loader_create_layers(const struct vts_store *store, const uint32_t *layers,
+                                            uint32_t layer_count, uint32_t threads,
+                                            unsigned compressed_mask, struct vts_error *err);
 void vtv_loader_destroy(struct vtv_loader *l);
 
 /* Reads and decodes one tile on the calling thread (one such thread at a time: it uses the

@@ -34,13 +34,20 @@ static const char usage_text[] =
     "                        ahead into the RAM cache (default on)\n"
     "  --reads N             with --sync: tiles read from the store per frame at most\n"
     "                        (default 0 = no limit), the I/O budget of a deterministic run\n"
+    "  --lod-bias auto|N     levels added to the level of detail: auto (default) raises it\n"
+    "                        while the wanted tiles outgrow --cache, N (0..16) fixes it\n"
     "  -j, --threads N       loader threads (default 2)\n"
     "  --sync                load tiles on the render thread (deterministic statistics)\n"
     "  --reference           render with one plain mipmapped GL texture (level 0 of the store)\n"
     "  --reference-scene ORIGINAL.obj\n"
     "                        with --reference: draw the scene before vt-offset with its own\n"
-    "                        textures (map_Kd) instead, same camera\n"
-    "  --layer NAME|INDEX    layer to show (default 0)\n"
+    "                        textures and MTL instead, same camera and shading\n"
+    "  --layer NAME|INDEX    layer to show (default 0); in 3D, every face shows it unlit\n"
+    "                        (default: the materials of the scene's MTL, each map from its\n"
+    "                        layer, shaded)\n"
+    "  --light X,Y,Z         direction towards the directional light (default 0.3,0.8,0.5)\n"
+    "  --light-colour R,G,B  its colour, linear (default 0.85,0.85,0.85)\n"
+    "  --ambient R,G,B       ambient light, linear (default 0.15,0.15,0.15)\n"
     "  --bc-upload auto|off  BC1/BC3 tiles: upload the blocks compressed when the GL has S3TC\n"
     "                        (auto, default) or decode them on the CPU (off)\n"
     "  -q, --quiet           errors only\n"
@@ -70,8 +77,27 @@ enum {
     OPT_REFERENCE_SCENE,
     OPT_LAYER,
     OPT_BC_UPLOAD,
+    OPT_LIGHT,
+    OPT_LIGHT_COLOUR,
+    OPT_AMBIENT,
+    OPT_LOD_BIAS,
     OPT_VERSION,
 };
+
+/* "X,Y,Z": three finite numbers in [lo, hi]. */
+static int parse_vec3(const char *s, double lo, double hi, float out[3])
+{
+    const char *p = s;
+    for (int k = 0; k < 3; k++) {
+        char *end;
+        double v = strtod(p, &end);
+        if (end == p || !isfinite(v) || v < lo || v > hi || *end != (k < 2 ? ',' : '\0'))
+            return -1;
+        out[k] = (float)v;
+        p = end + 1;
+    }
+    return 0;
+}
 
 /* "-": standard output for one of --screenshot and --stats (a PNG not to a terminal), never an
  * input. Returns an exit status, or -1 to go on. */
@@ -118,6 +144,10 @@ int main(int argc, char **argv)
         {"reference-scene", required_argument, NULL, OPT_REFERENCE_SCENE},
         {"layer", required_argument, NULL, OPT_LAYER},
         {"bc-upload", required_argument, NULL, OPT_BC_UPLOAD},
+        {"light", required_argument, NULL, OPT_LIGHT},
+        {"light-colour", required_argument, NULL, OPT_LIGHT_COLOUR},
+        {"ambient", required_argument, NULL, OPT_AMBIENT},
+        {"lod-bias", required_argument, NULL, OPT_LOD_BIAS},
         {"quiet", no_argument, NULL, 'q'},
         {"verbose", no_argument, NULL, 'v'},
         {"help", no_argument, NULL, 'h'},
@@ -228,6 +258,28 @@ int main(int argc, char **argv)
             else
                 return vt_usage_error("--bc-upload '%s': expected auto or off", optarg);
             break;
+        case OPT_LIGHT:
+            if (parse_vec3(optarg, -1e6, 1e6, o.light_dir) != 0 ||
+                fabsf(o.light_dir[0]) + fabsf(o.light_dir[1]) + fabsf(o.light_dir[2]) == 0.0f)
+                return vt_usage_error("--light '%s': expected X,Y,Z, not all 0", optarg);
+            break;
+        case OPT_LIGHT_COLOUR:
+            if (parse_vec3(optarg, 0, 1e6, o.light_colour) != 0)
+                return vt_usage_error("--light-colour '%s': expected R,G,B >= 0", optarg);
+            break;
+        case OPT_AMBIENT:
+            if (parse_vec3(optarg, 0, 1e6, o.ambient) != 0)
+                return vt_usage_error("--ambient '%s': expected R,G,B >= 0", optarg);
+            break;
+        case OPT_LOD_BIAS: {
+            char *end;
+            double b = strtod(optarg, &end);
+            o.auto_lod = strcmp(optarg, "auto") == 0;
+            if (!o.auto_lod && (end == optarg || *end || !(b >= 0 && b <= 16)))
+                return vt_usage_error("--lod-bias '%s': expected auto or 0..16", optarg);
+            o.lod_bias = o.auto_lod ? 0.0f : (float)b;
+            break;
+        }
         case 'q':
             verbosity = VT_LOG_ERROR;
             break;

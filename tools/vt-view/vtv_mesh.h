@@ -1,22 +1,40 @@
 /* vt-view geometry: the 2D quad over the virtual texture, or a .vt.obj scene read with the
- * streaming OBJ reader (polygons fanned into triangles; v flipped so that v = 0 is row 0). */
+ * streaming OBJ reader (polygons fanned into triangles; v flipped so that v = 0 is row 0), its
+ * faces grouped by material and the materials by feature set (vtv_material.h), with the maps of
+ * its .vt.mtl (STORE#LAYER) naming the store layers to stream. */
 #ifndef VTV_MESH_H
 #define VTV_MESH_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "vt_error.h"
+#include "vtv_material.h"
+#include "vtv_tangent.h"
+
+/* The faces of one material: vertices first .. first + count - 1 of the buffer. */
+struct vtv_mesh_group {
+    uint32_t first, count;
+    uint64_t faces; /* OBJ faces (before fanning) */
+    struct vtv_material mat;
+    unsigned features; /* vtv_material_features(&mat) */
+};
 
 struct vtv_mesh {
-    float *vertices; /* x y z u v */
+    float *vertices; /* VTV_VERTEX_FLOATS per vertex, 3 vertices per triangle */
     uint32_t vertex_count;
-    uint32_t *indices;
-    uint32_t index_count;
+    struct vtv_mesh_group *groups; /* ordered: opaque feature sets, then blended; by features */
+    uint32_t group_count;
+    /* The store layer each map kind is drawn from (by name; NULL: no material maps it; "": the
+     * shown layer, for a map that names the store without a layer). */
+    char *layers[VTV_MAP_COUNT];
     double lo[3], hi[3]; /* bounding box */
 };
 
 int vtv_mesh_quad(struct vtv_mesh *m, double width, double height, struct vts_error *err);
-int vtv_mesh_read_obj(struct vtv_mesh *m, const char *path, struct vts_error *err);
+/* Reads a .vt.obj scene. materials: group the faces by the materials of its MTL files (else every
+ * face is drawn with the plain material: the shown layer, unlit). */
+int vtv_mesh_read_obj(struct vtv_mesh *m, const char *path, bool materials, struct vts_error *err);
 void vtv_mesh_free(struct vtv_mesh *m);
 
 #endif

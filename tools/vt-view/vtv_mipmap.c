@@ -87,10 +87,22 @@ static float *alloc_level(uint32_t w, uint32_t h)
     return vt_size_mul3((size_t)w * h, CH, sizeof(float), &n) ? malloc(n) : NULL;
 }
 
-int vtv_mipmap_upload(const uint8_t *rgba, uint32_t w, uint32_t h, bool srgb, bool alpha,
+/* Normal maps: each filtered texel's xyz back to unit length (zero: (0, 0, 1)), as the store's
+ * levels are (lib/filter's vt_filter_renormalize). */
+static void renormalize(float *px, size_t n)
+{
+    for (size_t i = 0; i < n; i++, px += CH) {
+        double l = sqrt((double)px[0] * px[0] + (double)px[1] * px[1] + (double)px[2] * px[2]);
+        for (int k = 0; k < 3; k++)
+            px[k] = l > 0 ? (float)(px[k] / l) : k == 2 ? 1.0f : 0.0f;
+    }
+}
+
+int vtv_mipmap_upload(const uint8_t *rgba, uint32_t w, uint32_t h, uint32_t colour, bool alpha,
                       const char *path, struct vts_error *err)
 {
-    const struct vt_pixel_mode mode = {CH, srgb ? VTS_COLOUR_SRGB : VTS_COLOUR_LINEAR, alpha};
+    bool srgb = colour == VTS_COLOUR_SRGB;
+    const struct vt_pixel_mode mode = {CH, colour, alpha};
     GLenum internal = srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8;
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexImage2D(GL_TEXTURE_2D, 0, (GLint)internal, (GLsizei)w, (GLsizei)h, 0, GL_RGBA,
@@ -116,6 +128,8 @@ int vtv_mipmap_upload(const uint8_t *rgba, uint32_t w, uint32_t h, bool srgb, bo
         next = NULL;
         w = nw;
         h = nh;
+        if (colour == VTS_COLOUR_NORMAL)
+            renormalize(cur, (size_t)w * h);
         vt_filter_from_working(&mode, VTS_SAMPLE_U8, cur, out, (size_t)w * h);
         glTexImage2D(GL_TEXTURE_2D, ++level, (GLint)internal, (GLsizei)w, (GLsizei)h, 0, GL_RGBA,
                      GL_UNSIGNED_BYTE, out);

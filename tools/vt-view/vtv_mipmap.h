@@ -15,12 +15,13 @@
 #include "vt_error.h"
 
 /* Uploads rgba (w x h RGBA8 texels, rows top first) as level 0 of the GL_TEXTURE_2D bound to the
- * current texture unit, with internal format GL_SRGB8_ALPHA8 (srgb) or GL_RGBA8, then every coarser
- * level down to 1 x 1, and sets GL_TEXTURE_MAX_LEVEL. srgb: the texels are sRGB-encoded and are
- * filtered in linear light; alpha: the fourth channel is alpha (colour premultiplied while
- * filtering), else it is filtered as data. Needs a current GL context. Returns 0 or VTS_ERR_NOMEM
- * (the message names path). */
-int vtv_mipmap_upload(const uint8_t *rgba, uint32_t w, uint32_t h, bool srgb, bool alpha,
+ * current texture unit, with internal format GL_SRGB8_ALPHA8 (colour VTS_COLOUR_SRGB) or
+ * GL_RGBA8, then every coarser level down to 1 x 1, and sets GL_TEXTURE_MAX_LEVEL. colour (enum
+ * vts_colour): sRGB texels are filtered in linear light, normal maps in [-1, 1] and renormalised
+ * at each level (as the store's), linear and data as they are; alpha: the fourth channel is alpha
+ * (colour premultiplied while filtering), else it is filtered as data. Needs a current GL context.
+ * Returns 0 or VTS_ERR_NOMEM (the message names path). */
+int vtv_mipmap_upload(const uint8_t *rgba, uint32_t w, uint32_t h, uint32_t colour, bool alpha,
                       const char *path, struct vts_error *err);
 
 #endif

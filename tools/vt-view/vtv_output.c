@@ -51,9 +51,9 @@ static void frame_json(FILE *f, const struct vtv_frame_stats *s)
             "{\"requested\": %" PRIu64 ", \"loaded\": %" PRIu64 ", \"resident\": %" PRIu64
             ", \"uploads\": %" PRIu64 ", \"fallback_pixels\": %" PRIu64 ", \"empty\": %" PRIu64
             ", \"failed\": %" PRIu64 ", \"ram_hits\": %" PRIu64 ", \"reads\": %" PRIu64
-            ", \"prefetched\": %" PRIu64 ", \"missed_by_level\": [",
+            ", \"prefetched\": %" PRIu64 ", \"lod_bias\": %g, \"missed_by_level\": [",
             s->requested, s->loaded, s->resident, s->uploads, s->fallback_pixels, s->empty,
-            s->failed, s->ram_hits, s->reads, s->prefetched);
+            s->failed, s->ram_hits, s->reads, s->prefetched, (double)s->lod_bias);
     for (uint32_t l = 0; l < s->levels && l < VTS_MAX_LEVELS; l++)
         fprintf(f, "%s%u", l ? ", " : "", s->missed[l]);
     fputs("]}", f);
@@ -76,6 +76,16 @@ int vtv_write_stats(const char *path, const struct vtv_run_info *info,
     fprintf(f, "  \"cache_tiles\": %u,\n  \"uploads_per_frame\": %u,\n  \"sync\": %s,\n",
             info->cache_tiles, info->uploads_per_frame, info->sync ? "true" : "false");
     fprintf(f, "  \"physical_format\": \"%s\",\n", info->physical_format);
+    fputs("  \"variants\": [", f);
+    for (uint32_t i = 0; i < info->variant_count; i++) {
+        const struct vtv_variant *v = &info->variants[i];
+        fprintf(f, "%s{\"features\": [", i ? ", " : "");
+        for (unsigned k = 0, n = 0; k < VTV_F_COUNT; k++)
+            if (v->features & (1u << k))
+                fprintf(f, "%s\"%s\"", n++ ? ", " : "", vtv_feature_name(k));
+        fprintf(f, "], \"faces\": %llu}", (unsigned long long)v->faces);
+    }
+    fputs("],\n", f);
     fputs("  \"frames\": [", f);
     for (size_t i = 0; i < count; i++) {
         fputs(i ? ",\n    " : "\n    ", f);

@@ -6,6 +6,7 @@
 #include <stdint.h>
 
 #include "vt_error.h"
+#include "vtv_render.h"
 #include "vtv_stream.h"
 
 /* rgba: w x h RGBA8 rows, top first. Written atomically; path "-" streams it to standard output
@@ -21,7 +22,9 @@ struct vtv_run_info {
     uint32_t width, height, feedback_width, feedback_height;
     uint32_t cache_tiles, uploads_per_frame;
     int sync;
-    const char *physical_format; /* "rgba8", "srgb8_alpha8", "bc" or "none" */
+    const char *physical_format;        /* "rgba8", "srgb8_alpha8", "bc" or "none" */
+    const struct vtv_variant *variants; /* the shader variants drawn */
+    uint32_t variant_count;
 };
 
 /* Frames without timings first (deterministic under --sync), then "timing_ms". Written

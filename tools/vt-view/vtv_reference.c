@@ -8,19 +8,23 @@
 #include <sys/stat.h>
 
 #include "tool_common.h"
+#include "vt_atlas_alpha.h"
 #include "vt_error.h"
 #include "vt_image.h"
 #include "vt_image_input.h"
 #include "vt_obj.h"
 #include "vtv_mipmap.h"
+#include "vtv_tangent.h"
 
 /* Triangles of one material, in order of first use: per vertex its position (3 floats) and its
  * texcoord as read (2 doubles, v flipped); per triangle the shift of its face (2 doubles). */
 struct mat_geo {
     char *name;
-    float *pos;
+    float *pos, *normal; /* 3 floats per vertex (normal 0 0 0: none) */
+    uint32_t *keys;      /* v, vt, vn per vertex (vtv_tangents) */
     double *uv, *shift;
     size_t n, cap; /* vertices (3 per triangle) */
+    uint64_t faces;
 };
 
 struct load_ctx {
@@ -29,7 +33,9 @@ struct load_ctx {
     size_t mtl_count;
     struct mat_geo *mats;
     uint32_t mat_count, cur;
-    char **tex_paths; /* parallel to s->textures */
+    char **tex_paths;     /* parallel to s->textures */
+    uint32_t *tex_colour; /* parallel: the colour it was loaded as (enum vts_colour) */
+    bool *tex_cutout;     /* parallel: its alpha is a cut-out (lib/atlas's rule) */
     double lo[3], hi[3];
 };
 
@@ -85,7 +91,13 @@ static int grow(struct mat_geo *m)
     double *sh = realloc(m->shift, nc / 3 * 2 * sizeof(double));
     if (sh)
         m->shift = sh;
-    if (!p || !uv || !sh)
+    float *nrm = realloc(m->normal, nc * 3 * sizeof(float));
+    if (nrm)
+        m->normal = nrm;
+    uint32_t *keys = realloc(m->keys, nc * 3 * sizeof(uint32_t));
+    if (keys)
+        m->keys = keys;
+    if (!p || !uv || !sh || !nrm || !keys)
         return VTS_ERR_NOMEM;
     m->cap = nc;
     return 0;
@@ -120,6 +132,12 @@ static int push_triangle(struct load_ctx *c, const struct vt_obj *obj,
             c->hi[i] = fmax(c->hi[i], p[i]);
         }
         corner_uv(obj, k[j], m->uv + m->n * 2);
+        for (int i = 0; i < 3; i++)
+            m->normal[m->n * 3 + i] =
+                k[j]->vn != VT_OBJ_NONE ? (float)vt_obj_normals(obj)[(size_t)k[j]->vn * 3 + i] : 0;
+        m->keys[m->n * 3] = k[j]->v;
+        m->keys[m->n * 3 + 1] = k[j]->vt;
+        m->keys[m->n * 3 + 2] = k[j]->vn;
     }
     return 0;
 }
@@ -145,6 +163,8 @@ static int on_face(void *user, const struct vt_obj *obj, const struct vt_obj_fac
 {
     struct load_ctx *c = user;
     int st = material_index(c, f->material, err);
+    if (st == 0)
+        c->mats[c->cur].faces++;
     double shift[2];
     face_shift(obj, f, shift);
     for (uint32_t i = 1; st == 0 && i + 1 < f->corner_count; i++) { /* fanned as in vtv_mesh.c */
@@ -179,11 +199,28 @@ static void to_rgba8(const struct vt_image *img, uint8_t *out)
         }
 }
 
-static int load_texture(const char *path, bool srgb, GLuint *out, struct vts_error *err)
+/* Whether the alpha of rgba (n texels) is a cut-out, by vt-atlas's rule (lib/atlas: clear at most
+ * 1/8, solid at least 7/8, few texels in between). */
+static bool alpha_cutout(const uint8_t *rgba, size_t n)
+{
+    struct vt_atlas_alpha_counts c = {.texels = n, .read = n};
+    for (size_t i = 0; i < n; i++) {
+        uint8_t a = rgba[i * 4 + 3];
+        c.clear += a <= 31;             /* 31/255 <= 1/8 < 32/255 */
+        c.partial += a > 31 && a < 224; /* 224/255 >= 7/8 > 223/255 */
+    }
+    return vt_atlas_alpha_is_cutout(&c);
+}
+
+/* Loads path as a texture of kind colour (sRGB: decoded to linear when the file is sRGB and the
+ * frame is; normal; data), its mips made like the store's. *cutout: its alpha is a cut-out. */
+static int load_texture(const char *path, bool srgb, uint32_t colour, GLuint *out, bool *cutout,
+                        struct vts_error *err)
 {
     struct vt_source src;
     struct vt_image img = {0};
     uint8_t *rgba = NULL;
+    *cutout = false;
     int st = vt_image_input_open(path, NULL, &src, err);
     if (st != 0)
         return st;
@@ -211,11 +248,14 @@ static int load_texture(const char *path, bool srgb, GLuint *out, struct vts_err
         goto cleanup;
     }
     to_rgba8(&img, rgba);
+    *cutout = in->has_alpha && alpha_cutout(rgba, (size_t)in->width * in->height);
     glGenTextures(1, out);
     glBindTexture(GL_TEXTURE_2D, *out);
     /* mips as the store's: box in linear light for an sRGB texture in an sRGB frame */
-    st = vtv_mipmap_upload(rgba, in->width, in->height, srgb && in->colour == VTS_COLOUR_SRGB,
-                           in->has_alpha, path, err);
+    if (colour == VTS_COLOUR_SRGB && !(srgb && in->colour == VTS_COLOUR_SRGB))
+        colour = VTS_COLOUR_LINEAR;
+    st = vtv_mipmap_upload(rgba, in->width, in->height, colour,
+                           in->has_alpha && colour != VTS_COLOUR_DATA, path, err);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
 cleanup:
     free(rgba);
@@ -224,54 +264,90 @@ cleanup:
     return st;
 }
 
-static float srgb_to_linear(double c)
+/* The texture of map file path loaded as colour (shared by the materials that use it so). */
+static int texture_of(struct vtv_reference_scene *s, struct load_ctx *c, const char *path,
+                      bool srgb, uint32_t colour, GLuint *tex, bool *cutout, struct vts_error *err)
 {
-    c = c < 0 ? 0 : c > 1 ? 1 : c;
-    return (float)(c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4));
+    for (uint32_t i = 0; i < s->texture_count; i++)
+        if (c->tex_colour[i] == colour && strcmp(c->tex_paths[i], path) == 0) {
+            *tex = s->textures[i];
+            *cutout = c->tex_cutout[i];
+            return 0;
+        }
+    uint32_t n = s->texture_count;
+    GLuint *t = realloc(s->textures, (n + 1) * sizeof(*t));
+    if (t)
+        s->textures = t;
+    char **p = realloc(c->tex_paths, (n + 1) * sizeof(*p));
+    if (p)
+        c->tex_paths = p;
+    uint32_t *col = realloc(c->tex_colour, (n + 1) * sizeof(*col));
+    if (col)
+        c->tex_colour = col;
+    bool *cut = realloc(c->tex_cutout, (n + 1) * sizeof(*cut));
+    if (cut)
+        c->tex_cutout = cut;
+    if (!t || !p || !col || !cut || !(p[n] = strdup(path)))
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
+    t[n] = 0;
+    col[n] = colour;
+    cut[n] = false;
+    s->texture_count++;
+    int st = load_texture(path, srgb, colour, &t[n], &cut[n], err);
+    *tex = t[n];
+    *cutout = cut[n];
+    return st;
 }
 
-/* The texture or colour of material m (first MTL file that defines it, as vt-atlas does) and its
- * addressing: repeat, unless its map_Kd statement says -clamp on. */
+/* The maps, constants and features of the part drawing g (the first MTL file that defines its
+ * material, as vt-atlas reads). A map whose file does not exist is left out with a warning (as
+ * vt-atlas warns and uses the constant). */
 static int setup_part(struct vtv_reference_scene *s, struct load_ctx *c, const struct mat_geo *g,
                       bool srgb, struct vtv_reference_part *part, struct vts_error *err)
 {
-    const char *name = g->name;
+    static const unsigned kinds[][2] = {{VT_MTL_MAP_KD, VTV_MAP_DIFFUSE},
+                                        {VT_MTL_MAP_NORM, VTV_MAP_NORMAL},
+                                        {VT_MTL_MAP_BUMP, VTV_MAP_NORMAL},
+                                        {VT_MTL_MAP_KS, VTV_MAP_SPECULAR},
+                                        {VT_MTL_MAP_D, VTV_MAP_ALPHA}};
+    static const uint32_t colour[VTV_MAP_COUNT] = {VTS_COLOUR_SRGB, VTS_COLOUR_NORMAL,
+                                                   VTS_COLOUR_SRGB, VTS_COLOUR_DATA};
     const struct vt_mtl_material *mat = NULL;
     for (size_t i = 0; i < c->mtl_count && !mat; i++)
-        mat = vt_mtl_find(&c->mtls[i], name);
-    double kd[3] = {0.8, 0.8, 0.8};
-    if (mat && (mat->flags & VT_MTL_HAS_KD))
-        memcpy(kd, mat->kd, sizeof(kd));
-    for (int k = 0; k < 3; k++)
-        part->kd[k] = srgb ? srgb_to_linear(kd[k]) : (float)kd[k];
-    part->kd[3] = 1.0f;
-    const char *path = mat ? mat->maps[VT_MTL_MAP_KD].path : NULL;
-    part->clamp = path && mat->maps[VT_MTL_MAP_KD].clamp;
-    struct stat file;
-    if (path && stat(path, &file) != 0 && errno == ENOENT) { /* as vt-atlas: the constant */
-        vt_log(VT_LOG_WARN, "'%s': %s: the material's constant", path, strerror(errno));
-        path = NULL;
-    }
-    if (!path)
-        return 0;
-    for (uint32_t i = 0; i < s->texture_count; i++)
-        if (strcmp(c->tex_paths[i], path) == 0) {
-            part->tex = s->textures[i];
-            return 0;
+        mat = vt_mtl_find(&c->mtls[i], g->name);
+    unsigned maps = 0;
+    bool cutout = false, moved = false;
+    for (size_t i = 0; mat && i < sizeof(kinds) / sizeof(kinds[0]); i++) {
+        const struct vt_mtl_map *m = &mat->maps[kinds[i][0]];
+        unsigned k = kinds[i][1];
+        struct stat file;
+        if (!m->path || (maps & (1u << k)))
+            continue;
+        if (stat(m->path, &file) != 0 && errno == ENOENT) { /* as vt-atlas: the constant */
+            vt_log(VT_LOG_WARN, "'%s': %s: the material's constant", m->path, strerror(errno));
+            continue;
         }
-    GLuint *t = realloc(s->textures, (s->texture_count + 1) * sizeof(*t));
-    if (t)
-        s->textures = t;
-    char **p = realloc(c->tex_paths, (s->texture_count + 1) * sizeof(*p));
-    if (p)
-        c->tex_paths = p;
-    if (!t || !p || !(p[s->texture_count] = strdup(path)))
-        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
-    t[s->texture_count] = 0;
-    s->texture_count++;
-    int st = load_texture(path, srgb, &t[s->texture_count - 1], err);
-    part->tex = t[s->texture_count - 1];
-    return st;
+        struct vtv_reference_map *rm = &part->maps[k];
+        bool cut = false;
+        int st = texture_of(s, c, m->path, srgb, colour[k], &rm->tex, &cut, err);
+        if (st != 0)
+            return st;
+        maps |= 1u << k;
+        cutout |= k == VTV_MAP_DIFFUSE && cut;
+        rm->clamp = m->clamp;
+        /* (u s + o, 1 - ((1 - v') s + o)) on the drawn (u, v' = 1 - v) */
+        rm->st[0] = (float)m->s[0];
+        rm->st[1] = (float)m->s[1];
+        rm->st[2] = (float)m->o[0];
+        rm->st[3] = (float)(1.0 - m->s[1] - m->o[1]);
+        moved |= (m->options & (VT_MTL_OPT_S | VT_MTL_OPT_O)) != 0;
+    }
+    part->clamp = (maps & (1u << VTV_MAP_DIFFUSE)) ? part->maps[VTV_MAP_DIFFUSE].clamp : false;
+    /* the per-face shift is whole repeats only without -s/-o */
+    part->clamp |= moved;
+    vtv_material_from_mtl(mat, maps, cutout, &part->mat);
+    part->features = vtv_material_features(&part->mat);
+    return 0;
 }
 
 /* The vertices of g as drawn (x y z u v floats) into out. A repeating material's texcoords get
@@ -282,11 +358,13 @@ static int setup_part(struct vtv_reference_scene *s, struct load_ctx *c, const s
  * its texcoords. */
 static void write_vertices(const struct mat_geo *g, bool repeat, float *out)
 {
-    for (size_t j = 0; j < g->n; j++, out += 5) {
+    for (size_t j = 0; j < g->n; j++, out += VTV_VERTEX_FLOATS) {
         const double *sh = g->shift + j / 3 * 2;
+        memset(out, 0, VTV_VERTEX_FLOATS * sizeof(float));
         memcpy(out, g->pos + j * 3, 3 * sizeof(float));
         out[3] = (float)(g->uv[j * 2] - (repeat ? sh[0] : 0.0));
         out[4] = (float)(g->uv[j * 2 + 1] - (repeat ? sh[1] : 0.0));
+        memcpy(out + 5, g->normal + j * 3, 3 * sizeof(float));
     }
 }
 
@@ -296,11 +374,9 @@ static void upload_geometry(struct vtv_reference_scene *s, const float *all, siz
     glGenBuffers(1, &s->vbo);
     glBindVertexArray(s->vao);
     glBindBuffer(GL_ARRAY_BUFFER, s->vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(total * 5 * sizeof(float)), all, GL_STATIC_DRAW);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 5 * sizeof(float), (void *)0);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 5 * sizeof(float), (void *)(3 * sizeof(float)));
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(total * VTV_VERTEX_FLOATS * sizeof(float)), all,
+                 GL_STATIC_DRAW);
+    vtv_render_vertex_layout();
     glBindVertexArray(0);
 }
 
@@ -314,15 +390,46 @@ static void release_ctx(struct load_ctx *c, uint32_t texture_count)
         free(c->mats[i].pos);
         free(c->mats[i].uv);
         free(c->mats[i].shift);
+        free(c->mats[i].normal);
+        free(c->mats[i].keys);
     }
     free(c->mats);
     for (uint32_t i = 0; i < texture_count; i++)
         free(c->tex_paths ? c->tex_paths[i] : NULL);
     free(c->tex_paths);
+    free(c->tex_colour);
+    free(c->tex_cutout);
 }
 
-int vtv_reference_scene_load(struct vtv_reference_scene *s, const char *obj_path, bool srgb,
-                             struct vts_error *err)
+static int cmp_part(const void *a, const void *b)
+{
+    const struct vtv_reference_part *x = a, *y = b;
+    bool bx = x->features & VTV_F_ALPHA_BLEND, by = y->features & VTV_F_ALPHA_BLEND;
+    if (bx != by)
+        return bx ? 1 : -1;
+    if (x->features != y->features)
+        return x->features < y->features ? -1 : 1;
+    return x->first < y->first ? -1 : x->first > y->first; /* order of first use */
+}
+
+/* The vertex buffer in part order (first: the material's index until then), with tangents. */
+static int lay_out(struct vtv_reference_scene *s, const struct load_ctx *c, float *all,
+                   uint32_t *keys, struct vts_error *err)
+{
+    size_t at = 0;
+    for (uint32_t i = 0; i < s->part_count; i++) {
+        struct vtv_reference_part *part = &s->parts[i];
+        const struct mat_geo *g = &c->mats[part->first];
+        write_vertices(g, !part->clamp, all + at * VTV_VERTEX_FLOATS);
+        memcpy(keys + at * 3, g->keys, g->n * 3 * sizeof(uint32_t));
+        part->first = (uint32_t)at;
+        at += g->n;
+    }
+    return vtv_tangents(all, keys, at) != 0 ? vt_error_set(err, VTS_ERR_NOMEM, "out of memory") : 0;
+}
+
+int vtv_reference_scene_load(struct vtv_reference_scene *s, struct vtv_render *r,
+                             const char *obj_path, bool srgb, struct vts_error *err)
 {
     memset(s, 0, sizeof(*s));
     struct load_ctx c = {.path = obj_path, .cur = UINT32_MAX};
@@ -331,6 +438,7 @@ int vtv_reference_scene_load(struct vtv_reference_scene *s, const char *obj_path
         c.hi[k] = -1e300;
     }
     float *all = NULL;
+    uint32_t *keys = NULL;
     struct vt_obj *obj = vt_obj_create(NULL, err);
     if (!obj)
         return err->status;
@@ -345,20 +453,28 @@ int vtv_reference_scene_load(struct vtv_reference_scene *s, const char *obj_path
     if (st != 0)
         goto cleanup;
     s->parts = calloc(c.mat_count, sizeof(*s->parts));
-    all = malloc(total * 5 * sizeof(float)); /* total < mat_count * 3 * 2^27 */
-    if (!s->parts || !all) {
+    all = malloc(total * VTV_VERTEX_FLOATS * sizeof(float)); /* total < mat_count * 3 * 2^27 */
+    keys = malloc(total * 3 * sizeof(uint32_t));
+    if (!s->parts || !all || !keys) {
         st = vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
         goto cleanup;
     }
-    size_t first = 0;
     for (uint32_t i = 0; i < c.mat_count && st == 0; i++) {
         struct vtv_reference_part *part = &s->parts[s->part_count++];
-        part->first = (uint32_t)first;
+        part->first = i;
         part->count = (uint32_t)c.mats[i].n;
         st = setup_part(s, &c, &c.mats[i], srgb, part, err);
-        write_vertices(&c.mats[i], !part->clamp, all + first * 5);
-        first += c.mats[i].n;
+        struct vtv_variant *v =
+            st == 0 ? vtv_render_variant(r, part->features, 1u << VTV_PROG_REFERENCE, err) : NULL;
+        if (st == 0 && !v)
+            st = err->status;
+        if (v)
+            v->faces += c.mats[i].faces;
     }
+    if (st != 0)
+        goto cleanup;
+    qsort(s->parts, s->part_count, sizeof(*s->parts), cmp_part);
+    st = lay_out(s, &c, all, keys, err);
     if (st != 0)
         goto cleanup;
     memcpy(s->lo, c.lo, sizeof(s->lo));
@@ -366,6 +482,7 @@ int vtv_reference_scene_load(struct vtv_reference_scene *s, const char *obj_path
     upload_geometry(s, all, total);
 cleanup:
     free(all);
+    free(keys);
     release_ctx(&c, s->texture_count);
     if (st != 0)
         vtv_reference_scene_free(s);
@@ -375,22 +492,42 @@ cleanup:
 void vtv_reference_scene_draw(struct vtv_render *r, const struct vtv_reference_scene *s,
                               const struct vtv_view *v)
 {
-    GLuint p = vtv_render_reference_begin(r, v);
-    GLint mode = glGetUniformLocation(p, "u_mode"), kd = glGetUniformLocation(p, "u_kd");
+    vtv_render_reference_begin(r);
     glBindVertexArray(s->vao);
     for (uint32_t i = 0; i < s->part_count; i++) {
         const struct vtv_reference_part *part = &s->parts[i];
-        glUniform1i(mode, part->tex ? 1 : 0);
-        glUniform4fv(kd, 1, part->kd);
-        if (part->tex) {
-            GLint wrap = part->clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT;
-            glBindTexture(GL_TEXTURE_2D, part->tex);
+        struct vtv_variant *var = vtv_render_variant(r, part->features, 0, NULL);
+        GLuint p = var ? var->prog[VTV_PROG_REFERENCE] : 0;
+        if (!p)
+            continue;
+        glUseProgram(p);
+        float st[VTV_MAP_COUNT][4];
+        for (int k = 0; k < VTV_MAP_COUNT; k++) {
+            const struct vtv_reference_map *m = &part->maps[k];
+            memcpy(st[k], m->tex ? m->st : (const float[4]){1, 1, 0, 0}, sizeof(st[k]));
+            glActiveTexture(GL_TEXTURE0 + k);
+            glBindTexture(GL_TEXTURE_2D, m->tex);
+            if (!m->tex)
+                continue;
+            GLint wrap = m->clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT;
             glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
             glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
             glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
                             v->trilinear ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR_MIPMAP_NEAREST);
         }
+        glActiveTexture(GL_TEXTURE0);
+        vtv_render_reference_uniforms(r, p, &part->mat, v, (const float(*)[4])st);
+        bool blend = part->features & VTV_F_ALPHA_BLEND;
+        if (blend) {
+            glEnablei(GL_BLEND, 0);
+            glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+            glDepthMask(GL_FALSE);
+        }
         glDrawArrays(GL_TRIANGLES, (GLint)part->first, (GLsizei)part->count);
+        if (blend) {
+            glDisablei(GL_BLEND, 0);
+            glDepthMask(GL_TRUE);
+        }
     }
     glBindVertexArray(0);
     vtv_render_reference_end();

@@ -1,6 +1,7 @@
 /* vt-view renderer: programs, framebuffers, textures and passes. */
 #include "vtv_render.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,10 +10,11 @@
 #include "vt_error.h"
 #include "vtv_shaders.h"
 
-static GLuint compile(GLenum type, const char *src, const char *what, struct vts_error *err)
+static GLuint compile(GLenum type, const char *const *src, int pieces, const char *what,
+                      struct vts_error *err)
 {
     GLuint s = glCreateShader(type);
-    glShaderSource(s, 1, &src, NULL);
+    glShaderSource(s, pieces, src, NULL);
     glCompileShader(s);
     GLint ok = 0;
     glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
@@ -26,10 +28,15 @@ static GLuint compile(GLenum type, const char *src, const char *what, struct vts
     return s;
 }
 
-static GLuint program(const char *fs_src, const char *what, struct vts_error *err)
+static GLuint program(enum vtv_program_kind kind, unsigned features, struct vts_error *err)
 {
-    GLuint vs = compile(GL_VERTEX_SHADER, vtv_vs_source, "vertex", err);
-    GLuint fs = vs ? compile(GL_FRAGMENT_SHADER, fs_src, what, err) : 0;
+    static const char *const names[VTV_PROG_KINDS] = {"virtual-texture", "feedback", "reference"};
+    const char *vsrc = vtv_vs_source;
+    GLuint vs = compile(GL_VERTEX_SHADER, &vsrc, 1, "vertex", err);
+    char defines[512];
+    const char *pieces[VTV_SHADER_PIECES];
+    int n = vtv_shader_fragment(kind, features, defines, sizeof(defines), pieces);
+    GLuint fs = vs ? compile(GL_FRAGMENT_SHADER, pieces, n, names[kind], err) : 0;
     if (!fs) {
         glDeleteShader(vs);
         return 0;
@@ -45,11 +52,61 @@ static GLuint program(const char *fs_src, const char *what, struct vts_error *er
     if (!ok) {
         char log[512] = "";
         glGetProgramInfoLog(p, sizeof(log), NULL, log);
-        vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot link the %s program: %s", what, log);
+        vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot link the %s program: %s", names[kind], log);
         glDeleteProgram(p);
         return 0;
     }
     return p;
+}
+
+/* The tile determination depends only on the coverage features and on whether any map is
+ * sampled: variants that differ in shading share its program (fewer programs for LLVM to
+ * compile on the first frame). */
+static GLuint feedback_program(struct vtv_render *r, unsigned features, struct vts_error *err)
+{
+    const unsigned maps =
+        VTV_F_DIFFUSE_MAP | VTV_F_NORMAL_MAP | VTV_F_SPECULAR_MAP | VTV_F_ALPHA_MAP;
+    unsigned key = features & (VTV_F_ALPHA_TEST | VTV_F_ALPHA_MAP | VTV_F_ALPHA_BLEND);
+    if (features & maps)
+        key |= VTV_F_DIFFUSE_MAP;
+    for (uint32_t i = 0; i < r->feedback_count; i++)
+        if (r->feedback_keys[i] == key)
+            return r->feedback_progs[i];
+    if (r->feedback_count == VTV_MAX_VARIANTS) {
+        vt_error_set(err, VTS_ERR_LIMIT, "more than %d shader variants", VTV_MAX_VARIANTS);
+        return 0;
+    }
+    GLuint p = program(VTV_PROG_FEEDBACK, key, err);
+    if (p) {
+        r->feedback_keys[r->feedback_count] = key;
+        r->feedback_progs[r->feedback_count++] = p;
+    }
+    return p;
+}
+
+struct vtv_variant *vtv_render_variant(struct vtv_render *r, unsigned features, unsigned kinds,
+                                       struct vts_error *err)
+{
+    struct vtv_variant *v = NULL;
+    for (uint32_t i = 0; i < r->variant_count && !v; i++)
+        if (r->variants[i].features == features)
+            v = &r->variants[i];
+    if (!v) {
+        if (r->variant_count == VTV_MAX_VARIANTS) {
+            vt_error_set(err, VTS_ERR_LIMIT, "more than %d shader variants", VTV_MAX_VARIANTS);
+            return NULL;
+        }
+        v = &r->variants[r->variant_count++];
+        memset(v, 0, sizeof(*v));
+        v->features = features;
+    }
+    for (int k = 0; k < VTV_PROG_KINDS; k++)
+        if ((kinds & (1u << k)) && !v->prog[k] &&
+            !(v->prog[k] = k == VTV_PROG_FEEDBACK
+                               ? feedback_program(r, features, err)
+                               : program((enum vtv_program_kind)k, features, err)))
+            return NULL;
+    return v;
 }
 
 static GLuint renderbuffer(GLenum format, uint32_t w, uint32_t h)
@@ -69,11 +126,8 @@ int vtv_render_init(struct vtv_render *r, uint32_t width, uint32_t height, uint3
     r->height = height;
     r->fb_width = fb_width;
     r->fb_height = fb_height;
-    r->prog_vt = program(vtv_fs_vt_source, "virtual-texture", err);
-    r->prog_feedback = r->prog_vt ? program(vtv_fs_feedback_source, "feedback", err) : 0;
-    r->prog_reference = r->prog_feedback ? program(vtv_fs_reference_source, "reference", err) : 0;
-    if (!r->prog_reference)
-        return err->status;
+    for (int k = 0; k < VTV_MAP_COUNT; k++)
+        r->phys_slice[k] = -1;
     r->fallback_pixels = malloc((size_t)width * height);
     if (!r->fallback_pixels)
         return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
@@ -82,7 +136,6 @@ int vtv_render_init(struct vtv_render *r, uint32_t width, uint32_t height, uint3
         r->has_s3tc && (epoxy_gl_version() >= 21 || epoxy_has_gl_extension("GL_EXT_texture_sRGB"));
     glGenVertexArrays(1, &r->vao);
     glGenBuffers(1, &r->vbo);
-    glGenBuffers(1, &r->ibo);
 
     r->rb_color = renderbuffer(GL_SRGB8_ALPHA8, width, height); /* encodes only if enabled */
     r->rb_fallback = renderbuffer(GL_R8UI, width, height);
@@ -114,44 +167,103 @@ int vtv_render_init(struct vtv_render *r, uint32_t width, uint32_t height, uint3
 
 void vtv_render_free(struct vtv_render *r)
 {
-    if (r->prog_vt)
-        glDeleteProgram(r->prog_vt);
-    if (r->prog_feedback)
-        glDeleteProgram(r->prog_feedback);
-    if (r->prog_reference)
-        glDeleteProgram(r->prog_reference);
-    GLuint tex[3] = {r->tex_pt, r->tex_phys, r->tex_reference};
-    glDeleteTextures(3, tex);
+    for (uint32_t i = 0; i < r->variant_count; i++)
+        for (int k = 0; k < VTV_PROG_KINDS; k++)
+            if (r->variants[i].prog[k] && k != VTV_PROG_FEEDBACK)
+                glDeleteProgram(r->variants[i].prog[k]);
+    for (uint32_t i = 0; i < r->feedback_count; i++)
+        glDeleteProgram(r->feedback_progs[i]);
+    glDeleteTextures(VTV_MAP_COUNT, r->tex_phys);
+    GLuint tex[2] = {r->tex_pt, r->tex_reference};
+    glDeleteTextures(2, tex);
     GLuint rbs[5] = {r->rb_color, r->rb_fallback, r->rb_depth, r->rb_request, r->rb_fb_depth};
     glDeleteRenderbuffers(5, rbs);
     GLuint fbos[2] = {r->fbo, r->fb_fbo};
     glDeleteFramebuffers(2, fbos);
-    GLuint bufs[2] = {r->vbo, r->ibo};
-    glDeleteBuffers(2, bufs);
+    glDeleteBuffers(1, &r->vbo);
     glDeleteVertexArrays(1, &r->vao);
     free(r->fallback_pixels);
     memset(r, 0, sizeof(*r));
 }
 
-void vtv_render_set_mesh(struct vtv_render *r, const float *vertices, uint32_t n,
-                         const uint32_t *indices, uint32_t index_count)
+/* Attribute pointers of a VTV_VERTEX_FLOATS buffer bound to GL_ARRAY_BUFFER (vtv_tangent.h). */
+void vtv_render_vertex_layout(void)
+{
+    static const int size[4] = {3, 2, 3, 4}, offset[4] = {0, 3, 5, 8};
+    for (GLuint k = 0; k < 4; k++) {
+        glEnableVertexAttribArray(k);
+        glVertexAttribPointer(k, size[k], GL_FLOAT, GL_FALSE, VTV_VERTEX_FLOATS * sizeof(float),
+                              (void *)(offset[k] * sizeof(float)));
+    }
+}
+
+int vtv_render_set_mesh(struct vtv_render *r, const struct vtv_mesh *mesh, unsigned kinds,
+                        struct vts_error *err)
 {
     glBindVertexArray(r->vao);
     glBindBuffer(GL_ARRAY_BUFFER, r->vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)n * 5 * sizeof(float), vertices, GL_STATIC_DRAW);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->ibo);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)index_count * sizeof(uint32_t), indices,
+    glBufferData(GL_ARRAY_BUFFER,
+                 (GLsizeiptr)mesh->vertex_count * VTV_VERTEX_FLOATS * sizeof(float), mesh->vertices,
                  GL_STATIC_DRAW);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 5 * sizeof(float), (void *)0);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 5 * sizeof(float), (void *)(3 * sizeof(float)));
+    vtv_render_vertex_layout();
     glBindVertexArray(0);
-    r->index_count = (GLsizei)index_count;
+    r->groups = mesh->groups;
+    r->group_count = mesh->group_count;
+    for (uint32_t i = 0; i < mesh->group_count; i++) {
+        struct vtv_variant *v = vtv_render_variant(r, mesh->groups[i].features, kinds, err);
+        if (!v)
+            return err->status;
+        v->faces += mesh->groups[i].faces;
+    }
+    return 0;
+}
+
+static float to_linear(float c)
+{
+    if (c <= 0.04045f)
+        return c / 12.92f;
+    return powf((c + 0.055f) / 1.055f, 2.4f);
+}
+
+void vtv_render_material_uniforms(const struct vtv_render *r, GLuint p,
+                                  const struct vtv_material *m, const struct vtv_view *v)
+{
+    float kd[3], ks[3], ke[3];
+    bool ks_black = m->ks[0] <= 0 && m->ks[1] <= 0 && m->ks[2] <= 0;
+    for (int k = 0; k < 3; k++) {
+        kd[k] = r->srgb ? to_linear(m->kd[k]) : m->kd[k];
+        /* map_Ks with a black Ks (the statement missing): the map alone */
+        ks[k] = (m->maps & (1u << VTV_MAP_SPECULAR)) && ks_black ? 1.0f
+                : r->srgb                                        ? to_linear(m->ks[k])
+                                                                 : m->ks[k];
+        ke[k] = r->srgb ? to_linear(m->ke[k]) : m->ke[k];
+    }
+    glUniform3fv(glGetUniformLocation(p, "u_kd"), 1, kd);
+    glUniform3fv(glGetUniformLocation(p, "u_ks"), 1, ks);
+    glUniform3fv(glGetUniformLocation(p, "u_ke"), 1, ke);
+    glUniform1f(glGetUniformLocation(p, "u_ns"), m->ns);
+    glUniform1f(glGetUniformLocation(p, "u_d"), m->d);
+    glUniform3fv(glGetUniformLocation(p, "u_light_dir"), 1, r->light.dir);
+    glUniform3fv(glGetUniformLocation(p, "u_light_colour"), 1, r->light.colour);
+    glUniform3fv(glGetUniformLocation(p, "u_ambient"), 1, r->light.ambient);
+    glUniform3fv(glGetUniformLocation(p, "u_eye"), 1, v->eye);
+}
+
+static GLuint make_phys(GLenum fmt, uint32_t pw, uint32_t ph)
+{
+    GLuint t;
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D, t);
+    glTexStorage2D(GL_TEXTURE_2D, 1, fmt, (GLsizei)pw, (GLsizei)ph);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return t;
 }
 
 int vtv_render_set_cache(struct vtv_render *r, const struct vtv_cache *c,
-                         const struct vts_geometry *g, bool srgb, uint32_t bc_codec,
+                         const struct vts_geometry *g, const struct vtv_phys_layer *layers,
                          struct vts_error *err)
 {
     GLint max_size = 0;
@@ -163,8 +275,6 @@ int vtv_render_set_cache(struct vtv_render *r, const struct vtv_cache *c,
             err, VTS_ERR_LIMIT,
             "a cache of %u tiles of %u px needs a %llux%llu texture; this GL allows %d: use a smaller --cache",
             c->slots, g->tile_payload_px, (unsigned long long)pw, (unsigned long long)ph, max_size);
-    r->srgb = srgb;
-    r->bc_format = bc_codec ? vtv_render_bc_format(r, bc_codec, srgb, g->tile_payload_px) : 0;
     r->phys_w = (uint32_t)pw;
     r->phys_h = (uint32_t)ph;
     r->payload_px = g->tile_payload_px;
@@ -179,14 +289,21 @@ int vtv_render_set_cache(struct vtv_render *r, const struct vtv_cache *c,
         r->pt_tiles[2 * l + 1] = (int)c->levels[l].tiles_y;
         r->pt_row[l] = (int)c->pt_row[l];
     }
-    glGenTextures(1, &r->tex_phys);
-    glBindTexture(GL_TEXTURE_2D, r->tex_phys);
-    GLenum fmt = r->bc_format ? r->bc_format : srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8;
-    glTexStorage2D(GL_TEXTURE_2D, 1, fmt, (GLsizei)pw, (GLsizei)ph);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    r->phys_count = 0;
+    for (int k = 0; k < VTV_MAP_COUNT; k++) {
+        if (!layers[k].used)
+            continue;
+        GLenum bc = layers[k].bc_codec ? vtv_render_bc_format(r, layers[k].bc_codec, layers[k].srgb,
+                                                              g->tile_payload_px)
+                                       : 0;
+        r->phys_format[k] = bc ? bc : layers[k].srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8;
+        r->tex_phys[k] = make_phys(r->phys_format[k], r->phys_w, r->phys_h);
+        r->phys_slice[k] = (int)r->phys_count++;
+        if (k == VTV_MAP_DIFFUSE) {
+            r->srgb = layers[k].srgb;
+            r->bc_format = bc;
+        }
+    }
     glGenTextures(1, &r->tex_pt);
     glBindTexture(GL_TEXTURE_2D, r->tex_pt);
     glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8UI, (GLsizei)c->pt_width, (GLsizei)c->pt_height);
@@ -207,18 +324,37 @@ GLenum vtv_render_bc_format(const struct vtv_render *r, uint32_t codec, bool srg
     return 0;
 }
 
+static bool is_compressed(GLenum fmt)
+{
+    return fmt != GL_RGBA8 && fmt != GL_SRGB8_ALPHA8;
+}
+
 void vtv_render_upload_tile(struct vtv_render *r, const struct vtv_cache *c, uint32_t slot,
                             const uint8_t *data, size_t bytes)
 {
     GLint x = (GLint)((slot % c->slots_x) * r->payload_px);
     GLint y = (GLint)((slot / c->slots_x) * r->payload_px);
-    glBindTexture(GL_TEXTURE_2D, r->tex_phys);
-    if (r->bc_format)
-        glCompressedTexSubImage2D(GL_TEXTURE_2D, 0, x, y, (GLsizei)r->payload_px,
-                                  (GLsizei)r->payload_px, r->bc_format, (GLsizei)bytes, data);
-    else
-        glTexSubImage2D(GL_TEXTURE_2D, 0, x, y, (GLsizei)r->payload_px, (GLsizei)r->payload_px,
-                        GL_RGBA, GL_UNSIGNED_BYTE, data);
+    size_t stride = (size_t)r->payload_px * r->payload_px * 4;
+    assert(bytes >= stride * r->phys_count);
+    (void)bytes;
+    for (int k = 0; k < VTV_MAP_COUNT; k++) {
+        if (r->phys_slice[k] < 0)
+            continue;
+        const uint8_t *p = data + (size_t)r->phys_slice[k] * stride;
+        glBindTexture(GL_TEXTURE_2D, r->tex_phys[k]);
+        if (is_compressed(r->phys_format[k])) {
+            size_t block = r->phys_format[k] == GL_COMPRESSED_RGBA_S3TC_DXT1_EXT ||
+                                   r->phys_format[k] == GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT1_EXT
+                               ? 8
+                               : 16;
+            size_t n = (size_t)(r->payload_px / 4) * (r->payload_px / 4) * block;
+            glCompressedTexSubImage2D(GL_TEXTURE_2D, 0, x, y, (GLsizei)r->payload_px,
+                                      (GLsizei)r->payload_px, r->phys_format[k], (GLsizei)n, p);
+        } else {
+            glTexSubImage2D(GL_TEXTURE_2D, 0, x, y, (GLsizei)r->payload_px, (GLsizei)r->payload_px,
+                            GL_RGBA, GL_UNSIGNED_BYTE, p);
+        }
+    }
 }
 
 void vtv_render_upload_page_table(struct vtv_render *r, const struct vtv_cache *c)
@@ -240,6 +376,8 @@ void vtv_render_upload_page_table(struct vtv_render *r, const struct vtv_cache *
 static void common_uniforms(const struct vtv_render *r, GLuint p, const struct vtv_view *v,
                             float lod_bias)
 {
+    static const char *const phys[VTV_MAP_COUNT] = {"u_phys_kd", "u_phys_norm", "u_phys_ks",
+                                                    "u_phys_d"};
     glUniformMatrix4fv(glGetUniformLocation(p, "u_mvp"), 1, GL_FALSE, v->mvp);
     glUniform1i(glGetUniformLocation(p, "u_pt"), 0);
     glUniform2f(glGetUniformLocation(p, "u_virt"), r->virt_w, r->virt_h);
@@ -249,15 +387,68 @@ static void common_uniforms(const struct vtv_render *r, GLuint p, const struct v
     glUniform1iv(glGetUniformLocation(p, "u_pt_row"), r->max_level + 1, r->pt_row);
     glUniform1i(glGetUniformLocation(p, "u_trilinear"), v->trilinear ? 1 : 0);
     glUniform1f(glGetUniformLocation(p, "u_lod_bias"), lod_bias);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, r->tex_pt);
+    glUniform2f(glGetUniformLocation(p, "u_phys_size"), (float)r->phys_w, (float)r->phys_h);
+    glUniform1f(glGetUniformLocation(p, "u_border"), r->border);
+    glUniform1f(glGetUniformLocation(p, "u_payload"), r->payload);
+    for (int k = 0; k < VTV_MAP_COUNT; k++)
+        glUniform1i(glGetUniformLocation(p, phys[k]), 1 + k);
 }
 
-static void draw(const struct vtv_render *r)
+static void bind_textures(const struct vtv_render *r)
+{
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, r->tex_pt);
+    for (int k = 0; k < VTV_MAP_COUNT; k++) {
+        glActiveTexture(GL_TEXTURE1 + k);
+        glBindTexture(GL_TEXTURE_2D, r->tex_phys[k]);
+    }
+    glActiveTexture(GL_TEXTURE0);
+}
+
+/* Blended groups: over what is drawn, without writing depth (not sorted among themselves). */
+static void set_blend(bool on, bool colour)
+{
+    if (on && colour) {
+        glEnablei(GL_BLEND, 0);
+        glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    } else if (colour) {
+        glDisablei(GL_BLEND, 0);
+    }
+    glDepthMask(on ? GL_FALSE : GL_TRUE);
+}
+
+/* Draws every group with its variant's program of kind (uniforms set by setup for each program
+ * used). */
+static void draw_groups(struct vtv_render *r, enum vtv_program_kind kind, const struct vtv_view *v,
+                        void (*setup)(struct vtv_render *, GLuint, const struct vtv_view *, void *),
+                        void *user)
 {
     glBindVertexArray(r->vao);
-    glDrawElements(GL_TRIANGLES, r->index_count, GL_UNSIGNED_INT, NULL);
+    GLuint cur = 0;
+    for (uint32_t i = 0; i < r->group_count; i++) {
+        const struct vtv_mesh_group *g = &r->groups[i];
+        struct vtv_variant *var = vtv_render_variant(r, g->features, 0, NULL);
+        GLuint p = var ? var->prog[kind] : 0;
+        if (!p)
+            continue;
+        if (p != cur) {
+            glUseProgram(p);
+            setup(r, p, v, user);
+            cur = p;
+        }
+        if (kind == VTV_PROG_VT)
+            vtv_render_material_uniforms(r, p, &g->mat, v);
+        /* blended groups come last; they write no depth (the tile-determination pass: their
+           requests replace those of what is behind them, a constant one asks for nothing) */
+        bool blend = g->features & VTV_F_ALPHA_BLEND;
+        if (blend)
+            set_blend(true, kind == VTV_PROG_VT);
+        glDrawArrays(GL_TRIANGLES, (GLint)g->first, (GLsizei)g->count);
+        if (blend)
+            set_blend(false, kind == VTV_PROG_VT);
+    }
     glBindVertexArray(0);
+    glUseProgram(0);
 }
 
 static void begin_main(const struct vtv_render *r)
@@ -267,28 +458,26 @@ static void begin_main(const struct vtv_render *r)
     glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
     glViewport(0, 0, (GLsizei)r->width, (GLsizei)r->height);
     glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
     glClearBufferfv(GL_COLOR, 0, bg);
     glClearBufferuiv(GL_COLOR, 1, zero);
     glClear(GL_DEPTH_BUFFER_BIT);
     (r->srgb ? glEnable : glDisable)(GL_FRAMEBUFFER_SRGB);
 }
 
+static void setup_vt(struct vtv_render *r, GLuint p, const struct vtv_view *v, void *user)
+{
+    (void)user;
+    common_uniforms(r, p, v, r->lod_bias);
+    glUniform2f(glGetUniformLocation(p, "u_jitter"), 0.0f, 0.0f);
+    glUniform1i(glGetUniformLocation(p, "u_debug"), v->debug);
+}
+
 uint64_t vtv_render_vt(struct vtv_render *r, const struct vtv_view *v)
 {
     begin_main(r);
-    GLuint p = r->prog_vt;
-    glUseProgram(p);
-    common_uniforms(r, p, v, 0.0f);
-    glUniform2f(glGetUniformLocation(p, "u_jitter"), 0.0f, 0.0f);
-    glUniform1i(glGetUniformLocation(p, "u_phys"), 1);
-    glUniform2f(glGetUniformLocation(p, "u_phys_size"), (float)r->phys_w, (float)r->phys_h);
-    glUniform1f(glGetUniformLocation(p, "u_border"), r->border);
-    glUniform1f(glGetUniformLocation(p, "u_payload"), r->payload);
-    glUniform1i(glGetUniformLocation(p, "u_debug"), v->debug);
-    glUniform1f(glGetUniformLocation(p, "u_alpha_test"), v->alpha_test);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, r->tex_phys);
-    draw(r);
+    bind_textures(r);
+    draw_groups(r, VTV_PROG_VT, v, setup_vt, NULL);
     glDisable(GL_FRAMEBUFFER_SRGB);
     glReadBuffer(GL_COLOR_ATTACHMENT1);
     glReadPixels(0, 0, (GLsizei)r->width, (GLsizei)r->height, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
@@ -296,8 +485,15 @@ uint64_t vtv_render_vt(struct vtv_render *r, const struct vtv_view *v)
     uint64_t n = 0;
     for (size_t i = 0; i < (size_t)r->width * r->height; i++)
         n += r->fallback_pixels[i] != 0;
-    glUseProgram(0);
     return n;
+}
+
+static void setup_feedback(struct vtv_render *r, GLuint p, const struct vtv_view *v, void *user)
+{
+    const float *jitter = user;
+    /* At 1/k of the resolution the gradients are k times larger: bias back to full resolution. */
+    common_uniforms(r, p, v, log2f((float)r->fb_width / (float)r->width) + r->lod_bias);
+    glUniform2f(glGetUniformLocation(p, "u_jitter"), jitter[0], jitter[1]);
 }
 
 void vtv_render_feedback(struct vtv_render *r, const struct vtv_view *v, float jx, float jy,
@@ -307,19 +503,15 @@ void vtv_render_feedback(struct vtv_render *r, const struct vtv_view *v, float j
     glBindFramebuffer(GL_FRAMEBUFFER, r->fb_fbo);
     glViewport(0, 0, (GLsizei)r->fb_width, (GLsizei)r->fb_height);
     glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
     glClearBufferuiv(GL_COLOR, 0, zero);
     glClear(GL_DEPTH_BUFFER_BIT);
-    GLuint p = r->prog_feedback;
-    glUseProgram(p);
-    /* At 1/k of the resolution the gradients are k times larger: bias back to full resolution. */
-    float bias = log2f((float)r->fb_width / (float)r->width);
-    common_uniforms(r, p, v, bias);
-    glUniform2f(glGetUniformLocation(p, "u_jitter"), jx, jy);
-    draw(r);
+    float jitter[2] = {jx, jy};
+    bind_textures(r);
+    draw_groups(r, VTV_PROG_FEEDBACK, v, setup_feedback, jitter);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glReadPixels(0, 0, (GLsizei)r->fb_width, (GLsizei)r->fb_height, GL_RGBA_INTEGER,
                  GL_UNSIGNED_SHORT, out);
-    glUseProgram(0);
 }
 
 int vtv_render_set_reference(struct vtv_render *r, const uint8_t *rgba, uint32_t w, uint32_t h,
@@ -343,18 +535,9 @@ int vtv_render_set_reference(struct vtv_render *r, const uint8_t *rgba, uint32_t
     return 0;
 }
 
-GLuint vtv_render_reference_begin(struct vtv_render *r, const struct vtv_view *v)
+void vtv_render_reference_begin(struct vtv_render *r)
 {
     begin_main(r);
-    GLuint p = r->prog_reference;
-    glUseProgram(p);
-    glUniformMatrix4fv(glGetUniformLocation(p, "u_mvp"), 1, GL_FALSE, v->mvp);
-    glUniform2f(glGetUniformLocation(p, "u_jitter"), 0.0f, 0.0f);
-    glUniform1i(glGetUniformLocation(p, "u_tex"), 0);
-    glUniform1i(glGetUniformLocation(p, "u_mode"), 1);
-    glUniform1f(glGetUniformLocation(p, "u_alpha_test"), v->alpha_test);
-    glActiveTexture(GL_TEXTURE0);
-    return p;
 }
 
 void vtv_render_reference_end(void)
@@ -363,13 +546,41 @@ void vtv_render_reference_end(void)
     glUseProgram(0);
 }
 
+/* The reference program's uniforms: camera, material, maps on units 0..3 with -s/-o transforms
+ * (identity here). */
+void vtv_render_reference_uniforms(const struct vtv_render *r, GLuint p,
+                                   const struct vtv_material *m, const struct vtv_view *v,
+                                   const float st[VTV_MAP_COUNT][4])
+{
+    static const char *const tex[VTV_MAP_COUNT] = {"u_tex_kd", "u_tex_norm", "u_tex_ks", "u_tex_d"};
+    static const float identity[VTV_MAP_COUNT][4] = {
+        {1, 1, 0, 0}, {1, 1, 0, 0}, {1, 1, 0, 0}, {1, 1, 0, 0}};
+    glUniformMatrix4fv(glGetUniformLocation(p, "u_mvp"), 1, GL_FALSE, v->mvp);
+    glUniform2f(glGetUniformLocation(p, "u_jitter"), 0.0f, 0.0f);
+    for (int k = 0; k < VTV_MAP_COUNT; k++)
+        glUniform1i(glGetUniformLocation(p, tex[k]), k);
+    glUniform4fv(glGetUniformLocation(p, "u_st"), VTV_MAP_COUNT, &(st ? st : identity)[0][0]);
+    vtv_render_material_uniforms(r, p, m, v);
+}
+
 void vtv_render_reference(struct vtv_render *r, const struct vtv_view *v)
 {
-    vtv_render_reference_begin(r, v);
+    vtv_render_reference_begin(r);
+    glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, r->tex_reference);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
                     v->trilinear ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR_MIPMAP_NEAREST);
-    draw(r);
+    glBindVertexArray(r->vao);
+    for (uint32_t i = 0; i < r->group_count; i++) {
+        const struct vtv_mesh_group *g = &r->groups[i];
+        struct vtv_variant *var = vtv_render_variant(r, g->features, 0, NULL);
+        if (!var || !var->prog[VTV_PROG_REFERENCE])
+            continue;
+        glUseProgram(var->prog[VTV_PROG_REFERENCE]);
+        vtv_render_reference_uniforms(r, var->prog[VTV_PROG_REFERENCE], &g->mat, v, NULL);
+        glDrawArrays(GL_TRIANGLES, (GLint)g->first, (GLsizei)g->count);
+    }
+    glBindVertexArray(0);
     vtv_render_reference_end();
 }
 

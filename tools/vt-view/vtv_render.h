@@ -11,16 +11,54 @@
 
 #include "vt_error.h"
 #include "vtv_cache.h"
+#include "vtv_material.h"
+#include "vtv_mesh.h"
+#include "vtv_shaders.h"
+
+/* One shader variant: the programs of one feature set (enum vtv_feature bits). */
+struct vtv_variant {
+    unsigned features;
+    GLuint prog[VTV_PROG_KINDS]; /* 0: not compiled (not needed by this run); the feedback one is
+                                    shared (owned by struct vtv_render) */
+    uint64_t faces;              /* OBJ faces drawn with it */
+};
+
+#define VTV_MAX_VARIANTS 64
+
+/* One physical texture: the layer a map kind is drawn from (vtv_render_set_cache). */
+struct vtv_phys_layer {
+    bool used;
+    bool srgb; /* sRGB layer: GL_SRGB8_ALPHA8 (decoded to linear when sampled) */
+    uint32_t
+        bc_codec; /* VTS_CODEC_BC1/BC3 blocks uploaded as stored (vtv_render_bc_format), or 0 */
+};
+
+/* The light (docs/cli/vt-view.md: --light, --light-colour, --ambient); linear values. */
+struct vtv_light {
+    float dir[3]; /* towards the light, normalised */
+    float colour[3];
+    float ambient[3];
+};
 
 struct vtv_render {
     uint32_t width, height;       /* main pass */
     uint32_t fb_width, fb_height; /* tile-determination pass */
-    GLuint prog_vt, prog_feedback, prog_reference;
-    GLuint vao, vbo, ibo;
-    GLsizei index_count;
+    struct vtv_variant variants[VTV_MAX_VARIANTS];
+    uint32_t variant_count;
+    /* tile-determination programs, shared by variants with the same coverage features (their
+       key), owned here */
+    unsigned feedback_keys[VTV_MAX_VARIANTS];
+    GLuint feedback_progs[VTV_MAX_VARIANTS];
+    uint32_t feedback_count;
+    GLuint vao, vbo;
+    const struct vtv_mesh_group *groups; /* the scene's (owned by its struct vtv_mesh) */
+    uint32_t group_count;
     GLuint fbo, rb_color, rb_fallback, rb_depth;
     GLuint fb_fbo, rb_request, rb_fb_depth;
-    GLuint tex_pt, tex_phys, tex_reference;
+    GLuint tex_pt, tex_phys[VTV_MAP_COUNT], tex_reference;
+    GLenum phys_format[VTV_MAP_COUNT]; /* GL internal format of each physical texture (0: none) */
+    int phys_slice[VTV_MAP_COUNT];     /* the layer's slice in a loaded tile (vtv_loader), or -1 */
+    uint32_t phys_count;               /* physical textures (loader layers) */
     uint32_t phys_w, phys_h;
     /* store geometry for the uniforms */
     float virt_w, virt_h, content, border, payload;
@@ -31,36 +69,51 @@ struct vtv_render {
     uint8_t *fallback_pixels; /* width * height */
     bool has_s3tc;
     bool has_srgb_s3tc;
-    bool srgb;        /* sRGB layer: textures decode to linear, the frame is encoded back */
-    GLenum bc_format; /* compressed physical texture (BC1/BC3 blocks uploaded as stored), or 0 */
+    bool srgb;        /* the frame is sRGB-encoded (the diffuse layer is sRGB): shading in linear */
+    GLenum bc_format; /* the diffuse physical texture's compressed format, or 0 */
+    struct vtv_light light;
+    float lod_bias; /* levels added to the level of detail of both passes (vtv_stream's) */
 };
 
 struct vtv_view {
     float mvp[16]; /* column-major */
+    float eye[3];  /* camera position (specular highlights) */
     bool trilinear;
-    int debug;        /* 0 none, 1 levels, 2 tiles */
-    float alpha_test; /* fragments with a lower alpha are discarded (0: none) */
+    int debug; /* 0 none, 1 levels, 2 tiles */
 };
 
 int vtv_render_init(struct vtv_render *r, uint32_t width, uint32_t height, uint32_t fb_width,
                     uint32_t fb_height, struct vts_error *err);
 void vtv_render_free(struct vtv_render *r);
 
-/* Geometry: n vertices of 5 floats (x, y, z, u, v), index_count triangle indices. */
-void vtv_render_set_mesh(struct vtv_render *r, const float *vertices, uint32_t n,
-                         const uint32_t *indices, uint32_t index_count);
+/* The scene's geometry and groups (mesh must outlive the renderer's use of it), and the shader
+ * variants of its feature sets for kinds (bit (1 << enum vtv_program_kind)). Returns 0 or a
+ * compile error. */
+int vtv_render_set_mesh(struct vtv_render *r, const struct vtv_mesh *mesh, unsigned kinds,
+                        struct vts_error *err);
 
-/* Page table and physical texture for the cache (srgb: an sRGB-encoded layer; bc_codec: a BC
- * codec whose blocks are uploaded compressed, from vtv_render_bc_format, or 0); VTS_ERR_LIMIT when
- * the physical texture would be larger than GL_MAX_TEXTURE_SIZE. */
+/* The variant of features (compiled for kinds when new); NULL and err on a compile error or when
+ * there are more than VTV_MAX_VARIANTS. */
+struct vtv_variant *vtv_render_variant(struct vtv_render *r, unsigned features, unsigned kinds,
+                                       struct vts_error *err);
+
+/* Sets a material's uniforms (colours converted to linear when the frame is sRGB) and the light
+ * and eye on program p. */
+void vtv_render_material_uniforms(const struct vtv_render *r, GLuint p,
+                                  const struct vtv_material *m, const struct vtv_view *v);
+
+/* Page table and physical textures for the cache, one per map kind in use (layers[k].used), all
+ * with the cache's slot layout; phys_slice: each one's slice in a loaded tile. VTS_ERR_LIMIT when
+ * a physical texture would be larger than GL_MAX_TEXTURE_SIZE. */
 int vtv_render_set_cache(struct vtv_render *r, const struct vtv_cache *c,
-                         const struct vts_geometry *g, bool srgb, uint32_t bc_codec,
+                         const struct vts_geometry *g, const struct vtv_phys_layer *layers,
                          struct vts_error *err);
 /* The GL format for BC payloads of codec (VTS_CODEC_BC1/BC3) when this GL can take them as they
  * are (S3TC, and sRGB S3TC for an sRGB layer, payload edge a multiple of 4); 0 otherwise. */
 GLenum vtv_render_bc_format(const struct vtv_render *r, uint32_t codec, bool srgb,
                             uint32_t payload_px);
-/* data: RGBA8 texels, or BC blocks (bytes) when the cache is compressed. */
+/* data: one loaded tile (vtv_loader: a slice of payload_px^2 * 4 bytes per physical texture,
+ * RGBA8 texels or BC blocks as stored). */
 void vtv_render_upload_tile(struct vtv_render *r, const struct vtv_cache *c, uint32_t slot,
                             const uint8_t *data, size_t bytes);
 /* Uploads the entries in the cache's dirty rectangles. */
@@ -78,10 +131,18 @@ void vtv_render_feedback(struct vtv_render *r, const struct vtv_view *v, float j
 int vtv_render_set_reference(struct vtv_render *r, const uint8_t *rgba, uint32_t w, uint32_t h,
                              bool srgb, struct vts_error *err);
 void vtv_render_reference(struct vtv_render *r, const struct vtv_view *v);
-/* The reference pass's frame and program, for other geometry (vtv_reference.c): texture unit 0,
- * uniforms u_mode, u_kd (vtv_shaders.c). Returns the program; end with _end(). */
-GLuint vtv_render_reference_begin(struct vtv_render *r, const struct vtv_view *v);
+/* The reference pass's frame (vtv_reference.c draws its own geometry into it); end with _end(). */
+void vtv_render_reference_begin(struct vtv_render *r);
 void vtv_render_reference_end(void);
+/* Sets the reference program p's uniforms: camera, the material m, its maps on texture units 0..3
+ * (enum vtv_map order) with per-map texcoord transforms st (scale u v, offset u v on the drawn
+ * texcoords; NULL: identity). */
+void vtv_render_reference_uniforms(const struct vtv_render *r, GLuint p,
+                                   const struct vtv_material *m, const struct vtv_view *v,
+                                   const float st[VTV_MAP_COUNT][4]);
+/* The attribute pointers of a VTV_VERTEX_FLOATS vertex buffer bound to GL_ARRAY_BUFFER (into the
+ * bound vertex array). */
+void vtv_render_vertex_layout(void);
 
 /* The last main pass as RGBA8 rows, top row first. */
 void vtv_render_read_color(struct vtv_render *r, uint8_t *rgba);

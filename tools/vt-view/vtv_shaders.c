@@ -1,65 +1,167 @@
 /* GLSL 330 core sources of vt-view. Coordinates: v_uv in [0,1]^2 over the virtual texture (v = 0 is
  * the first row of the store); t0 = v_uv * u_virt is in level-0 texels. The level-of-detail comes
  * from the gradients of t0 (the virtual texture), not from the physical texture, and the physical
- * lookups get those gradients scaled to the level used (corrected gradients). */
+ * lookups get those gradients scaled to the level used (corrected gradients). Every layer of a
+ * tile sits in the same slot of its own physical texture, so one page-table lookup addresses all
+ * of them. Shading (docs/viewer.md, "Materials and shading"): one directional light plus ambient,
+ * tangent-space normal maps, Blinn-Phong specular, in linear light when the frame is sRGB. */
 #include "vtv_shaders.h"
+
+#include "vtv_material.h"
 
 const char vtv_vs_source[] = "#version 330 core\n"
                              "layout(location = 0) in vec3 a_pos;\n"
                              "layout(location = 1) in vec2 a_uv;\n"
+                             "layout(location = 2) in vec3 a_normal;\n"
+                             "layout(location = 3) in vec4 a_tangent;\n"
                              "uniform mat4 u_mvp;\n"
                              "uniform vec2 u_jitter;\n"
                              "out vec2 v_uv;\n"
+                             "out vec3 v_pos;\n"
+                             "out vec3 v_normal;\n"
+                             "out vec4 v_tangent;\n"
                              "void main() {\n"
                              "    gl_Position = u_mvp * vec4(a_pos, 1.0);\n"
                              "    gl_Position.xy += u_jitter * gl_Position.w;\n"
                              "    v_uv = a_uv;\n"
+                             "    v_pos = a_pos;\n"
+                             "    v_normal = a_normal;\n"
+                             "    v_tangent = a_tangent;\n"
                              "}\n";
 
-#define VTV_COMMON                                                                                 \
-    "#version 330 core\n"                                                                          \
-    "in vec2 v_uv;\n"                                                                              \
-    "uniform usampler2D u_pt;\n"                                                                   \
-    "uniform vec2 u_virt;\n"                                                                       \
-    "uniform float u_content;\n"                                                                   \
-    "uniform int u_max_level;\n"                                                                   \
-    "uniform ivec2 u_pt_tiles[32];\n"                                                              \
-    "uniform int u_pt_row[32];\n"                                                                  \
-    "uniform int u_trilinear;\n"                                                                   \
-    "uniform float u_lod_bias;\n"                                                                  \
-    "float vt_lambda(vec2 gx, vec2 gy) {\n"                                                        \
-    "    return 0.5 * log2(max(max(dot(gx, gx), dot(gy, gy)), 1e-20)) + u_lod_bias;\n"             \
-    "}\n"                                                                                          \
-    "int vt_nearest_level(float lam) {\n"                                                          \
-    "    if (lam <= 0.5) return 0;\n"                                                              \
-    "    return min(int(ceil(lam + 0.5)) - 1, u_max_level);\n"                                     \
-    "}\n"                                                                                          \
-    "ivec2 vt_tile(int level, vec2 t0) {\n"                                                        \
-    "    ivec2 tc = ivec2(floor(t0 / (u_content * exp2(float(level)))));\n"                        \
-    "    return clamp(tc, ivec2(0), u_pt_tiles[level] - 1);\n"                                     \
-    "}\n"
+static const char version[] = "#version 330 core\n#define ALPHA_THRESHOLD 0.5\n";
 
-const char vtv_fs_vt_source[] = VTV_COMMON
-    "uniform sampler2D u_phys;\n"
+/* Page-table addressing, shared by the main and the tile-determination passes. */
+static const char vt_common[] =
+    "in vec2 v_uv;\n"
+    "uniform usampler2D u_pt;\n"
+    "uniform vec2 u_virt;\n"
+    "uniform float u_content;\n"
+    "uniform int u_max_level;\n"
+    "uniform ivec2 u_pt_tiles[32];\n"
+    "uniform int u_pt_row[32];\n"
+    "uniform int u_trilinear;\n"
+    "uniform float u_lod_bias;\n"
+    "uniform sampler2D u_phys_kd, u_phys_norm, u_phys_ks, u_phys_d;\n"
     "uniform vec2 u_phys_size;\n"
     "uniform float u_border;\n"
     "uniform float u_payload;\n"
-    "uniform int u_debug;\n"
-    "uniform float u_alpha_test;\n"
-    "layout(location = 0) out vec4 o_color;\n"
-    "layout(location = 1) out uint o_fallback;\n"
-    "vec4 vt_sample(int want, vec2 t0, vec2 gx, vec2 gy, out int used, out vec2 in_tile) {\n"
+    "float vt_lambda(vec2 gx, vec2 gy) {\n"
+    "    return 0.5 * log2(max(max(dot(gx, gx), dot(gy, gy)), 1e-20)) + u_lod_bias;\n"
+    "}\n"
+    "int vt_nearest_level(float lam) {\n"
+    "    if (lam <= 0.5) return 0;\n"
+    "    return min(int(ceil(lam + 0.5)) - 1, u_max_level);\n"
+    "}\n"
+    "ivec2 vt_tile(int level, vec2 t0) {\n"
+    "    ivec2 tc = ivec2(floor(t0 / (u_content * exp2(float(level)))));\n"
+    "    return clamp(tc, ivec2(0), u_pt_tiles[level] - 1);\n"
+    "}\n"
+    "struct vt_addr { vec2 p; vec2 gx; vec2 gy; };\n"
+    /* The physical position of t0 at level want (or its resident ancestor): false when the
+       page table has no entry. */
+    "bool vt_address(int want, vec2 t0, vec2 gx, vec2 gy, out vt_addr a, out int used,\n"
+    "                out vec2 in_tile) {\n"
     "    ivec2 tc = vt_tile(want, t0);\n"
     "    uvec4 e = texelFetch(u_pt, ivec2(tc.x, tc.y + u_pt_row[want]), 0);\n"
-    "    if (e.a == 0u) { used = 99; in_tile = vec2(0.0); return vec4(1.0, 0.0, 1.0, 1.0); }\n"
+    "    a.p = vec2(0.0); a.gx = vec2(0.0); a.gy = vec2(0.0);\n"
+    "    if (e.a == 0u) { used = 99; in_tile = vec2(0.0); return false; }\n"
     "    used = int(e.b);\n"
     "    ivec2 tl = tc >> (used - want);\n"
     "    float s = exp2(float(used));\n"
     "    vec2 t = t0 / s - vec2(tl) * u_content;\n"
     "    in_tile = clamp(t, vec2(0.5 - u_border), vec2(u_content + u_border - 0.5));\n"
-    "    vec2 p = (vec2(e.rg) * u_payload + u_border + in_tile) / u_phys_size;\n"
+    "    a.p = (vec2(e.rg) * u_payload + u_border + in_tile) / u_phys_size;\n"
     "    vec2 k = 1.0 / (s * u_phys_size);\n"
-    "    return textureGrad(u_phys, p, gx * k, gy * k);\n"
+    "    a.gx = gx * k; a.gy = gy * k;\n"
+    "    return true;\n"
+    "}\n"
+    "vec4 vt_at(sampler2D s, vt_addr a) { return textureGrad(s, a.p, a.gx, a.gy); }\n";
+
+/* The material and the light, shared by the main pass and the reference. map_sample(k) is the
+ * kind's: k is enum vtv_map (0 map_Kd, 1 normal, 2 map_Ks, 3 map_d). */
+static const char shading[] =
+    "in vec3 v_pos;\n"
+    "in vec3 v_normal;\n"
+    "in vec4 v_tangent;\n"
+    "uniform vec3 u_kd, u_ks, u_ke;\n"
+    "uniform float u_ns, u_d;\n"
+    "uniform vec3 u_light_dir, u_light_colour, u_ambient, u_eye;\n"
+    "vec4 map_sample(int k);\n"
+    "vec3 vt_shade(vec3 diffuse, vec3 ntex, vec3 spec) {\n"
+    "    vec3 c = diffuse;\n"
+    "#ifdef F_LIT\n"
+    "    vec3 n0 = normalize(v_normal);\n"
+    "    vec3 n = n0;\n"
+    "#ifdef F_NORMAL_MAP\n"
+    "    vec3 t = v_tangent.xyz - n0 * dot(n0, v_tangent.xyz);\n"
+    "    t = dot(t, t) > 1e-12 ? normalize(t) : vec3(1.0, 0.0, 0.0);\n"
+    "    vec3 b = cross(n0, t) * v_tangent.w;\n"
+    "    n = normalize(t * ntex.x + b * ntex.y + n0 * ntex.z);\n"
+    "#endif\n"
+    "    if (!gl_FrontFacing) n = -n;\n"
+    "    float ndl = max(dot(n, u_light_dir), 0.0);\n"
+    "    c = diffuse * (u_ambient + u_light_colour * ndl);\n"
+    "#if defined(F_SPECULAR) || defined(F_SPECULAR_MAP)\n"
+    "    vec3 h = normalize(u_light_dir + normalize(u_eye - v_pos));\n"
+    "    float s = ndl > 0.0 ? pow(max(dot(n, h), 0.0), max(u_ns, 1.0)) : 0.0;\n"
+    "    c += spec * u_light_colour * s;\n"
+    "#endif\n"
+    "#endif\n"
+    "#ifdef F_EMISSIVE\n"
+    "    c += u_ke;\n"
+    "#endif\n"
+    "    return c;\n"
+    "}\n"
+    "vec4 vt_material() {\n"
+    "    vec4 base = vec4(u_kd, 1.0);\n"
+    "#ifdef F_DIFFUSE_MAP\n"
+    "    vec4 dt = map_sample(0);\n"
+    "    base = vec4(u_kd * dt.rgb, dt.a);\n"
+    "#endif\n"
+    "    float a = 1.0;\n"
+    "#if defined(F_ALPHA_MAP)\n"
+    "    a = map_sample(3).r;\n"
+    "#elif defined(F_ALPHA_TEST)\n"
+    "    a = base.a;\n"
+    "#endif\n"
+    "#ifdef F_ALPHA_TEST\n"
+    "    if (a < ALPHA_THRESHOLD) discard;\n"
+    "#endif\n"
+    "    vec3 nt = vec3(0.0, 0.0, 1.0);\n"
+    "#ifdef F_NORMAL_MAP\n"
+    "    nt = map_sample(1).rgb * 2.0 - 1.0;\n"
+    "#endif\n"
+    "    vec3 sp = u_ks;\n"
+    "#ifdef F_SPECULAR_MAP\n"
+    "    sp = u_ks * map_sample(2).rgb;\n"
+    "#endif\n"
+    "    vec3 c = vt_shade(base.rgb, nt, sp);\n"
+    "#ifdef F_ALPHA_BLEND\n"
+    "    return vec4(c, u_d * a);\n"
+    "#else\n"
+    "    return vec4(c, 1.0);\n"
+    "#endif\n"
+    "}\n";
+
+static const char vt_body[] =
+    "uniform int u_debug;\n"
+    "layout(location = 0) out vec4 o_color;\n"
+    "layout(location = 1) out uint o_fallback;\n"
+    "vt_addr A0, A1;\n"
+    "bool OK0, OK1, TRI;\n"
+    "float F;\n"
+    "vec4 vt_layer(sampler2D s) {\n"
+    "    vec4 c0 = OK0 ? vt_at(s, A0) : vec4(1.0, 0.0, 1.0, 1.0);\n"
+    "    if (!TRI) return c0;\n"
+    "    vec4 c1 = OK1 ? vt_at(s, A1) : vec4(1.0, 0.0, 1.0, 1.0);\n"
+    "    return mix(c0, c1, F);\n"
+    "}\n"
+    "vec4 map_sample(int k) {\n"
+    "    if (k == 0) return vt_layer(u_phys_kd);\n"
+    "    if (k == 1) return vt_layer(u_phys_norm);\n"
+    "    if (k == 2) return vt_layer(u_phys_ks);\n"
+    "    return vt_layer(u_phys_d);\n"
     "}\n"
     "vec3 level_colour(int l) {\n"
     "    vec3 c[8] = vec3[8](vec3(1,0,0), vec3(1,0.5,0), vec3(1,1,0), vec3(0,1,0),\n"
@@ -71,22 +173,29 @@ const char vtv_fs_vt_source[] = VTV_COMMON
     "    vec2 gx = dFdx(t0), gy = dFdy(t0);\n"
     "    float lam = vt_lambda(gx, gy);\n"
     "    float texels_per_px = exp2(lam - u_lod_bias);\n"
-    "    int used0, used1; vec2 it0, it1;\n"
-    "    int want0; vec4 c; bool fb;\n"
-    "    if (u_trilinear != 0) {\n"
+    "    int used0, used1 = 0; vec2 it0, it1;\n"
+    "    int want0; bool fb;\n"
+    "    TRI = u_trilinear != 0;\n"
+    "    F = 0.0;\n"
+    "    if (TRI) {\n"
     "        float l = clamp(lam, 0.0, float(u_max_level));\n"
     "        want0 = int(floor(l));\n"
     "        int want1 = min(want0 + 1, u_max_level);\n"
-    "        float f = l - float(want0);\n"
-    "        vec4 c0 = vt_sample(want0, t0, gx, gy, used0, it0);\n"
-    "        vec4 c1 = vt_sample(want1, t0, gx, gy, used1, it1);\n"
-    "        c = mix(c0, c1, f);\n"
-    "        fb = used0 > want0 || (f > 0.0 && used1 > want1);\n"
+    "        F = l - float(want0);\n"
+    "        OK0 = vt_address(want0, t0, gx, gy, A0, used0, it0);\n"
+    "        OK1 = vt_address(want1, t0, gx, gy, A1, used1, it1);\n"
+    "        fb = used0 > want0 || (F > 0.0 && used1 > want1);\n"
     "    } else {\n"
     "        want0 = vt_nearest_level(lam);\n"
-    "        c = vt_sample(want0, t0, gx, gy, used0, it0);\n"
+    "        OK0 = vt_address(want0, t0, gx, gy, A0, used0, it0);\n"
+    "        OK1 = false;\n"
     "        fb = used0 > want0;\n"
     "    }\n"
+    "#if !defined(F_DIFFUSE_MAP) && !defined(F_NORMAL_MAP) && !defined(F_SPECULAR_MAP) && "
+    "!defined(F_ALPHA_MAP)\n"
+    "    fb = false; /* a constant: no tile wanted, none missing */\n"
+    "#endif\n"
+    "    vec4 c = vt_material();\n"
     "    if (u_debug == 1) {\n"
     "        c = vec4(mix(level_colour(used0), c.rgb, 0.25), 1.0);\n"
     "    } else if (u_debug == 2) {\n"
@@ -94,35 +203,85 @@ const char vtv_fs_vt_source[] = VTV_COMMON
     "        float px = texels_per_px / exp2(float(used0));\n"
     "        if (min(d.x, d.y) < 1.5 * px) c = fb ? vec4(1.0, 0.0, 0.0, 1.0) : vec4(0.0, 1.0, 0.0, 1.0);\n"
     "    }\n"
-    "    if (c.a < u_alpha_test) discard;\n"
     "    o_color = c;\n"
     "    o_fallback = fb ? 1u : 0u;\n"
     "}\n";
 
-const char vtv_fs_feedback_source[] =
-    VTV_COMMON "layout(location = 0) out uvec4 o_request;\n"
-               "void main() {\n"
-               "    vec2 t0 = v_uv * u_virt;\n"
-               "    float lam = vt_lambda(dFdx(t0), dFdy(t0));\n"
-               "    int want = u_trilinear != 0 ? int(floor(clamp(lam, 0.0, float(u_max_level))))\n"
-               "                                : vt_nearest_level(lam);\n"
-               "    ivec2 tc = vt_tile(want, t0);\n"
-               "    o_request = uvec4(uint(tc.x), uint(tc.y), uint(want), 1u);\n"
-               "}\n";
+/* Tile determination: the level the main pass wants; cut-outs are discarded with the coverage
+ * read through the page table (the wanted tile or its resident ancestor), so that nothing behind
+ * a hole is hidden and no tile is asked for where nothing is drawn. A material without any map
+ * asks for no tile (it still occludes, unless it is blended: then it leaves what is behind). */
+static const char feedback_body[] =
+    "layout(location = 0) out uvec4 o_request;\n"
+    "void main() {\n"
+    "    vec2 t0 = v_uv * u_virt;\n"
+    "    vec2 gx = dFdx(t0), gy = dFdy(t0);\n"
+    "    float lam = vt_lambda(gx, gy);\n"
+    "    int want = u_trilinear != 0 ? int(floor(clamp(lam, 0.0, float(u_max_level))))\n"
+    "                                : vt_nearest_level(lam);\n"
+    "#ifdef F_ALPHA_TEST\n"
+    "    vt_addr a; int used; vec2 it;\n"
+    "    if (vt_address(want, t0, gx, gy, a, used, it)) {\n"
+    "#ifdef F_ALPHA_MAP\n"
+    "        float al = vt_at(u_phys_d, a).r;\n"
+    "#else\n"
+    "        float al = vt_at(u_phys_kd, a).a;\n"
+    "#endif\n"
+    "        if (al < ALPHA_THRESHOLD) discard;\n"
+    "    }\n"
+    "#endif\n"
+    "    ivec2 tc = vt_tile(want, t0);\n"
+    "#if defined(F_DIFFUSE_MAP) || defined(F_NORMAL_MAP) || defined(F_SPECULAR_MAP) || "
+    "defined(F_ALPHA_MAP)\n"
+    "    o_request = uvec4(uint(tc.x), uint(tc.y), uint(want), 1u);\n"
+    "#elif defined(F_ALPHA_BLEND)\n"
+    "    discard;\n"
+    "#else\n"
+    "    o_request = uvec4(0u);\n"
+    "#endif\n"
+    "}\n";
 
-/* The reference: u_mode 0 the colour u_kd, 1 the texture as GL samples it (its own addressing,
- * filtering and level of detail). */
-const char vtv_fs_reference_source[] = "#version 330 core\n"
-                                       "in vec2 v_uv;\n"
-                                       "uniform sampler2D u_tex;\n"
-                                       "uniform int u_mode;\n"
-                                       "uniform vec4 u_kd;\n"
-                                       "uniform float u_alpha_test;\n"
-                                       "layout(location = 0) out vec4 o_color;\n"
-                                       "layout(location = 1) out uint o_fallback;\n"
-                                       "void main() {\n"
-                                       "    vec4 c = u_mode == 0 ? u_kd : texture(u_tex, v_uv);\n"
-                                       "    if (c.a < u_alpha_test) discard;\n"
-                                       "    o_color = c;\n"
-                                       "    o_fallback = 0u;\n"
-                                       "}\n";
+/* The reference: the material's own textures as GL samples them (their addressing, filtering and
+ * level of detail), each map's texcoords scaled and offset by its -s and -o (u_st: scale, offset,
+ * on the drawn texcoords). */
+static const char reference_body[] = "in vec2 v_uv;\n"
+                                     "uniform sampler2D u_tex_kd, u_tex_norm, u_tex_ks, u_tex_d;\n"
+                                     "uniform vec4 u_st[4];\n"
+                                     "layout(location = 0) out vec4 o_color;\n"
+                                     "layout(location = 1) out uint o_fallback;\n"
+                                     "vec4 map_sample(int k) {\n"
+                                     "    vec2 uv = v_uv * u_st[k].xy + u_st[k].zw;\n"
+                                     "    if (k == 0) return texture(u_tex_kd, uv);\n"
+                                     "    if (k == 1) return texture(u_tex_norm, uv);\n"
+                                     "    if (k == 2) return texture(u_tex_ks, uv);\n"
+                                     "    return texture(u_tex_d, uv);\n"
+                                     "}\n"
+                                     "void main() {\n"
+                                     "    o_color = vt_material();\n"
+                                     "    o_fallback = 0u;\n"
+                                     "}\n";
+
+int vtv_shader_fragment(enum vtv_program_kind kind, unsigned features, char *defines, size_t cap,
+                        const char *pieces[VTV_SHADER_PIECES])
+{
+    int n = 0;
+    vtv_feature_defines(features, defines, cap);
+    pieces[n++] = version;
+    pieces[n++] = defines;
+    switch (kind) {
+    case VTV_PROG_VT:
+        pieces[n++] = vt_common;
+        pieces[n++] = shading;
+        pieces[n++] = vt_body;
+        break;
+    case VTV_PROG_FEEDBACK:
+        pieces[n++] = vt_common;
+        pieces[n++] = feedback_body;
+        break;
+    default:
+        pieces[n++] = shading;
+        pieces[n++] = reference_body;
+        break;
+    }
+    return n;
+}

@@ -1,10 +1,25 @@
-/* GLSL 330 core sources of vt-view (string literals in vtv_shaders.c). */
+/* GLSL 330 core sources of vt-view (string literals in vtv_shaders.c). A fragment shader is
+ * assembled from pieces: the version, the feature #defines of its variant (vtv_material.h), the
+ * shared parts and the body of its kind. */
 #ifndef VTV_SHADERS_H
 #define VTV_SHADERS_H
 
-extern const char vtv_vs_source[];           /* shared vertex shader: position, uv, MVP, jitter */
-extern const char vtv_fs_vt_source[];        /* virtual texture: page table + physical texture */
-extern const char vtv_fs_feedback_source[];  /* tile determination: (x, y, level, 1) per pixel */
-extern const char vtv_fs_reference_source[]; /* plain mipmapped GL texture */
+#include <stddef.h>
+
+enum vtv_program_kind {
+    VTV_PROG_VT,        /* virtual texture: page table + physical textures, shaded */
+    VTV_PROG_FEEDBACK,  /* tile determination: (x, y, level, 1) per pixel, cut-outs discarded */
+    VTV_PROG_REFERENCE, /* plain mipmapped GL textures, shaded the same way */
+    VTV_PROG_KINDS
+};
+
+#define VTV_SHADER_PIECES 8
+
+extern const char vtv_vs_source[]; /* shared vertex shader: position, uv, normal, tangent */
+
+/* The pieces of the fragment shader of kind for features (enum vtv_feature bits); defines is the
+ * caller's buffer for the #define lines (cap bytes, 512 is enough). Returns the piece count. */
+int vtv_shader_fragment(enum vtv_program_kind kind, unsigned features, char *defines, size_t cap,
+                        const char *pieces[VTV_SHADER_PIECES]);
 
 #endif

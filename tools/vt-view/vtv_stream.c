@@ -117,7 +117,7 @@ static void collect_ahead(struct vtv_stream *s)
         }
 }
 
-int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, uint32_t layer,
+int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, const uint32_t *layers,
                     uint32_t slots, uint32_t threads, bool sync, uint32_t budget, bool bc_upload,
                     const struct vtv_stream_options *opt, struct vtv_render *render,
                     struct vts_error *err)
@@ -125,6 +125,7 @@ int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, uint32_
     memset(s, 0, sizeof(*s));
     s->opt = *opt;
     s->render = render;
+    render->lod_bias = opt->auto_lod ? 0.0f : opt->lod_bias;
     s->sync = sync;
     s->budget = budget;
     s->stamp = 1;
@@ -136,18 +137,33 @@ int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, uint32_
         return vt_error_set(err, VTS_ERR_ARG,
                             "--cache %u is too small: the coarsest level alone has %u tiles", slots,
                             top->tiles_x * top->tiles_y);
-    if (layer >= vts_store_geometry(store)->layer_count)
-        return vt_error_set(err, VTS_ERR_ARG, "%s: no layer %u", vts_store_name(store), layer);
-    const struct vts_layer *info = vts_store_layer(store, layer);
-    bool srgb = info->colour == VTS_COLOUR_SRGB;
+    /* one physical texture per map kind in use, one loader reading all of them per tile */
+    struct vtv_phys_layer phys[VTV_MAP_COUNT];
+    uint32_t order[VTV_LOADER_MAX_LAYERS], n = 0;
+    unsigned compressed = 0;
     uint32_t pp = vts_store_geometry(store)->tile_payload_px;
-    uint32_t bc =
-        bc_upload && vtv_render_bc_format(render, info->codec, srgb, pp) ? info->codec : 0;
-    st = vtv_render_set_cache(render, &s->cache, vts_store_geometry(store), srgb, bc, err);
+    memset(phys, 0, sizeof(phys));
+    for (int k = 0; k < VTV_MAP_COUNT; k++) {
+        if (layers[k] == UINT32_MAX)
+            continue;
+        if (layers[k] >= vts_store_geometry(store)->layer_count)
+            return vt_error_set(err, VTS_ERR_ARG, "%s: no layer %u", vts_store_name(store),
+                                layers[k]);
+        const struct vts_layer *info = vts_store_layer(store, layers[k]);
+        phys[k].used = true;
+        phys[k].srgb = info->colour == VTS_COLOUR_SRGB;
+        if (bc_upload && vtv_render_bc_format(render, info->codec, phys[k].srgb, pp)) {
+            phys[k].bc_codec = info->codec;
+            compressed |= 1u << n;
+        }
+        order[n++] = layers[k];
+    }
+    if (n == 0)
+        return vt_error_set(err, VTS_ERR_ARG, "no layer to show");
+    st = vtv_render_set_cache(render, &s->cache, vts_store_geometry(store), phys, err);
     if (st != 0)
         return st;
-    s->loader =
-        vtv_loader_create(store, layer, sync ? 0 : threads, bc ? VTV_LOADER_COMPRESSED : 0, err);
+    s->loader = vtv_loader_create_layers(store, order, n, sync ? 0 : threads, compressed, err);
     if (!s->loader)
         return err->status;
     uint32_t cap = vtv_loader_queue_capacity(s->loader);
@@ -289,6 +305,7 @@ void vtv_stream_update(struct vtv_stream *s, struct vtv_frame_stats *st)
         vtv_render_upload_page_table(s->render, c);
     vtv_cache_page_table_clean(c);
     st->resident = c->resident;
+    st->lod_bias = s->render->lod_bias;
     st->empty = s->empty;
     st->failed = s->failed;
     /* the quality of this frame: wanted tiles (of the latest determination) still missing */
@@ -298,6 +315,36 @@ void vtv_stream_update(struct vtv_stream *s, struct vtv_frame_stats *st)
         uint8_t state = c->state[q->index];
         st->missed[q->level] += state != VTV_TILE_RESIDENT && state != VTV_TILE_EMPTY;
     }
+}
+
+/* The automatic level-of-detail bias (docs/viewer.md, "Over-committed cache"): when the tiles the
+ * latest determination wants (the pinned coarsest level aside) are more than the slots that can
+ * hold them, the next frames want one level coarser; when one level finer would still fit (it
+ * wants at most 4 times the tiles of the finest level asked for, plus these tiles as ancestors),
+ * one level finer again. So a view that needs more tiles than the cache holds degrades in
+ * resolution instead of evicting what it shows. */
+static void adjust_bias(struct vtv_stream *s)
+{
+    const struct vtv_cache *c = &s->cache;
+    if (!s->opt.auto_lod)
+        return;
+    uint32_t top = c->level_count - 1, pinned = c->levels[top].tiles_x * c->levels[top].tiles_y;
+    uint64_t need = 0, finest_count = 0;
+    uint32_t finest = top;
+    for (size_t i = 0; i < s->feedback.count; i++) {
+        const struct vtv_request *q = &s->feedback.items[i];
+        need += q->level != top;
+        finest = q->level < finest ? q->level : finest;
+    }
+    for (size_t i = 0; i < s->feedback.count; i++)
+        finest_count += s->feedback.items[i].level == finest && finest != top;
+    uint64_t room = c->slots - pinned;
+    float bias = s->render->lod_bias;
+    if (need > room && bias < (float)top)
+        bias += 1.0f;
+    else if (bias >= 1.0f && finest > 0 && 4 * finest_count + need <= room)
+        bias -= 1.0f;
+    s->render->lod_bias = bias;
 }
 
 int vtv_stream_request(struct vtv_stream *s, const uint16_t *pixels, size_t n,
@@ -310,6 +357,7 @@ int vtv_stream_request(struct vtv_stream *s, const uint16_t *pixels, size_t n,
     if (vtv_feedback_reduce(&s->feedback, c, pixels, n) != 0)
         return VTS_ERR_NOMEM;
     st->requested = s->feedback.count;
+    adjust_bias(s);
     for (size_t i = 0; i < s->feedback.count; i++)
         s->wanted[s->feedback.items[i].index] = 1;
     for (uint32_t y = 0, top = c->level_count - 1; y < c->levels[top].tiles_y; y++)

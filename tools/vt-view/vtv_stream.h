@@ -25,6 +25,7 @@ struct vtv_frame_stats {
     uint64_t ram_hits;        /* uploads served by the RAM cache (no read, no decode) */
     uint64_t reads;           /* tiles read and decoded this frame (--sync; demand + prefetch) */
     uint64_t prefetched;      /* tiles read ahead of demand into the RAM cache this frame */
+    float lod_bias;           /* levels added to the level of detail in this frame */
     uint32_t levels;          /* entries of missed */
     uint32_t missed[VTS_MAX_LEVELS]; /* per level: tiles wanted that were not resident */
     double ms;                       /* wall time of the frame */
@@ -35,6 +36,8 @@ struct vtv_stream_options {
     uint32_t ram_tiles; /* RAM cache of decoded payloads, in tiles (0: none) */
     bool prefetch;      /* read the neighbours and the next finer tiles of wanted ones ahead */
     uint32_t reads;     /* --sync: tiles read from the store per frame at most (0: no limit) */
+    bool auto_lod;      /* raise the level of detail when the tiles wanted outgrow the cache */
+    float lod_bias;     /* the bias when not auto_lod (levels, >= 0) */
 };
 
 struct vtv_stream {
@@ -61,9 +64,12 @@ struct vtv_stream {
 };
 
 /* Opens the cache (slots tiles), the loader (threads; 0 with sync) and uploads every tile of the
- * coarsest level, which stays resident. bc_upload: BC1/BC3 blocks go to a compressed physical
- * texture as stored when the GL can take them (else they are decoded on the CPU). */
-int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, uint32_t layer,
+ * coarsest level, which stays resident. layers: per map kind (enum vtv_map) the store layer drawn
+ * for it, or UINT32_MAX; each one used gets a physical texture with the same slots, and the loader
+ * reads all of them per tile position (one residency decision per position). bc_upload: BC1/BC3
+ * blocks go to a compressed physical texture as stored when the GL can take them (else they are
+ * decoded on the CPU). */
+int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, const uint32_t *layers,
                     uint32_t slots, uint32_t threads, bool sync, uint32_t budget, bool bc_upload,
                     const struct vtv_stream_options *opt, struct vtv_render *render,
                     struct vts_error *err);

@@ -7,7 +7,7 @@
 set -euo pipefail
 case_name=$1 view=$2 make_store=$3 check=$4 work=$5 vt_tiles=${6:-} synth_image=${7:-}
 atlas=${VT_ATLAS:-} offset=${VT_OFFSET:-} layout_tiles=${VT_TILES:-} make_scene=${VTV_MAKE_SCENE:-}
-sample_scene=${VT_SAMPLE_SCENE:-}
+sample_scene=${VT_SAMPLE_SCENE:-} make_effects=${VTV_MAKE_EFFECTS:-}
 rm -rf "$work"
 mkdir -p "$work"
 cd "$work"
@@ -74,21 +74,58 @@ bad_borders)
   done
   ;;
 small_cache)
-  # 6 slots for a view that needs ~20 tiles: still renders, counts fallbacks, never errors.
+  # 6 slots for a view that needs ~20 tiles: still renders, counts fallbacks, never errors (the
+  # level of detail fixed: --lod-bias 0; case lod_auto covers the automatic bias).
   store good.vts
-  vt good.vts --camera min.cam --frames 24 --sync --cache 6 --screenshot small.png --stats small.json
+  vt good.vts --camera min.cam --frames 24 --sync --cache 6 --lod-bias 0 --screenshot small.png \
+    --stats small.json
   "$check" stat small.json resident == 6 || fail "cache not full"
   "$check" stat small.json fallback_pixels '>' 0 || fail "no fallback counted"
   "$check" stat small.json failed == 0 || fail "failed tiles"
   "$check" dark small.png 0 || fail "unrendered pixels"
   # loader threads: the same once the cache is full
-  until_loaded 24 small.json resident == 6 -- good.vts --camera min.cam --cache 6 \
+  until_loaded 24 small.json resident == 6 -- good.vts --camera min.cam --cache 6 --lod-bias 0 \
     --screenshot small.png || fail "cache not full"
   "$check" stat small.json fallback_pixels '>' 0 || fail "no fallback counted"
   "$check" stat small.json failed == 0 || fail "failed tiles"
   "$check" dark small.png 0 || fail "unrendered pixels"
   vt good.vts --camera min.cam --frames 1 --reference --screenshot ref.png
   "$check" psnr small.png ref.png --min 20 || fail "small cache shows garbage"
+  ;;
+lod_auto)
+  # An over-committed cache (8 slots for a view that wants ~20 tiles): the automatic level-of-detail
+  # bias wants one level coarser instead, so every frame completes (0 fallback pixels once the
+  # tiles are in) at a bounded PSNR loss; with the bias fixed at 0 the same view keeps showing
+  # fallbacks. A cache large enough never biases.
+  store good.vts
+  vt good.vts --camera min.cam --frames 24 --sync --cache 8 --screenshot auto.png --stats auto.json
+  vt good.vts --camera min.cam --frames 24 --sync --cache 8 --lod-bias 0 --screenshot fixed.png \
+    --stats fixed.json
+  vt good.vts --camera min.cam --frames 1 --reference --screenshot ref.png
+  "$check" stat auto.json fallback_pixels == 0 || fail "auto: fallback after convergence"
+  "$check" stat auto.json lod_bias == 1 || fail "auto: not one level coarser"
+  "$check" stat auto.json requested '<=' 8 || fail "auto: more tiles wanted than slots"
+  "$check" psnr auto.png ref.png --min 30 || fail "auto: PSNR loss not bounded"
+  "$check" stat fixed.json fallback_pixels '>' 10000 || fail "fixed: no fallback to avoid"
+  "$check" stat fixed.json lod_bias == 0 || fail "fixed: biased"
+  vt good.vts --camera min.cam --frames 24 --sync --stats big.json
+  "$check" stat big.json lod_bias == 0 || fail "a large cache biased"
+  "$check" stat big.json fallback_pixels == 0 || fail "a large cache: fallback"
+  # a moving camera (the 4-view path of sync_stats, each view held 6 frames) never thrashes: once
+  # each view converged no frame uploads or misses anything
+  printf '%s\n' "100 100 2" "100 100 2" "100 100 2" "100 100 2" "100 100 2" "100 100 2" \
+    "400 380 0.9" "400 380 0.9" "400 380 0.9" "400 380 0.9" "400 380 0.9" "400 380 0.9" \
+    "256 256 0.41" "256 256 0.41" "256 256 0.41" "256 256 0.41" "256 256 0.41" "256 256 0.41" \
+    "300 150 1.5" "300 150 1.5" "300 150 1.5" "300 150 1.5" "300 150 1.5" "300 150 1.5" >path.cam
+  vt good.vts --camera path.cam --frames 24 --sync --cache 8 --stats path.json
+  python3 - path.json <<'PY' || fail "thrashing on the path"
+import json, sys
+frames = json.load(open(sys.argv[1]))["frames"]
+for view in range(4):
+    last = frames[view * 6 + 5]
+    assert last["fallback_pixels"] == 0 and last["uploads"] == 0, (view, last)
+print("each view converged within 6 frames, biases", [f["lod_bias"] for f in frames])
+PY
   ;;
 empty_tiles)
   # Level-0 tiles (1,1) and (2,0) stored with length 0: their 64x64 pixels show level 1.
@@ -275,6 +312,118 @@ scene_reference)
   awk -v w="$w" '$1 == "vt" { $2 = $2 + 2 / w } { print }' scene.vt.obj >shifted.vt.obj
   vt scene.vts shifted.vt.obj --camera fix.cam --frames 20 --sync --screenshot shifted.png
   "$check" psnr shifted.png ref_bilinear.png --max 30 || fail "shifted offsets not detected"
+  ;;
+scene_effects)
+  # Materials through the store (tests/e2e/view/vtv_make_effects.c): a normal-mapped wall under a
+  # grazing light, a specular material (map_Ks), a map_Kd whose alpha is a mask (vt_alpha none), a
+  # fence cut out by map_d, a tree cut out by map_Kd's alpha, a blended pane, an emissive strip;
+  # vt-atlas -> vt-offset -> vt-tiles --layout (png), against --reference-scene (the original OBJ,
+  # MTL and textures, shaded the same way).
+  mkdir tex
+  "$make_effects" .
+  "$atlas" effects.obj -o atlas.json --tile-size 64 --border 4 -q
+  "$offset" effects.obj atlas.json -o effects.vt.obj -q
+  "$layout_tiles" --layout atlas.json -o effects.vts --codec png -q
+  light=(--light 1,0.15,0.2) # grazing along the wall (+x), a little up and towards the camera
+  echo "0 0.75 2.6 0 0.75 0 50" >fix.cam
+  # render STORE OBJ CAM FILTER TAG: converged virtual texture; ref OBJ CAM FILTER TAG: reference
+  render() {
+    vt "$1" "$2" --camera "$3.cam" --frames 20 --sync --filtering "$4" "${light[@]}" \
+      --screenshot "vt_$5.png" --stats "vt_$5.json"
+  }
+  ref() {
+    vt effects.vts effects.vt.obj --camera "$2.cam" --frames 1 --reference --reference-scene "$1" \
+      --filtering "$3" "${light[@]}" --screenshot "ref_$4.png" --stats "ref_$4.json"
+  }
+  for f in bilinear trilinear; do
+    limit=40
+    [ $f = trilinear ] && limit=35
+    render effects.vts effects.vt.obj fix $f $f
+    ref effects.obj fix $f $f
+    "$check" psnr vt_$f.png ref_$f.png --min $limit || fail "$f: against the original scene"
+    "$check" stat vt_$f.json fallback_pixels == 0 || fail "$f: fallback after convergence"
+    "$check" stat vt_$f.json failed == 0 || fail "$f: failed tiles"
+  done
+  # one variant per feature set, with its faces, the same in both renderers
+  for v in '{"features": ["diffuse_map", "lit", "normal_map"], "faces": 1}' \
+    '{"features": ["diffuse_map", "lit", "specular_map"], "faces": 1}' \
+    '{"features": ["diffuse_map", "lit"], "faces": 1}' \
+    '{"features": ["diffuse_map", "alpha_test", "alpha_map", "lit"], "faces": 1}' \
+    '{"features": ["diffuse_map", "alpha_test", "lit"], "faces": 1}' \
+    '{"features": ["alpha_blend", "lit"], "faces": 1}' \
+    '{"features": ["lit", "emissive"], "faces": 1}'; do
+    for s in vt_bilinear.json ref_bilinear.json; do
+      grep -qF "$v" $s || fail "$s: no variant $v"
+    done
+  done
+  [ "$(grep -o '"features"' vt_bilinear.json | wc -l)" = 7 ] || fail "not 7 variants"
+  # the normal layer matters: the same store with a flat normal map scores >= 5 dB lower
+  sed 's/wall_n\.png/flat_n.png/' atlas.json >flat.json
+  cmp -s atlas.json flat.json && fail "no normal map to swap in atlas.json"
+  "$layout_tiles" --layout flat.json -o flat.vts --codec png -q
+  render flat.vts effects.vt.obj fix bilinear flat
+  good=$("$check" psnr vt_bilinear.png ref_bilinear.png --min 0 | sed 's/PSNR \([0-9.]*\).*/\1/')
+  "$check" psnr vt_flat.png ref_bilinear.png --max "$(awk -v g="$good" 'BEGIN { print g - 5 }')" ||
+    fail "a flat normal layer is not 5 dB worse"
+  # a mask is not transparency: the reference with the mask's vt_alpha none dropped (vt-atlas's
+  # rule then finds a cut-out in its binary alpha) differs from what vt-view shows
+  grep -v '^vt_alpha' effects.mtl >nomask.mtl
+  sed 's/effects\.mtl/nomask.mtl/' effects.obj >nomask.obj
+  ref nomask.obj fix bilinear nomask
+  "$check" psnr vt_bilinear.png ref_nomask.png --max 35 || fail "the mask is cut out in vt-view"
+  # cut-outs are discarded in the tile determination: the wall seen only through the fence's
+  # holes (the fence fills the view) is asked for and shown at its level (20929 fallback pixels
+  # without that discard, measured)
+  echo "-0.6 0.2 1.2 -0.6 0.2 0 30" >holes.cam
+  render effects.vts effects.vt.obj holes bilinear holes
+  ref effects.obj holes bilinear holes
+  "$check" stat vt_holes.json fallback_pixels == 0 || fail "tiles behind the holes not asked for"
+  "$check" psnr vt_holes.png ref_holes.png --min 40 || fail "through the holes"
+  # an opaque scene compiles no alpha variant
+  "$offset" opaque.obj atlas.json -o opaque.vt.obj -q
+  render effects.vts opaque.vt.obj fix bilinear opaque
+  ! grep -q '"alpha_' vt_opaque.json || fail "an alpha variant for an opaque scene"
+  [ "$(grep -o '"features"' vt_opaque.json | wc -l)" = 4 ] || fail "opaque: not 4 variants"
+  # the reference applies -s and -o per map: the mask's map_Kd with -s 2 2 1 -o 0.25 0.5 0 draws
+  # what the OBJ with the mask's texcoords scaled and offset so draws (its vt are the 9th to 12th)
+  sed 's|^map_Kd tex/mask.png|map_Kd -s 2 2 1 -o 0.25 0.5 0 tex/mask.png|' effects.mtl >so.mtl
+  sed 's/effects\.mtl/so.mtl/' effects.obj >so.obj
+  awk '$1 == "vt" { n++; if (n >= 9 && n <= 12) { $2 = $2 * 2 + 0.25; $3 = $3 * 2 + 0.5 } } { print }' \
+    effects.obj >moved.obj
+  ref so.obj fix bilinear so
+  ref moved.obj fix bilinear moved
+  "$check" psnr ref_so.png ref_moved.png --min 50 || fail "-s/-o not applied as texcoords"
+  "$check" psnr ref_so.png ref_bilinear.png --max 35 || fail "-s/-o ignored"
+  # a map naming a layer the store lacks: one line, exit 1
+  sed 's/#normal$/#nosuch/' effects.vt.mtl >bad.vt.mtl
+  sed 's/^mtllib .*/mtllib bad.vt.mtl/' effects.vt.obj >bad.vt.obj
+  rc=0
+  vt effects.vts bad.vt.obj --frames 1 2>bad.err || rc=$?
+  [ $rc = 1 ] || fail "a missing layer: exit $rc"
+  grep -qF "effects.vts: no layer 'nosuch' (the norm/bump maps of the scene 'bad.vt.obj' name it)" \
+    bad.err || fail "a missing layer: $(cat bad.err)"
+  ;;
+normal_tilt)
+  # The tangent frame against an independent expectation (vtv_make_effects --tilt): a normal map
+  # leaning towards +u +v on three grey quads (UVs as laid, u mirrored, v mirrored) under a light
+  # from +x +y: the first is the brightest (122 against 74, predicted 120 against 72 from the
+  # shading formula); a tangent or a bitangent of the wrong sign darkens it. Virtual texture and
+  # reference alike.
+  mkdir tex
+  "$make_effects" --tilt .
+  "$atlas" tilt.obj -o atlas.json --tile-size 64 --border 4 -q
+  "$offset" tilt.obj atlas.json -o tilt.vt.obj -q
+  "$layout_tiles" --layout atlas.json -o tilt.vts --codec png -q
+  echo "0 0.4 2.4 0 0.4 0 50" >tilt.cam
+  vt tilt.vts tilt.vt.obj --camera tilt.cam --frames 20 --sync --light 1,1,0.4 --screenshot vt.png
+  vt tilt.vts tilt.vt.obj --camera tilt.cam --frames 1 --reference --reference-scene tilt.obj \
+    --light 1,1,0.4 --screenshot ref.png
+  "$check" psnr vt.png ref.png --min 40 || fail "against the reference"
+  for f in vt ref; do
+    "$check" mean $f.png 46 120 16 16 --min 110 || fail "$f: as laid, not lit towards +u +v"
+    "$check" mean $f.png 120 120 16 16 --max 85 || fail "$f: u mirrored, lit towards +u"
+    "$check" mean $f.png 194 120 16 16 --max 85 || fail "$f: v mirrored, lit towards +v"
+  done
   ;;
 scene_repeat | scene_repeat_split)
   # Repeating materials as real scenes have them (tests/e2e/view/vtv_make_scene.c --repeat): a

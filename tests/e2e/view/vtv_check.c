@@ -8,9 +8,12 @@
  *   vtv_check maxdiff A.png B.png X Y W H --max N    the largest |A - B| over RGB in the crop
  *                                                     [X, X+W) x [Y, Y+H) (rows from the top,
  *                                                     clipped to the image) is at most N
+ *   vtv_check mean A.png X Y W H --min V | --max V   the mean of (R + G + B) / 3 over the crop
+ *                                                     (prints it)
  * Exit 0 when the check holds, 1 when it does not, 2 on bad use or unreadable files. */
 #include <jansson.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -207,6 +210,34 @@ static int maxdiff(int argc, char **argv)
     return worst <= limit ? 0 : 1;
 }
 
+static int mean(int argc, char **argv)
+{
+    if (argc != 9 || (strcmp(argv[7], "--min") && strcmp(argv[7], "--max")))
+        return 2;
+    struct vt_image a = {0};
+    if (load(argv[2], &a))
+        return 2;
+    long x0 = atol(argv[3]), y0 = atol(argv[4]);
+    long x1 = x0 + atol(argv[5]), y1 = y0 + atol(argv[6]);
+    if (a.channels < 3 || x0 < 0 || y0 < 0 || x1 > (long)a.width || y1 > (long)a.height ||
+        x0 >= x1 || y0 >= y1) {
+        fprintf(stderr, "vtv_check: bad crop or image\n");
+        vt_image_release(&a);
+        return 2;
+    }
+    double sum = 0;
+    for (long y = y0; y < y1; y++)
+        for (long x = x0; x < x1; x++) {
+            const uint8_t *p = vt_image_at(&a, (uint32_t)x, (uint32_t)y);
+            sum += (p[0] + p[1] + p[2]) / 3.0;
+        }
+    vt_image_release(&a);
+    double m = sum / (double)((x1 - x0) * (y1 - y0)), limit = atof(argv[8]);
+    bool min = !strcmp(argv[7], "--min");
+    printf("mean %.2f (%s %s %.2f)\n", m, argv[7], min ? ">=" : "<=", limit);
+    return (min ? m >= limit : m <= limit) ? 0 : 1;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2)
@@ -223,5 +254,7 @@ int main(int argc, char **argv)
         return diff(argc, argv);
     if (!strcmp(argv[1], "maxdiff"))
         return maxdiff(argc, argv);
+    if (!strcmp(argv[1], "mean"))
+        return mean(argc, argv);
     return 2;
 }
