@@ -40,9 +40,11 @@ static void usage(FILE *f)
         "- for standard input (copied to a temporary file first; '<stdin>' in messages).\n\n"
         "  -o, --output FILE        the store to write (replaced atomically); - for standard\n"
         "                           output (not a terminal; spooled in $TMPDIR, then copied)\n"
-        "      --tile-size N        tile payload edge in texels, 8..16384 (default 256)\n"
-        "      --keep payload|content  which edge is the given size: payload (content =\n"
-        "                           size - 2*border, default) or content (payload grows)\n"
+        "      --tile-size N        tile content edge in texels (without the border, as in\n"
+        "                           vt-atlas and vt-export), 8..16384 (default 256)\n"
+        "      --keep content|payload  which edge --tile-size gives: content (default: the\n"
+        "                           stored payload is N + 2*border) or payload (the stored\n"
+        "                           tile is N, content N - 2*border)\n"
         "      --border N           border texels per side, 0..64 (default: from --filtering\n"
         "                           and the codec: bilinear 1, trilinear 2, anisoN N/2;\n"
         "                           at least 4 for bc1/bc3)\n"
@@ -116,6 +118,7 @@ static int parse_colour(const char *s, uint32_t *out)
 static int parse_options(int argc, char **argv, struct options *o)
 {
     *o = (struct options){.tile_size = 256,
+                          .keep_content = true,
                           .threads = vt_pool_cpu_count(),
                           .codec_name = "auto",
                           .name = "diffuse",

@@ -68,7 +68,7 @@ static int check_geometry(const struct vt_tiles_layout_options *o, const struct 
         return vt_usage_error(
             "--tile-size %u conflicts with the layout's tiles (content %u, border %u: --tile-size %u%s; or omit it)",
             o->tile_size, lay->tile_content, lay->border, want,
-            o->keep_content ? " with --keep content" : "");
+            o->keep_content ? "" : " with --keep payload");
     if (lay->tile_content + 2 * lay->border > VTS_MAX_PAYLOAD_PX)
         return vt_usage_error("the layout's tile payload %u exceeds %u",
                               lay->tile_content + 2 * lay->border, VTS_MAX_PAYLOAD_PX);

@@ -6,7 +6,7 @@
 set -euo pipefail
 [ -n "${VT_PYTHON:-}" ] || { echo "skip: no Python 3 with numpy and PIL (scripts/setup)"; exit 77; }
 "$VT_SYNTH_IMAGE" img.png --format png --size 1000x700 --photo
-"$VT_TILES" -q img.png -o s.vts --codec png --tile-size 128
+"$VT_TILES" -q img.png -o s.vts --codec png --tile-size 128 --keep payload
 "$VT_EXPORT" -q s.vts -o out --format png -j 2
 cat out/s.dzi
 ls out/s_files | sort -n | tr '\n' ' '; echo

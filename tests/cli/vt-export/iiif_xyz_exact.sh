@@ -4,7 +4,7 @@
 set -euo pipefail
 [ -n "${VT_PYTHON:-}" ] || { echo "skip: no Python 3 with numpy and PIL (scripts/setup)"; exit 77; }
 "$VT_SYNTH_IMAGE" img.png --format png --size 1000x700 --photo
-"$VT_TILES" -q img.png -o s.vts --codec png --tile-size 128
+"$VT_TILES" -q img.png -o s.vts --codec png --tile-size 128 --keep payload
 levels=()
 for l in 0 1 2 3 4; do
   "$VT_INFO" --extract $l -o e$l.png s.vts

@@ -3,7 +3,7 @@
 set -euo pipefail
 [ -n "${VT_PYTHON:-}" ] || { echo "skip: no Python 3 with numpy and PIL (scripts/setup)"; exit 77; }
 "$VT_SYNTH_IMAGE" img.png --format png --size 600x400 --photo
-"$VT_TILES" -q img.png -o s.vts --codec png --tile-size 128 --name albedo
+"$VT_TILES" -q img.png -o s.vts --codec png --tile-size 128 --keep payload --name albedo
 "$VT_EXPORT" -q s.vts -o j --layer albedo --quality 95
 ls j
 "$VT_INFO" --extract 0 -o e0.png s.vts

@@ -371,9 +371,19 @@ static void test_conflicting_geometry_is_usage_error(void)
     snprintf(args, sizeof args, "--layout %s -o %s/x.vts --border 2 -q", layout_path, abuild_dir);
     VT_CHECK_INT_EQ(abuild_run(args), 2);
     VT_CHECK_STR_CONTAINS(abuild_stderr, "--border 2 conflicts with the layout's border 4");
-    snprintf(args, sizeof args, "--layout %s -o %s/x.vts --tile-size 136 --border 4 -q",
+    /* --tile-size is the content edge (128 in this layout), as in vt-atlas; --keep payload
+     * takes the stored edge (128 + 2 * 4) */
+    snprintf(args, sizeof args, "--layout %s -o %s/x.vts --tile-size 128 --border 4 -q",
              layout_path, abuild_dir);
     VT_CHECK_INT_EQ(abuild_run(args), 0);
+    snprintf(args, sizeof args, "--layout %s -o %s/x.vts --tile-size 136 --keep payload -q",
+             layout_path, abuild_dir);
+    VT_CHECK_INT_EQ(abuild_run(args), 0);
+    snprintf(args, sizeof args, "--layout %s -o %s/x.vts --tile-size 136 -q", layout_path,
+             abuild_dir);
+    VT_CHECK_INT_EQ(abuild_run(args), 2);
+    VT_CHECK_STR_CONTAINS(abuild_stderr, "--tile-size 136 conflicts with the layout's tiles "
+                                         "(content 128, border 4: --tile-size 128; or omit it)");
     snprintf(args, sizeof args, "--layout %s -o %s/x.vts --layer nope -q", layout_path, abuild_dir);
     VT_CHECK_INT_EQ(abuild_run(args), 2);
     VT_CHECK_STR_CONTAINS(abuild_stderr, "--layer 'nope'");

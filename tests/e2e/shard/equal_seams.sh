@@ -5,7 +5,7 @@
 # the 64 parts smaller than a tile of level 3), merged equal the single build byte for byte.
 set -euo pipefail
 "$VT_SYNTH_IMAGE" in.tif --format tiff --size 2901x1333 --channels 4 --tile 128
-opts=(--tile-size 64 --border 3 --filter lanczos3 --codec png)
+opts=(--tile-size 64 --keep payload --border 3 --filter lanczos3 --codec png)
 "$VT_TILES" in.tif -o single.vts "${opts[@]}" -j2 -q
 for n in 2 8 64; do
   for i in $(seq 1 $n); do

@@ -84,9 +84,10 @@ static void level_sizes_and_borders_for_odd_inputs(void)
         vt_image_alloc(&img, w, h, 3, VTS_SAMPLE_U8, NULL);
         fill_random(&img);
         VT_CHECK_INT_EQ(tiles_write_png(tiles_path("odd.png"), &img), 0);
-        VT_CHECK_INT_EQ(tiles_run(tiles_path("odd.png"), tiles_path("odd.vts"),
-                                  "--tile-size 64 --border 2 --codec raw --filter triangle"),
-                        0);
+        VT_CHECK_INT_EQ(
+            tiles_run(tiles_path("odd.png"), tiles_path("odd.vts"),
+                      "--tile-size 64 --keep payload --border 2 --codec raw --filter triangle"),
+            0);
         struct vts_store *s = vts_open(tiles_path("odd.vts"), NULL);
         VT_CHECK(s != NULL);
         if (s) {

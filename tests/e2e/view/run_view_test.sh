@@ -199,7 +199,7 @@ ram_prefetch)
   # (no read), and the prefetch reads the neighbours and children of wanted tiles with the reads
   # left over: fewer fallback pixels over the path with each, the same on a second run.
   "$synth_image" big.png --format png --size 2048x1024 --channels 3 --seed 9 --photo
-  "$vt_tiles" big.png -o big.vts --codec png --tile-size 64 -q
+  "$vt_tiles" big.png -o big.vts --codec png --tile-size 64 --keep payload -q
   : >path.cam
   for x in $(seq 300 40 1100) $(seq 1100 -40 300); do echo "$x 500 1.0" >>path.cam; done
   for z in 1.0 1.2 1.45 1.75 2.1 2.5 3.0 3.6 4.3; do echo "700 500 $z" >>path.cam; done
@@ -232,7 +232,7 @@ vt_tiles_store)
   # A store made by the real pipeline: vt-tiles (box mips in linear light, sRGB layer) from a
   # generated photo-like PNG; sRGB textures on both sides.
   "$synth_image" img.png --format png --size 512x512 --channels 3 --photo
-  "$vt_tiles" img.png -o tiles.vts --tile-size 72 --border 4 --codec png --filter box -q
+  "$vt_tiles" img.png -o tiles.vts --tile-size 72 --keep payload --border 4 --codec png --filter box -q
   for cam in mag min; do
     compare tiles.vts bilinear $cam --min 40
     compare tiles.vts trilinear $cam --min 35
