@@ -8,10 +8,11 @@
  * per second of CPU time of the one encoding thread (CLOCK_THREAD_CPUTIME_ID, so other load on a
  * shared machine counts less than in wall time), best of RUNS runs.
  *
- * usage: vt-bench-bc [--runs N] [--synth EDGE] [--md OUT.md] [IMAGE.png...]
- * --synth adds the tests' photo-like generator (vt_synth_photo, seed 1, chroma 0.6) at EDGE^2.
- * Prints one table per image and format, then the totals over all images (PSNR of the summed
- * squared error, MP/s of the summed time) with the ratios ours/reference. */
+ * usage: vt-bench-bc [--runs N] [--synth EDGE] [--md OUT.md] [--only LABEL] [IMAGE.png...]
+ * --only runs the one encoder of that label (e.g. "ours fast"; for perf record), the others'
+ * columns stay empty (NaN). --synth adds the tests' photo-like generator (vt_synth_photo, seed 1,
+ * chroma 0.6) at EDGE^2. Prints one table per image and format, then the totals over all images
+ * (PSNR of the summed squared error, MP/s of the summed time) with the ratios ours/reference. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdint.h>
@@ -82,6 +83,7 @@ static double psnr_of(double se, double samples)
 }
 
 static FILE *md;
+static const char *only; /* --only: the one encoder to run */
 
 static void report(const char *title, const double psnr[N_ENCODERS], const double mps[N_ENCODERS])
 {
@@ -144,6 +146,10 @@ static void bench_image(const char *name, const struct rgb *src, int runs)
         for (size_t e = 0; e < N_ENCODERS; e++) {
             struct vt_codec_params params = {.effort = encoders[e].effort};
             double best = INFINITY;
+            if (only && strcmp(only, encoders[e].label) != 0) {
+                psnr[e] = mps[e] = NAN;
+                continue;
+            }
             for (int r = 0; r < runs; r++) {
                 double t0 = cpu_s();
                 for (uint32_t t = 0; t < ntiles; t++) {
@@ -199,12 +205,15 @@ int main(int argc, char **argv)
             synth = (uint32_t)atoi(argv[++i]);
         else if (!strcmp(argv[i], "--md") && i + 1 < argc)
             md_path = argv[++i];
+        else if (!strcmp(argv[i], "--only") && i + 1 < argc)
+            only = argv[++i];
         else
             break;
     }
     if (runs < 1 || (i >= argc && synth == 0)) {
-        fprintf(stderr,
-                "usage: vt-bench-bc [--runs N] [--synth EDGE] [--md OUT.md] [IMAGE.png...]\n");
+        fprintf(
+            stderr,
+            "usage: vt-bench-bc [--runs N] [--synth EDGE] [--md OUT.md] [--only LABEL] [IMAGE.png...]\n");
         return 2;
     }
     md = md_path ? fopen(md_path, "w") : fopen("/dev/null", "w");
@@ -238,7 +247,8 @@ int main(int argc, char **argv)
     for (int f = 0; f < 2; f++) {
         double psnr[N_ENCODERS], mps[N_ENCODERS];
         for (size_t e = 0; e < N_ENCODERS; e++) {
-            psnr[e] = psnr_of(totals[f][e].se, totals[f][e].samples);
+            psnr[e] = totals[f][e].samples > 0 ? psnr_of(totals[f][e].se, totals[f][e].samples)
+                                               : NAN; /* not run (--only) */
             mps[e] = totals[f][e].texels / 1e6 / totals[f][e].seconds;
         }
         char title[128];
