@@ -10,9 +10,12 @@
  *   3. Iterated: indices by the nearest palette colour (the palette the decoder computes), then
  *      the least-squares endpoints for those index weights (the 2x2 normal equations, integer
  *      sums, one division), requantised; kept while the block error falls.
- *   4. best: the same from the un-inset extremes, the 3-colour mode as well (BC1), then a search
- *      of +-1 on each of the six 565 components around the best pair, kept while it improves,
- *      and a last least-squares step.
+ *   4. best: the same from four starts between the extremes (inset 0, 1/16, 1/8, 1/4 of the
+ *      range), two starts from indices (the texels in three bins along the axis on the top or the
+ *      bottom three palette entries: blocks of three clusters whose best endpoint lies outside
+ *      the texels), the 3-colour mode from two starts as well (BC1), then a search of +-1 on each
+ *      of the six 565 components around the best pair, kept while it improves, and a last
+ *      least-squares step.
  * Error: the sum over texels of the squared RGB distance to the decoded palette colour (integer,
  * uniform weights as PSNR counts; times alpha + 1 with VT_BC_ENCODE_WEIGHT_BY_ALPHA). BC1
  * texels with alpha < 128 take index 3 of the 3-colour mode (transparent black) and count nothing.
@@ -101,6 +104,7 @@ static void bc_tables_init(void)
 struct bc_colour_texels {
     _Alignas(16) int16_t plane[3][BC_TEXELS]; /* R, G, B planes for the SIMD error loop */
     _Alignas(16) uint16_t weight[BC_TEXELS];  /* 0 for a transparent texel */
+    _Alignas(16) uint32_t count[BC_TEXELS];   /* ~0 for a texel of weight > 0, else 0 */
     uint32_t force;       /* 3 << 2i for a transparent texel i (index 3 of the 3-colour mode) */
     uint32_t transparent; /* bit i: texel i is stored as transparent */
     bool uniform;         /* every weight is 0 or one common value: the error counts texels */
@@ -121,11 +125,12 @@ static void bc_unpack565(unsigned c, int rgb[3])
 }
 
 /* The error of endpoints (c0, c1) as stored (their order picks the mode), with the nearest
- * palette index of every texel in *indices. The error is the sum of the squared RGB distances,
+ * palette index of every texel in *indices; UINT32_MAX (and *indices untouched) when it reaches
+ * bound. The error is the sum of the squared RGB distances,
  * times the texel's weight unless the block is uniform (then a common factor left out):
  * < 16 * 195075 * 256 < 2^32. */
 static uint32_t bc_colour_eval(const struct bc_colour_texels *t, unsigned c0, unsigned c1,
-                               uint32_t *indices)
+                               uint32_t bound, uint32_t *indices)
 {
     int pal[4][3];
     bc_unpack565(c0, pal[0]);
@@ -170,9 +175,21 @@ static uint32_t bc_colour_eval(const struct bc_colour_texels *t, unsigned c0, un
         }
         m[2 * half] = m_lo;
         m[2 * half + 1] = m_hi;
+        if (t->uniform) { /* the error of these 8 texels; out as soon as it reaches bound */
+            __m128i s = _mm_add_epi32(
+                _mm_and_si128(_mm_srli_epi32(m_lo, 2),
+                              _mm_load_si128((const __m128i *)&t->count[8 * half])),
+                _mm_and_si128(_mm_srli_epi32(m_hi, 2),
+                              _mm_load_si128((const __m128i *)&t->count[8 * half + 4])));
+            s = _mm_add_epi32(s, _mm_shuffle_epi32(s, _MM_SHUFFLE(1, 0, 3, 2)));
+            s = _mm_add_epi32(s, _mm_shuffle_epi32(s, _MM_SHUFFLE(2, 3, 0, 1)));
+            error += (uint32_t)_mm_cvtsi128_si32(s);
+            if (error >= bound)
+                return UINT32_MAX;
+        }
     }
     if (t->uniform) {
-        /* the indices: 16 bytes of 0..3 folded into 2 bits each; the error: masked sum */
+        /* the indices: 16 bytes of 0..3 folded into 2 bits each */
         const __m128i three = _mm_set1_epi32(3);
         __m128i i01 = _mm_packs_epi32(_mm_and_si128(m[0], three), _mm_and_si128(m[1], three));
         __m128i i23 = _mm_packs_epi32(_mm_and_si128(m[2], three), _mm_and_si128(m[3], three));
@@ -181,22 +198,7 @@ static uint32_t bc_colour_eval(const struct bc_colour_texels *t, unsigned c0, un
             _mm_and_si128(_mm_or_si128(bytes, _mm_srli_epi16(bytes, 6)), _mm_set1_epi16(15));
         x = _mm_and_si128(_mm_or_si128(x, _mm_srli_epi32(x, 12)), _mm_set1_epi32(255));
         x = _mm_packus_epi16(_mm_packs_epi32(x, x), x);
-        idx = (uint32_t)_mm_cvtsi128_si32(x);
-        __m128i mask0 = _mm_load_si128((const __m128i *)&t->weight[0]);
-        __m128i mask1 = _mm_load_si128((const __m128i *)&t->weight[8]);
-        mask0 = _mm_cmpeq_epi16(mask0, zero);
-        mask1 = _mm_cmpeq_epi16(mask1, zero);
-        __m128i s = _mm_add_epi32(
-            _mm_add_epi32(
-                _mm_andnot_si128(_mm_unpacklo_epi16(mask0, mask0), _mm_srli_epi32(m[0], 2)),
-                _mm_andnot_si128(_mm_unpackhi_epi16(mask0, mask0), _mm_srli_epi32(m[1], 2))),
-            _mm_add_epi32(
-                _mm_andnot_si128(_mm_unpacklo_epi16(mask1, mask1), _mm_srli_epi32(m[2], 2)),
-                _mm_andnot_si128(_mm_unpackhi_epi16(mask1, mask1), _mm_srli_epi32(m[3], 2))));
-        s = _mm_add_epi32(s, _mm_shuffle_epi32(s, _MM_SHUFFLE(1, 0, 3, 2)));
-        s = _mm_add_epi32(s, _mm_shuffle_epi32(s, _MM_SHUFFLE(2, 3, 0, 1)));
-        error = (uint32_t)_mm_cvtsi128_si32(s);
-        *indices = idx | t->force;
+        *indices = (uint32_t)_mm_cvtsi128_si32(x) | t->force;
         return error;
     }
     for (int q = 0; q < 4; q++)
@@ -219,6 +221,8 @@ static uint32_t bc_colour_eval(const struct bc_colour_texels *t, unsigned c0, un
         uint32_t w = t->uniform ? t->weight[i] != 0 : t->weight[i];
         error += (key[i] >> 2) * w;
     }
+    if (error >= bound)
+        return UINT32_MAX;
     *indices = idx | t->force;
     return error;
 }
@@ -234,7 +238,7 @@ static bool bc_colour_try(const struct bc_colour_texels *t, unsigned c0, unsigne
         c1 = s;
     }
     uint32_t idx;
-    uint32_t error = bc_colour_eval(t, c0, c1, &idx);
+    uint32_t error = bc_colour_eval(t, c0, c1, cand->error, &idx);
     if (error >= cand->error)
         return false;
     *cand = (struct bc_colour_candidate){c0, c1, idx, error};
@@ -341,18 +345,6 @@ static void bc_colour_search(const struct bc_colour_texels *t, struct bc_colour_
                 }
             }
         }
-        /* both endpoints of one channel together (a shift of the line) */
-        for (int ch = 0; ch < 3; ch++) {
-            for (int d = -1; d <= 1; d += 2) {
-                int v0 = (int)(best->c0 >> shift[ch] & mask[ch]) + d;
-                int v1 = (int)(best->c1 >> shift[ch] & mask[ch]) + d;
-                if (v0 < 0 || v0 > (int)mask[ch] || v1 < 0 || v1 > (int)mask[ch])
-                    continue;
-                unsigned n0 = (best->c0 & ~(mask[ch] << shift[ch])) | (unsigned)v0 << shift[ch];
-                unsigned n1 = (best->c1 & ~(mask[ch] << shift[ch])) | (unsigned)v1 << shift[ch];
-                improved |= bc_colour_try(t, n0, n1, three, best);
-            }
-        }
         if (!improved)
             break;
     }
@@ -363,6 +355,7 @@ static void bc_colour_search(const struct bc_colour_texels *t, struct bc_colour_
 struct bc_axis {
     double mean[3], dir[3]; /* endpoint = mean + dir * t */
     double tmin, tmax;
+    double proj[BC_TEXELS]; /* the texels' projections (t of the texel, plus tmin) */
 };
 
 static void bc_colour_axis(const struct bc_colour_texels *t, int iterations, struct bc_axis *ax)
@@ -418,6 +411,7 @@ static void bc_colour_axis(const struct bc_colour_texels *t, int iterations, str
         if (t->weight[i] == 0)
             continue;
         double p = t->plane[0][i] * v0 + t->plane[1][i] * v1 + t->plane[2][i] * v2;
+        ax->proj[i] = p;
         tmin = p < tmin ? p : tmin;
         tmax = p > tmax ? p : tmax;
     }
@@ -426,6 +420,8 @@ static void bc_colour_axis(const struct bc_colour_texels *t, int iterations, str
     ax->mean[1] = s[1] * inv_sw;
     ax->mean[2] = s[2] * inv_sw;
     double pm = ax->mean[0] * v0 + ax->mean[1] * v1 + ax->mean[2] * v2;
+    for (int i = 0; i < BC_TEXELS; i++)
+        ax->proj[i] -= tmin;
     ax->tmin = tmin - pm;
     ax->tmax = tmax - pm;
     ax->dir[0] = v0 / vv;
@@ -444,6 +440,26 @@ static void bc_axis_endpoints(const struct bc_axis *ax, double inset, unsigned *
     }
     *c0 = bc_pack565(e0);
     *c1 = bc_pack565(e1);
+}
+
+/* A 4-colour start from indices: the texels in three bins along the axis, put on three evenly
+ * spaced palette entries (the top three: c0, c2, c3, or the bottom three: c2, c3, c1), the
+ * endpoints solved for those and refined. The blocks of three clusters where one endpoint must
+ * lie outside the texels, which starts between the extremes do not find. */
+static void bc_colour_bins(const struct bc_colour_texels *t, const struct bc_axis *ax, bool top,
+                           struct bc_colour_candidate *best)
+{
+    static const unsigned index_top[3] = {3, 2, 0}, index_bottom[3] = {1, 3, 2};
+    double range = ax->tmax - ax->tmin;
+    struct bc_colour_candidate start = {0, 0, 0, UINT32_MAX};
+    for (int i = 0; i < BC_TEXELS; i++) {
+        int bin = (int)(ax->proj[i] * 2 / range + 0.5);
+        bin = bin < 0 ? 0 : bin > 2 ? 2 : bin;
+        start.indices |= (top ? index_top[bin] : index_bottom[bin]) << (2 * i);
+    }
+    unsigned c0, c1;
+    if (bc_colour_solve(t, &start, false, &c0, &c1))
+        bc_colour_refine(t, c0, c1, false, BC_REFINE_BEST, best);
 }
 
 /* A block whose opaque texels are one colour: the per-channel table pairs. */
@@ -497,12 +513,14 @@ void vt_bc_encode_colour_block(const unsigned char *rgba, unsigned flags, unsign
         for (int ch = 0; ch < 3; ch++)
             t.plane[ch][i] = x[ch];
         t.weight[i] = (uint16_t)(by_alpha ? a + 1 : 1);
+        t.count[i] = ~0u;
         any |= a;
         all &= a;
         if (!t.four_only && a < BC_ALPHA_OPAQUE) {
             t.transparent |= 1u << i;
             t.force |= 3u << (2 * i);
             t.weight[i] = 0;
+            t.count[i] = 0;
             continue;
         }
         for (int ch = 0; ch < 3; ch++) {
@@ -546,6 +564,10 @@ void vt_bc_encode_colour_block(const unsigned char *rgba, unsigned flags, unsign
         for (size_t s = 0; s < starts; s++) {
             bc_axis_endpoints(&ax, insets[s], &c0, &c1);
             bc_colour_refine(&t, c0, c1, three, BC_REFINE_BEST, &best);
+        }
+        if (!three) {
+            bc_colour_bins(&t, &ax, true, &best);
+            bc_colour_bins(&t, &ax, false, &best);
         }
     }
     bc_colour_search(&t, &best);

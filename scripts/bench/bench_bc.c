@@ -101,7 +101,7 @@ static void report(const char *title, const double psnr[N_ENCODERS], const doubl
     }
     printf("%s\n", title);
     for (size_t e = 0; e < N_ENCODERS; e++) {
-        printf("  %-22s %6.2f dB %8.2f MP/s per core", encoders[e].label, psnr[e], mps[e]);
+        printf("  %-22s %7.3f dB %8.2f MP/s per core", encoders[e].label, psnr[e], mps[e]);
         if (e % 2 == 0)
             printf("   ours/%s: %+.3f dB, %.1fx speed", encoders[e + 1].label,
                    psnr[e] - psnr[e + 1], mps[e] / mps[e + 1]);

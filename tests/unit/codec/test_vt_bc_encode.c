@@ -191,8 +191,8 @@ static void bc_ours_is_deterministic(void)
     static const char *const names[2] = {"bc1", "bc3"};
     static const int efforts[2] = {VT_CODEC_BC_BEST, VT_CODEC_BC_OURS_FAST};
     static const uint64_t pinned[2][2] = {
-        {0x5368962724e68349ull, 0x497e9ac31e2deeefull},
-        {0xdf79fa9d7c0b5389ull, 0xbc01234a146963c4ull},
+        {0x890d13c9e8747c69ull, 0x497e9ac31e2deeefull},
+        {0xffb9c69947dc5337ull, 0xbc01234a146963c4ull},
     };
     for (int c = 0; c < 2; c++)
         for (int e = 0; e < 2; e++) {
@@ -225,9 +225,10 @@ static void bc_ours_best_matches_libsquish_cluster_fit(void)
         stderr,
         "  bc1 best %.3f dB vs libsquish %.3f; bc3 best %.3f vs %.3f; ours fast %.3f vs stb_dxt %.3f\n",
         bc1_ours, bc1_squish, bc3_ours, bc3_squish, bc1_fast, bc1_stb);
-    /* over all channels, alpha included for bc3 */
-    VT_CHECK(bc1_ours >= bc1_squish - 0.05);
-    VT_CHECK(bc3_ours >= bc3_squish - 0.05);
+    /* over all channels, alpha included for bc3: at least the cluster fit's (measured +0.14 and
+     * +0.11 dB here) */
+    VT_CHECK(bc1_ours >= bc1_squish);
+    VT_CHECK(bc3_ours >= bc3_squish);
     VT_CHECK(bc1_fast >= bc1_stb);
     free(rgb.pixels);
     free(rgba.pixels);
