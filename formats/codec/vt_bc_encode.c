@@ -107,6 +107,7 @@ struct bc_colour_texels {
     _Alignas(16) uint32_t count[BC_TEXELS];   /* ~0 for a texel of weight > 0, else 0 */
     uint32_t force;       /* 3 << 2i for a transparent texel i (index 3 of the 3-colour mode) */
     uint32_t transparent; /* bit i: texel i is stored as transparent */
+    int32_t wsum, wx[3];  /* the sums of the weights and weighted R, G, B (set by the axis) */
     bool uniform;         /* every weight is 0 or one common value: the error counts texels */
     bool four_only;
 };
@@ -267,39 +268,84 @@ static unsigned bc_pack565(const double e[3])
 }
 
 /* Least-squares endpoints for the index weights of cand (4-colour: 1, 0, 2/3, 1/3 of c0;
- * 3-colour: 1, 0, 1/2), quantised. The texels enter through their sums per index (integer).
- * False when the system is singular (one index for all). */
+ * 3-colour: 1, 0, 1/2), quantised. With a_i the weight of c0 in texel i's palette entry (times
+ * scale) and b_i = scale - a_i, the normal equations need only sums over a_i (sum a, a^2, a x)
+ * and the block's moments (t->wsum, t->wx): all integer. False when the system is singular
+ * (one index for all). */
 static bool bc_colour_solve(const struct bc_colour_texels *t, const struct bc_colour_candidate *c,
                             bool three, unsigned *c0, unsigned *c1)
 {
     static const int weight4[4] = {3, 0, 2, 1}, weight3[4] = {2, 0, 1, 0};
-    const int scale = three ? 2 : 3;
-    int32_t n[4] = {0, 0, 0, 0}, x[4][3] = {{0}};
-    for (int i = 0; i < BC_TEXELS; i++) {
-        unsigned k = c->indices >> (2 * i) & 3;
-        int32_t w = t->uniform ? t->weight[i] != 0 : t->weight[i];
-        n[k] += w;
-        for (int ch = 0; ch < 3; ch++)
-            x[k][ch] += w * t->plane[ch][i];
-    }
-    int64_t aa = 0, ab = 0, bb = 0, ax[3] = {0, 0, 0}, bx[3] = {0, 0, 0};
-    for (int k = 0; k < (three ? 3 : 4); k++) {
-        int64_t a = three ? weight3[k] : weight4[k], b = scale - a;
-        aa += n[k] * a * a;
-        ab += n[k] * a * b;
-        bb += n[k] * b * b;
-        for (int ch = 0; ch < 3; ch++) {
-            ax[ch] += a * x[k][ch];
-            bx[ch] += b * x[k][ch];
+    const int64_t scale = three ? 2 : 3;
+    int32_t sa = 0, saa = 0, sax[3] = {0, 0, 0};
+#if defined(VT_BC_ENCODE_SSE2)
+    if (t->uniform) {
+        /* the 16 indices into 16-bit lanes (lane i: bits 2i..2i+1 moved to the top), then a_i */
+        const __m128i up =
+            _mm_setr_epi16(1 << 14, 1 << 12, 1 << 10, 1 << 8, 1 << 6, 1 << 4, 1 << 2, 1);
+        const __m128i zero = _mm_setzero_si128(), ones = _mm_set1_epi16(1);
+        __m128i acc_a = zero, acc_aa = zero, acc_r = zero, acc_g = zero, acc_b = zero;
+        for (int half = 0; half < 2; half++) {
+            __m128i k = _mm_set1_epi16((int16_t)(c->indices >> (16 * half) & 0xffff));
+            k = _mm_srli_epi16(_mm_mullo_epi16(k, up), 14);
+            __m128i is0 = _mm_cmpeq_epi16(k, zero), is2 = _mm_cmpeq_epi16(k, _mm_set1_epi16(2));
+            __m128i a;
+            if (three) {
+                a = _mm_or_si128(_mm_and_si128(is0, _mm_set1_epi16(2)), _mm_and_si128(is2, ones));
+            } else {
+                __m128i is3 = _mm_cmpeq_epi16(k, _mm_set1_epi16(3));
+                a = _mm_or_si128(_mm_or_si128(_mm_and_si128(is0, _mm_set1_epi16(3)),
+                                              _mm_and_si128(is2, _mm_set1_epi16(2))),
+                                 _mm_and_si128(is3, ones));
+            }
+            __m128i w = _mm_load_si128((const __m128i *)&t->weight[8 * half]);
+            a = _mm_andnot_si128(_mm_cmpeq_epi16(w, zero), a); /* transparent texels: 0 */
+            acc_a = _mm_add_epi32(acc_a, _mm_madd_epi16(a, ones));
+            acc_aa = _mm_add_epi32(acc_aa, _mm_madd_epi16(a, a));
+            acc_r = _mm_add_epi32(
+                acc_r, _mm_madd_epi16(a, _mm_load_si128((const __m128i *)&t->plane[0][8 * half])));
+            acc_g = _mm_add_epi32(
+                acc_g, _mm_madd_epi16(a, _mm_load_si128((const __m128i *)&t->plane[1][8 * half])));
+            acc_b = _mm_add_epi32(
+                acc_b, _mm_madd_epi16(a, _mm_load_si128((const __m128i *)&t->plane[2][8 * half])));
+        }
+        /* transpose-add: lane j of sum0 = the total of vector j */
+        __m128i t0 =
+            _mm_add_epi32(_mm_unpacklo_epi32(acc_a, acc_aa), _mm_unpackhi_epi32(acc_a, acc_aa));
+        __m128i t1 =
+            _mm_add_epi32(_mm_unpacklo_epi32(acc_r, acc_g), _mm_unpackhi_epi32(acc_r, acc_g));
+        __m128i sum0 = _mm_add_epi32(_mm_unpacklo_epi64(t0, t1), _mm_unpackhi_epi64(t0, t1));
+        __m128i sb = _mm_add_epi32(acc_b, _mm_shuffle_epi32(acc_b, _MM_SHUFFLE(1, 0, 3, 2)));
+        sb = _mm_add_epi32(sb, _mm_shuffle_epi32(sb, _MM_SHUFFLE(2, 3, 0, 1)));
+        _Alignas(16) int32_t sums[4];
+        _mm_store_si128((__m128i *)sums, sum0);
+        sa = sums[0];
+        saa = sums[1];
+        sax[0] = sums[2];
+        sax[1] = sums[3];
+        sax[2] = _mm_cvtsi128_si32(sb);
+    } else
+#endif
+    {
+        for (int i = 0; i < BC_TEXELS; i++) {
+            unsigned k = c->indices >> (2 * i) & 3;
+            int32_t w = t->uniform ? t->weight[i] != 0 : t->weight[i];
+            int32_t a = (three ? weight3[k] : weight4[k]) * w;
+            sa += a;
+            saa += a * (three ? weight3[k] : weight4[k]);
+            for (int ch = 0; ch < 3; ch++)
+                sax[ch] += a * t->plane[ch][i];
         }
     }
+    int64_t aa = saa, ab = scale * sa - saa, bb = scale * scale * t->wsum - 2 * scale * sa + saa;
     int64_t det = aa * bb - ab * ab;
     if (det == 0)
         return false;
     double e0[3], e1[3];
     for (int ch = 0; ch < 3; ch++) {
-        e0[ch] = (double)(scale * (bb * ax[ch] - ab * bx[ch])) / (double)det;
-        e1[ch] = (double)(scale * (aa * bx[ch] - ab * ax[ch])) / (double)det;
+        int64_t ax = sax[ch], bx = scale * t->wx[ch] - sax[ch];
+        e0[ch] = (double)(scale * (bb * ax - ab * bx)) / (double)det;
+        e1[ch] = (double)(scale * (aa * bx - ab * ax)) / (double)det;
     }
     *c0 = bc_pack565(e0);
     *c1 = bc_pack565(e1);
@@ -358,7 +404,7 @@ struct bc_axis {
     double proj[BC_TEXELS]; /* the texels' projections (t of the texel, plus tmin) */
 };
 
-static void bc_colour_axis(const struct bc_colour_texels *t, int iterations, struct bc_axis *ax)
+static void bc_colour_axis(struct bc_colour_texels *t, int iterations, struct bc_axis *ax)
 {
     /* integer moments (weights <= 256: every sum < 2^31), the covariance times wsum^2 exactly */
     int32_t sw = 0, s[3] = {0, 0, 0}, rr = 0, rg = 0, rb = 0, gg = 0, gb = 0, bb = 0;
@@ -376,6 +422,8 @@ static void bc_colour_axis(const struct bc_colour_texels *t, int iterations, str
         gb += w * g * b;
         bb += w * b * b;
     }
+    t->wsum = sw;
+    memcpy(t->wx, s, sizeof t->wx);
     double c00 = (double)((int64_t)sw * rr - (int64_t)s[0] * s[0]),
            c01 = (double)((int64_t)sw * rg - (int64_t)s[0] * s[1]),
            c02 = (double)((int64_t)sw * rb - (int64_t)s[0] * s[2]),
