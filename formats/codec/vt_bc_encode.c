@@ -404,24 +404,36 @@ struct bc_axis {
     double proj[BC_TEXELS]; /* the texels' projections (t of the texel, plus tmin) */
 };
 
-static void bc_colour_axis(struct bc_colour_texels *t, int iterations, struct bc_axis *ax)
+/* The block's integer moments: weights <= 256, so every sum < 2^31. */
+struct bc_moments {
+    int32_t sw, s[3], rr, rg, rb, gg, gb, bb;
+};
+
+static void bc_colour_moments(const struct bc_colour_texels *t, struct bc_moments *m)
 {
-    /* integer moments (weights <= 256: every sum < 2^31), the covariance times wsum^2 exactly */
-    int32_t sw = 0, s[3] = {0, 0, 0}, rr = 0, rg = 0, rb = 0, gg = 0, gb = 0, bb = 0;
+    *m = (struct bc_moments){0};
     for (int i = 0; i < BC_TEXELS; i++) {
         int32_t w = t->uniform ? t->weight[i] != 0 : t->weight[i];
         int32_t r = t->plane[0][i], g = t->plane[1][i], b = t->plane[2][i];
-        sw += w;
-        s[0] += w * r;
-        s[1] += w * g;
-        s[2] += w * b;
-        rr += w * r * r;
-        rg += w * r * g;
-        rb += w * r * b;
-        gg += w * g * g;
-        gb += w * g * b;
-        bb += w * b * b;
+        m->sw += w;
+        m->s[0] += w * r;
+        m->s[1] += w * g;
+        m->s[2] += w * b;
+        m->rr += w * r * r;
+        m->rg += w * r * g;
+        m->rb += w * r * b;
+        m->gg += w * g * g;
+        m->gb += w * g * b;
+        m->bb += w * b * b;
     }
+}
+
+static void bc_colour_axis(struct bc_colour_texels *t, const struct bc_moments *m, int iterations,
+                           struct bc_axis *ax)
+{
+    /* the covariance times sw^2, exactly */
+    const int32_t sw = m->sw, *s = m->s, rr = m->rr, rg = m->rg, rb = m->rb, gg = m->gg, gb = m->gb,
+                  bb = m->bb;
     t->wsum = sw;
     memcpy(t->wx, s, sizeof t->wx);
     double c00 = (double)((int64_t)sw * rr - (int64_t)s[0] * s[0]),
@@ -456,10 +468,10 @@ static void bc_colour_axis(struct bc_colour_texels *t, int iterations, struct bc
     }
     double tmin = 1e300, tmax = -1e300;
     for (int i = 0; i < BC_TEXELS; i++) {
-        if (t->weight[i] == 0)
-            continue;
         double p = t->plane[0][i] * v0 + t->plane[1][i] * v1 + t->plane[2][i] * v2;
         ax->proj[i] = p;
+        if (t->weight[i] == 0)
+            continue;
         tmin = p < tmin ? p : tmin;
         tmax = p > tmax ? p : tmax;
     }
@@ -546,29 +558,30 @@ static void bc_put_colour(const struct bc_colour_candidate *c, unsigned char *ds
         dst[4 + b] = (unsigned char)(c->indices >> (8 * b));
 }
 
-void vt_bc_encode_colour_block(const unsigned char *rgba, unsigned flags, unsigned char *dst)
+/* The texels into t, the scalar way (any alpha, any weights); *single when every counted texel
+ * has one colour (rgb). */
+static void bc_colour_setup(const unsigned char *rgba, unsigned flags, struct bc_colour_texels *t,
+                            bool *single, int rgb[3])
 {
-    pthread_once(&bc_tables_once, bc_tables_init);
-    struct bc_colour_texels t;
-    t.four_only = (flags & VT_BC_ENCODE_FOUR_COLOUR_ONLY) != 0;
-    t.transparent = 0;
-    t.force = 0;
+    t->four_only = (flags & VT_BC_ENCODE_FOUR_COLOUR_ONLY) != 0;
+    t->transparent = 0;
+    t->force = 0;
     bool by_alpha = (flags & VT_BC_ENCODE_WEIGHT_BY_ALPHA) != 0;
     unsigned any = 0, all = 255, lo[3] = {255, 255, 255}, hi[3] = {0, 0, 0};
     for (int i = 0; i < BC_TEXELS; i++) {
         const unsigned char *x = rgba + 4 * i;
         unsigned a = x[3];
         for (int ch = 0; ch < 3; ch++)
-            t.plane[ch][i] = x[ch];
-        t.weight[i] = (uint16_t)(by_alpha ? a + 1 : 1);
-        t.count[i] = ~0u;
+            t->plane[ch][i] = x[ch];
+        t->weight[i] = (uint16_t)(by_alpha ? a + 1 : 1);
+        t->count[i] = ~0u;
         any |= a;
         all &= a;
-        if (!t.four_only && a < BC_ALPHA_OPAQUE) {
-            t.transparent |= 1u << i;
-            t.force |= 3u << (2 * i);
-            t.weight[i] = 0;
-            t.count[i] = 0;
+        if (!t->four_only && a < BC_ALPHA_OPAQUE) {
+            t->transparent |= 1u << i;
+            t->force |= 3u << (2 * i);
+            t->weight[i] = 0;
+            t->count[i] = 0;
             continue;
         }
         for (int ch = 0; ch < 3; ch++) {
@@ -577,7 +590,115 @@ void vt_bc_encode_colour_block(const unsigned char *rgba, unsigned flags, unsign
         }
     }
     /* uniform: every weight 0 or the same (not by alpha, or one alpha value for all) */
-    t.uniform = !by_alpha || any == all;
+    t->uniform = !by_alpha || any == all;
+    *single = lo[0] == hi[0] && lo[1] == hi[1] && lo[2] == hi[2];
+    for (int ch = 0; ch < 3; ch++)
+        rgb[ch] = (int)lo[ch];
+}
+
+#if defined(VT_BC_ENCODE_SSE2)
+/* The common block in SSE2: every texel counted with one weight (BC3's colour, or BC1 with no
+ * alpha below 128; not by alpha, or one alpha for all). False (t untouched) for any other block.
+ * Fills t, the moments and *single / rgb as bc_colour_setup and bc_colour_moments would (the
+ * weights all 1: uniform). */
+static bool bc_colour_setup_sse2(const unsigned char *rgba, unsigned flags,
+                                 struct bc_colour_texels *t, struct bc_moments *m, bool *single,
+                                 int rgb[3])
+{
+    __m128i v0 = _mm_loadu_si128((const __m128i *)rgba),
+            v1 = _mm_loadu_si128((const __m128i *)(rgba + 16)),
+            v2 = _mm_loadu_si128((const __m128i *)(rgba + 32)),
+            v3 = _mm_loadu_si128((const __m128i *)(rgba + 48));
+    /* transpose into R, G, B, A planes of 16 bytes */
+    __m128i t0 = _mm_unpacklo_epi8(v0, v1), t1 = _mm_unpackhi_epi8(v0, v1);
+    __m128i t2 = _mm_unpacklo_epi8(v2, v3), t3 = _mm_unpackhi_epi8(v2, v3);
+    __m128i u0 = _mm_unpacklo_epi8(t0, t1), u1 = _mm_unpackhi_epi8(t0, t1);
+    __m128i u2 = _mm_unpacklo_epi8(t2, t3), u3 = _mm_unpackhi_epi8(t2, t3);
+    __m128i w0 = _mm_unpacklo_epi8(u0, u1), w1 = _mm_unpackhi_epi8(u0, u1); /* RG, BA 0..7 */
+    __m128i w2 = _mm_unpacklo_epi8(u2, u3), w3 = _mm_unpackhi_epi8(u2, u3); /* 8..15 */
+    __m128i r = _mm_unpacklo_epi64(w0, w2), g = _mm_unpackhi_epi64(w0, w2);
+    __m128i b = _mm_unpacklo_epi64(w1, w3), a = _mm_unpackhi_epi64(w1, w3);
+    bool four_only = (flags & VT_BC_ENCODE_FOUR_COLOUR_ONLY) != 0;
+    if (!four_only && _mm_movemask_epi8(a) != 0xffff)
+        return false; /* an alpha below 128 */
+    if ((flags & VT_BC_ENCODE_WEIGHT_BY_ALPHA) &&
+        _mm_movemask_epi8(_mm_cmpeq_epi8(a, _mm_set1_epi8((char)rgba[3]))) != 0xffff)
+        return false; /* weights differ */
+    t->four_only = four_only;
+    t->transparent = 0;
+    t->force = 0;
+    t->uniform = true;
+    const __m128i zero = _mm_setzero_si128();
+    __m128i same = _mm_and_si128(_mm_cmpeq_epi8(r, _mm_set1_epi8((char)rgba[0])),
+                                 _mm_cmpeq_epi8(g, _mm_set1_epi8((char)rgba[1])));
+    same = _mm_and_si128(same, _mm_cmpeq_epi8(b, _mm_set1_epi8((char)rgba[2])));
+    *single = _mm_movemask_epi8(same) == 0xffff;
+    rgb[0] = rgba[0];
+    rgb[1] = rgba[1];
+    rgb[2] = rgba[2];
+    __m128i r0 = _mm_unpacklo_epi8(r, zero), r1 = _mm_unpackhi_epi8(r, zero);
+    __m128i g0 = _mm_unpacklo_epi8(g, zero), g1 = _mm_unpackhi_epi8(g, zero);
+    __m128i b0 = _mm_unpacklo_epi8(b, zero), b1 = _mm_unpackhi_epi8(b, zero);
+    _mm_store_si128((__m128i *)&t->plane[0][0], r0);
+    _mm_store_si128((__m128i *)&t->plane[0][8], r1);
+    _mm_store_si128((__m128i *)&t->plane[1][0], g0);
+    _mm_store_si128((__m128i *)&t->plane[1][8], g1);
+    _mm_store_si128((__m128i *)&t->plane[2][0], b0);
+    _mm_store_si128((__m128i *)&t->plane[2][8], b1);
+    const __m128i one16 = _mm_set1_epi16(1);
+    _mm_store_si128((__m128i *)&t->weight[0], one16);
+    _mm_store_si128((__m128i *)&t->weight[8], one16);
+    const __m128i all = _mm_set1_epi32(-1);
+    for (int q = 0; q < 4; q++)
+        _mm_store_si128((__m128i *)&t->count[4 * q], all);
+    if (*single)
+        return true;
+    /* moments: sums of bytes (sad), products (madd), all 16 texels of weight 1 */
+    __m128i sr = _mm_sad_epu8(r, zero), sg = _mm_sad_epu8(g, zero), sb = _mm_sad_epu8(b, zero);
+    __m128i prr = _mm_add_epi32(_mm_madd_epi16(r0, r0), _mm_madd_epi16(r1, r1));
+    __m128i prg = _mm_add_epi32(_mm_madd_epi16(r0, g0), _mm_madd_epi16(r1, g1));
+    __m128i prb = _mm_add_epi32(_mm_madd_epi16(r0, b0), _mm_madd_epi16(r1, b1));
+    __m128i pgg = _mm_add_epi32(_mm_madd_epi16(g0, g0), _mm_madd_epi16(g1, g1));
+    __m128i pgb = _mm_add_epi32(_mm_madd_epi16(g0, b0), _mm_madd_epi16(g1, b1));
+    __m128i pbb = _mm_add_epi32(_mm_madd_epi16(b0, b0), _mm_madd_epi16(b1, b1));
+    /* transpose-add: lane j of x = the total of the j-th vector */
+    __m128i x0 = _mm_add_epi32(_mm_unpacklo_epi32(prr, prg), _mm_unpackhi_epi32(prr, prg));
+    __m128i x1 = _mm_add_epi32(_mm_unpacklo_epi32(prb, pgg), _mm_unpackhi_epi32(prb, pgg));
+    __m128i x = _mm_add_epi32(_mm_unpacklo_epi64(x0, x1), _mm_unpackhi_epi64(x0, x1));
+    __m128i y = _mm_add_epi32(_mm_unpacklo_epi32(pgb, pbb), _mm_unpackhi_epi32(pgb, pbb));
+    y = _mm_add_epi32(y, _mm_unpackhi_epi64(y, y));
+    _Alignas(16) int32_t p[8];
+    _mm_store_si128((__m128i *)p, x);
+    _mm_store_si128((__m128i *)(p + 4), y);
+    m->sw = BC_TEXELS;
+    m->s[0] = _mm_cvtsi128_si32(sr) + _mm_cvtsi128_si32(_mm_unpackhi_epi64(sr, sr));
+    m->s[1] = _mm_cvtsi128_si32(sg) + _mm_cvtsi128_si32(_mm_unpackhi_epi64(sg, sg));
+    m->s[2] = _mm_cvtsi128_si32(sb) + _mm_cvtsi128_si32(_mm_unpackhi_epi64(sb, sb));
+    m->rr = p[0];
+    m->rg = p[1];
+    m->rb = p[2];
+    m->gg = p[3];
+    m->gb = p[4];
+    m->bb = p[5];
+    return true;
+}
+#endif
+
+void vt_bc_encode_colour_block(const unsigned char *rgba, unsigned flags, unsigned char *dst)
+{
+    pthread_once(&bc_tables_once, bc_tables_init);
+    struct bc_colour_texels t;
+    struct bc_moments mom = {0};
+    bool single;
+    int rgb[3];
+#if defined(VT_BC_ENCODE_SSE2)
+    if (!bc_colour_setup_sse2(rgba, flags, &t, &mom, &single, rgb))
+#endif
+    {
+        bc_colour_setup(rgba, flags, &t, &single, rgb);
+        if (!single)
+            bc_colour_moments(&t, &mom);
+    }
     struct bc_colour_candidate best = {0, 0, 0xffffffffu, UINT32_MAX};
     if (t.transparent == 0xffffu) { /* every texel transparent */
         best.error = 0;
@@ -586,14 +707,13 @@ void vt_bc_encode_colour_block(const unsigned char *rgba, unsigned flags, unsign
     }
     bool is_best = (flags & VT_BC_ENCODE_BEST) != 0;
     bool may_four = t.transparent == 0, may_three = !t.four_only;
-    if (lo[0] == hi[0] && lo[1] == hi[1] && lo[2] == hi[2]) {
-        const int rgb[3] = {(int)lo[0], (int)lo[1], (int)lo[2]};
+    if (single) {
         bc_colour_single(&t, rgb, may_four, may_three, &best);
         bc_put_colour(&best, dst);
         return;
     }
     struct bc_axis ax;
-    bc_colour_axis(&t, is_best ? BC_POWER_BEST : BC_POWER_FAST, &ax);
+    bc_colour_axis(&t, &mom, is_best ? BC_POWER_BEST : BC_POWER_FAST, &ax);
     unsigned c0, c1;
     if (!is_best) {
         bc_axis_endpoints(&ax, 1.0 / 16, &c0, &c1);
