@@ -67,7 +67,7 @@ struct encoder {
 static const struct encoder encoders[] = {
     {"ours best", VT_CODEC_BC_BEST},
     {"libsquish cluster fit", VT_CODEC_BC_REF_SQUISH},
-    {"ours fast", VT_CODEC_BC_OURS_FAST},
+    {"ours fast", VT_CODEC_BC_FAST},
     {"stb_dxt", VT_CODEC_BC_REF_STB_DXT},
 };
 #define N_ENCODERS (sizeof encoders / sizeof encoders[0])
