@@ -171,6 +171,174 @@ static void bc1_ours_stores_cut_outs_in_the_three_colour_mode(void)
     VT_CHECK_INT_EQ(bad, 0);
 }
 
+/* ---- against exhaustive searches ---- */
+
+static int expand_bits(unsigned q, int bits)
+{
+    return bits == 5 ? (int)(q << 3 | q >> 2) : (int)(q << 2 | q >> 4);
+}
+
+/* The smallest squared error of one channel's values x[0..15] over every endpoint pair of that
+ * channel (bits 5 or 6) with the decoder's palette: the 4-colour mode when q0 > q1 (and always
+ * with four_only), else the 3-colour mode (c2 = the half, c3 = the opaque texel's black: never
+ * near, see the callers). The other channels equal in both endpoints, so the pair's order in
+ * this channel picks the mode. */
+static long channel_optimum(const int x[16], int bits, bool four_only)
+{
+    long best = -1;
+    for (unsigned q0 = 0; q0 < (1u << bits); q0++)
+        for (unsigned q1 = 0; q1 < (1u << bits); q1++) {
+            int e0 = expand_bits(q0, bits), e1 = expand_bits(q1, bits), pal[4], n = 4;
+            pal[0] = e0;
+            pal[1] = e1;
+            if (four_only || q0 > q1) {
+                pal[2] = (2 * e0 + e1) / 3;
+                pal[3] = (e0 + 2 * e1) / 3;
+            } else {
+                pal[2] = (e0 + e1) / 2;
+                n = 3;
+            }
+            long err = 0;
+            for (int i = 0; i < 16; i++) {
+                long m = 1L << 30;
+                for (int k = 0; k < n; k++) {
+                    long d = (long)(x[i] - pal[k]) * (x[i] - pal[k]);
+                    m = d < m ? d : m;
+                }
+                err += m;
+            }
+            if (best < 0 || err < best)
+                best = err;
+        }
+    return best;
+}
+
+/* The squared RGB error of decoded against texels. */
+static long block_error(unsigned char texels[16][4], unsigned char decoded[16][4])
+{
+    long err = 0;
+    for (int i = 0; i < 16; i++)
+        for (int c = 0; c < 3; c++)
+            err += (long)(texels[i][c] - decoded[i][c]) * (texels[i][c] - decoded[i][c]);
+    return err;
+}
+
+/* A block with the values x in channel ch and 255 (exact in RGB565) in the two others: black,
+ * the 3-colour mode's fourth entry, is then never the nearest colour. */
+static void one_channel_block(const int x[16], int ch, unsigned char texels[16][4])
+{
+    for (int i = 0; i < 16; i++) {
+        texels[i][0] = texels[i][1] = texels[i][2] = texels[i][3] = 255;
+        texels[i][ch] = (unsigned char)x[i];
+    }
+}
+
+static void bc_ours_solid_blocks_reach_the_exhaustive_optimum(void)
+{
+    /* every 8-bit value in each channel: both efforts reach the best pair's error exactly (the
+     * single-colour table); a wrong encoder (the endpoints swapped: the other mode) does not */
+    static const int efforts[] = {VT_CODEC_BC_FAST, VT_CODEC_BC_BEST};
+    int wrong[2][2] = {{0, 0}, {0, 0}}, swapped_wrong = 0;
+    for (int ch = 0; ch < 3; ch++)
+        for (int v = 0; v < 256; v++) {
+            int x[16];
+            for (int i = 0; i < 16; i++)
+                x[i] = v;
+            unsigned char texels[16][4], decoded[16][4], out[16];
+            one_channel_block(x, ch, texels);
+            for (int f = 0; f < 2; f++) {
+                const char *name = f ? "bc3" : "bc1";
+                long optimum = channel_optimum(x, ch == 1 ? 6 : 5, f == 1);
+                for (int e = 0; e < 2; e++) {
+                    struct vt_image src = {4, 4, 4, VTS_SAMPLE_U8, 16, texels};
+                    struct vt_codec_params params = {.effort = efforts[e]};
+                    size_t len = 0;
+                    VT_CHECK_INT_EQ(
+                        vt_codec_find(name)->encode(&src, &params, out, sizeof out, &len, NULL), 0);
+                    VT_CHECK_INT_EQ(decode_block(name, out, len, decoded), 0);
+                    wrong[f][e] += block_error(texels, decoded) != optimum;
+                    if (f == 0 && e == 1) {
+                        unsigned char c[8];
+                        memcpy(c, out, 8);
+                        memcpy(c, out + 2, 2);
+                        memcpy(c + 2, out, 2);
+                        VT_CHECK_INT_EQ(decode_block(name, c, 8, decoded), 0);
+                        swapped_wrong += block_error(texels, decoded) != optimum;
+                    }
+                }
+            }
+        }
+    fprintf(stderr, "  solid blocks off the optimum: bc1 %d %d, bc3 %d %d; swapped endpoints %d\n",
+            wrong[0][0], wrong[0][1], wrong[1][0], wrong[1][1], swapped_wrong);
+    VT_CHECK_INT_EQ(wrong[0][0] + wrong[0][1] + wrong[1][0] + wrong[1][1], 0);
+    VT_CHECK(swapped_wrong > 100); /* the check sees a wrong block */
+}
+
+static void bc_ours_one_channel_blocks_near_the_exhaustive_optimum(void)
+{
+    /* 16 values in one channel (a random range, clusters and ramps), the others exact: the
+     * optimum is the best pair of that channel, searched exhaustively. best reaches it on most
+     * blocks and stays within 2% in total; fast within 25%; an encoder whose
+     * indices are off by one does not. */
+    rng_state = 23;
+    long total_opt[2] = {0, 0}, total_best[2] = {0, 0}, total_fast[2] = {0, 0},
+         total_off[2] = {0, 0};
+    int exact_best[2] = {0, 0}, below[2] = {0, 0}, blocks = 300;
+    for (int n = 0; n < blocks; n++) {
+        uint64_t r = rng_next();
+        int ch = n % 3, lo = (int)(r & 255), span = (int)(r >> 8 & 255) % (256 - lo) + 1;
+        int clusters = 1 + (int)(r >> 16 & 3), x[16];
+        for (int i = 0; i < 16; i++) {
+            uint64_t q = rng_next();
+            int centre = lo + span * (int)(q % (unsigned)(clusters + 1)) / (clusters + 1);
+            int v = n % 2 ? centre + (int)(q >> 8 & 7) - 3 : lo + (int)(q >> 8) % span;
+            x[i] = v < 0 ? 0 : v > 255 ? 255 : v;
+        }
+        unsigned char texels[16][4], decoded[16][4], out[16];
+        one_channel_block(x, ch, texels);
+        for (int f = 0; f < 2; f++) {
+            const char *name = f ? "bc3" : "bc1";
+            long optimum = channel_optimum(x, ch == 1 ? 6 : 5, f == 1);
+            total_opt[f] += optimum;
+            block_round_trip(name, VT_CODEC_BC_BEST, texels, decoded);
+            long e_best = block_error(texels, decoded);
+            total_best[f] += e_best;
+            exact_best[f] += e_best == optimum;
+            below[f] += e_best < optimum; /* impossible unless the reference is wrong */
+            block_round_trip(name, VT_CODEC_BC_FAST, texels, decoded);
+            total_fast[f] += block_error(texels, decoded);
+            /* the wrong encoder: best's block with every colour index + 1 (mod 4) */
+            struct vt_image src = {4, 4, 4, VTS_SAMPLE_U8, 16, texels};
+            struct vt_codec_params params = {.effort = VT_CODEC_BC_BEST};
+            size_t len = 0;
+            VT_CHECK_INT_EQ(vt_codec_find(name)->encode(&src, &params, out, sizeof out, &len, NULL),
+                            0);
+            unsigned char *colour = out + (f ? 8 : 0);
+            for (int b = 4; b < 8; b++) {
+                unsigned v = colour[b], w = 0;
+                for (int k = 0; k < 4; k++)
+                    w |= (((v >> (2 * k)) + 1) & 3) << (2 * k);
+                colour[b] = (unsigned char)w;
+            }
+            VT_CHECK_INT_EQ(decode_block(name, out, len, decoded), 0);
+            total_off[f] += block_error(texels, decoded);
+        }
+    }
+    for (int f = 0; f < 2; f++) {
+        fprintf(
+            stderr,
+            "  %s one-channel blocks: optimum %ld, best %ld (%d of %d exact), fast %ld, indices "
+            "off by one %ld\n",
+            f ? "bc3" : "bc1", total_opt[f], total_best[f], exact_best[f], blocks, total_fast[f],
+            total_off[f]);
+        VT_CHECK_INT_EQ(below[f], 0);
+        VT_CHECK(exact_best[f] >= blocks * 9 / 10);
+        VT_CHECK(total_best[f] <= total_opt[f] + total_opt[f] / 50); /* within 2% */
+        VT_CHECK(total_fast[f] <= total_opt[f] + total_opt[f] / 4);  /* within 25% */
+        VT_CHECK(total_off[f] > 2 * total_opt[f]);                   /* the check sees it */
+    }
+}
+
 /* FNV-1a of a payload */
 static uint64_t fnv1a(const unsigned char *p, size_t n)
 {
@@ -241,6 +409,8 @@ int main(void)
     VT_RUN(bc_ours_gradients_stay_within_a_bound);
     VT_RUN(bc3_ours_two_alpha_values_decode_exactly);
     VT_RUN(bc1_ours_stores_cut_outs_in_the_three_colour_mode);
+    VT_RUN(bc_ours_solid_blocks_reach_the_exhaustive_optimum);
+    VT_RUN(bc_ours_one_channel_blocks_near_the_exhaustive_optimum);
     VT_RUN(bc_ours_is_deterministic);
     VT_RUN(bc_ours_best_matches_libsquish_cluster_fit);
     return vt_test_main_result();
