@@ -442,7 +442,15 @@ static void bc_colour_axis(struct bc_colour_texels *t, const struct bc_moments *
            c11 = (double)((int64_t)sw * gg - (int64_t)s[1] * s[1]),
            c12 = (double)((int64_t)sw * gb - (int64_t)s[1] * s[2]),
            c22 = (double)((int64_t)sw * bb - (int64_t)s[2] * s[2]);
-    /* start from the column of the largest variance: C times it is never zero */
+    /* power iteration on C / trace(C) (the eigenvalues in (0, 1]: no renormalising in the
+     * loop), from the column of the largest variance: C times it is never zero */
+    double scale = 1 / (c00 + c11 + c22);
+    c00 *= scale;
+    c01 *= scale;
+    c02 *= scale;
+    c11 *= scale;
+    c12 *= scale;
+    c22 *= scale;
     double v0 = c00, v1 = c01, v2 = c02;
     if (c11 > c00 && c11 >= c22)
         v0 = c01, v1 = c11, v2 = c12;
@@ -451,37 +459,59 @@ static void bc_colour_axis(struct bc_colour_texels *t, const struct bc_moments *
     for (int it = 0; it < iterations; it++) {
         double n0 = c00 * v0 + c01 * v1 + c02 * v2, n1 = c01 * v0 + c11 * v1 + c12 * v2,
                n2 = c02 * v0 + c12 * v1 + c22 * v2;
-        double a0 = n0 < 0 ? -n0 : n0, a1 = n1 < 0 ? -n1 : n1, a2 = n2 < 0 ? -n2 : n2;
-        double big = a0 > a1 ? a0 : a1;
-        big = a2 > big ? a2 : big;
-        if (!(big > 0))
-            break;
-        double inv = 1 / big;
-        v0 = n0 * inv;
-        v1 = n1 * inv;
-        v2 = n2 * inv;
+        v0 = n0;
+        v1 = n1;
+        v2 = n2;
     }
     double vv = v0 * v0 + v1 * v1 + v2 * v2;
     if (!(vv > 0)) {
         v0 = v1 = v2 = 1;
         vv = 3;
     }
-    double tmin = 1e300, tmax = -1e300;
+    /* the projections in float (4 lanes; the portable loop does the same float operations in
+     * the same order) */
+    float f0 = (float)v0, f1 = (float)v1, f2 = (float)v2;
+    _Alignas(16) float proj[BC_TEXELS];
+#if defined(VT_BC_ENCODE_SSE2)
+    const __m128i zero = _mm_setzero_si128();
+    const __m128 w0 = _mm_set1_ps(f0), w1 = _mm_set1_ps(f1), w2 = _mm_set1_ps(f2);
+    for (int half = 0; half < 2; half++) {
+        __m128i r = _mm_load_si128((const __m128i *)&t->plane[0][8 * half]);
+        __m128i g = _mm_load_si128((const __m128i *)&t->plane[1][8 * half]);
+        __m128i b = _mm_load_si128((const __m128i *)&t->plane[2][8 * half]);
+        for (int q = 0; q < 2; q++) {
+            __m128i r32 = q ? _mm_unpackhi_epi16(r, zero) : _mm_unpacklo_epi16(r, zero);
+            __m128i g32 = q ? _mm_unpackhi_epi16(g, zero) : _mm_unpacklo_epi16(g, zero);
+            __m128i b32 = q ? _mm_unpackhi_epi16(b, zero) : _mm_unpacklo_epi16(b, zero);
+            __m128 p = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_cvtepi32_ps(r32), w0),
+                                             _mm_mul_ps(_mm_cvtepi32_ps(g32), w1)),
+                                  _mm_mul_ps(_mm_cvtepi32_ps(b32), w2));
+            _mm_store_ps(&proj[8 * half + 4 * q], p);
+        }
+    }
+#else
+    for (int i = 0; i < BC_TEXELS; i++)
+        proj[i] =
+            ((float)t->plane[0][i] * f0 + (float)t->plane[1][i] * f1) + (float)t->plane[2][i] * f2;
+#endif
+    float tmin = 1e30f, tmax = -1e30f;
     for (int i = 0; i < BC_TEXELS; i++) {
-        double p = t->plane[0][i] * v0 + t->plane[1][i] * v1 + t->plane[2][i] * v2;
-        ax->proj[i] = p;
         if (t->weight[i] == 0)
             continue;
-        tmin = p < tmin ? p : tmin;
-        tmax = p > tmax ? p : tmax;
+        tmin = proj[i] < tmin ? proj[i] : tmin;
+        tmax = proj[i] > tmax ? proj[i] : tmax;
     }
+    v0 = f0;
+    v1 = f1;
+    v2 = f2;
+    vv = v0 * v0 + v1 * v1 + v2 * v2;
     double inv_sw = 1.0 / sw;
     ax->mean[0] = s[0] * inv_sw;
     ax->mean[1] = s[1] * inv_sw;
     ax->mean[2] = s[2] * inv_sw;
     double pm = ax->mean[0] * v0 + ax->mean[1] * v1 + ax->mean[2] * v2;
     for (int i = 0; i < BC_TEXELS; i++)
-        ax->proj[i] -= tmin;
+        ax->proj[i] = (double)proj[i] - tmin;
     ax->tmin = tmin - pm;
     ax->tmax = tmax - pm;
     ax->dir[0] = v0 / vv;

@@ -142,13 +142,19 @@ static int bc_image_layout(const struct bc_format *fmt, const struct vt_image *i
 static void bc_gather_block(const struct vt_image *src, uint32_t x0, uint32_t y0,
                             unsigned char *rgba)
 {
-    for (uint32_t y = 0; y < BC_BLOCK_PX; y++) {
+    for (uint32_t y = 0; y < BC_BLOCK_PX; y++, rgba += 16) {
         const unsigned char *row =
             (const unsigned char *)src->pixels + (size_t)(y0 + y) * src->stride;
-        for (uint32_t x = 0; x < BC_BLOCK_PX; x++, rgba += 4) {
-            const unsigned char *texel = row + (size_t)(x0 + x) * src->channels;
-            memcpy(rgba, texel, 3);
-            rgba[3] = src->channels == 4 ? texel[3] : 255;
+        if (src->channels == 4) {
+            memcpy(rgba, row + (size_t)x0 * 4, 16);
+            continue;
+        }
+        const unsigned char *texel = row + (size_t)x0 * 3;
+        for (uint32_t x = 0; x < BC_BLOCK_PX; x++) {
+            rgba[4 * x] = texel[3 * x];
+            rgba[4 * x + 1] = texel[3 * x + 1];
+            rgba[4 * x + 2] = texel[3 * x + 2];
+            rgba[4 * x + 3] = 255;
         }
     }
 }
