@@ -779,14 +779,19 @@ void vt_bc_encode_colour_block(const unsigned char *rgba, unsigned flags, unsign
 
 /* ---- alpha ---- */
 
+struct bc_alpha_texels {
+    _Alignas(16) uint8_t byte[BC_TEXELS]; /* for the SSE2 error loop */
+    int value[BC_TEXELS];
+};
+
 struct bc_alpha_candidate {
     unsigned a0, a1;
     uint64_t indices; /* 3 bits per texel */
     uint64_t error;
 };
 
-static uint64_t bc_alpha_eval(const int *alpha, unsigned a0, unsigned a1, uint64_t bound,
-                              uint64_t *indices)
+static uint64_t bc_alpha_eval(const struct bc_alpha_texels *alpha, unsigned a0, unsigned a1,
+                              uint64_t bound, uint64_t *indices)
 {
     int pal[8] = {(int)a0, (int)a1};
     if (a0 > a1) {
@@ -798,11 +803,44 @@ static uint64_t bc_alpha_eval(const int *alpha, unsigned a0, unsigned a1, uint64
         pal[6] = 0;
         pal[7] = 255;
     }
+#if defined(VT_BC_ENCODE_SSE2)
+    /* key = |alpha - pal[k]| << 3 | k in 16-bit lanes (< 2048), one minimum gives both */
+    const __m128i zero = _mm_setzero_si128();
+    __m128i x = _mm_load_si128((const __m128i *)alpha->byte);
+    __m128i m_lo = _mm_set1_epi16(INT16_MAX), m_hi = m_lo;
+    for (int k = 0; k < 8; k++) {
+        __m128i p = _mm_set1_epi8((char)pal[k]);
+        __m128i d = _mm_or_si128(_mm_subs_epu8(x, p), _mm_subs_epu8(p, x));
+        __m128i tag = _mm_set1_epi16((int16_t)k);
+        m_lo =
+            _mm_min_epi16(m_lo, _mm_or_si128(_mm_slli_epi16(_mm_unpacklo_epi8(d, zero), 3), tag));
+        m_hi =
+            _mm_min_epi16(m_hi, _mm_or_si128(_mm_slli_epi16(_mm_unpackhi_epi8(d, zero), 3), tag));
+    }
+    __m128i d_lo = _mm_srli_epi16(m_lo, 3), d_hi = _mm_srli_epi16(m_hi, 3);
+    __m128i sq = _mm_add_epi32(_mm_madd_epi16(d_lo, d_lo), _mm_madd_epi16(d_hi, d_hi));
+    sq = _mm_add_epi32(sq, _mm_shuffle_epi32(sq, _MM_SHUFFLE(1, 0, 3, 2)));
+    sq = _mm_add_epi32(sq, _mm_shuffle_epi32(sq, _MM_SHUFFLE(2, 3, 0, 1)));
+    uint64_t error = (uint32_t)_mm_cvtsi128_si32(sq);
+    if (error >= bound)
+        return UINT64_MAX;
+    /* the 16 indices of 3 bits: bytes, then pairs (6 bits), fours (12), eights (24) */
+    const __m128i seven = _mm_set1_epi16(7);
+    __m128i b = _mm_packus_epi16(_mm_and_si128(m_lo, seven), _mm_and_si128(m_hi, seven));
+    b = _mm_and_si128(_mm_or_si128(b, _mm_srli_epi16(b, 5)), _mm_set1_epi16(0x3f));
+    b = _mm_and_si128(_mm_or_si128(b, _mm_srli_epi32(b, 10)), _mm_set1_epi32(0xfff));
+    b = _mm_and_si128(_mm_or_si128(b, _mm_srli_epi64(b, 20)),
+                      _mm_set_epi32(0, 0xffffff, 0, 0xffffff));
+    _Alignas(16) uint64_t half[2];
+    _mm_store_si128((__m128i *)half, b);
+    *indices = half[0] | half[1] << 24;
+    return error;
+#else
     uint64_t error = 0, idx = 0;
     for (int i = 0; i < BC_TEXELS; i++) {
         uint32_t m = UINT32_MAX; /* distance << 3 | index, branch-free minimum */
         for (int k = 0; k < 8; k++) {
-            uint32_t key = (uint32_t)bc_abs(alpha[i] - pal[k]) << 3 | (uint32_t)k;
+            uint32_t key = (uint32_t)bc_abs(alpha->value[i] - pal[k]) << 3 | (uint32_t)k;
             m = key < m ? key : m;
         }
         idx |= (uint64_t)(m & 7) << (3 * i);
@@ -812,10 +850,11 @@ static uint64_t bc_alpha_eval(const int *alpha, unsigned a0, unsigned a1, uint64
     }
     *indices = idx;
     return error;
+#endif
 }
 
 /* (a0, a1) in the 6-value mode (six: a0 <= a1) or the 8-value mode (a0 > a1), ordered so. */
-static bool bc_alpha_try(const int *alpha, unsigned a0, unsigned a1, bool six,
+static bool bc_alpha_try(const struct bc_alpha_texels *alpha, unsigned a0, unsigned a1, bool six,
                          struct bc_alpha_candidate *cand)
 {
     if (six ? a0 > a1 : a0 < a1) {
@@ -831,8 +870,8 @@ static bool bc_alpha_try(const int *alpha, unsigned a0, unsigned a1, bool six,
     return true;
 }
 
-static bool bc_alpha_solve(const int *alpha, const struct bc_alpha_candidate *c, bool six,
-                           unsigned *a0, unsigned *a1)
+static bool bc_alpha_solve(const struct bc_alpha_texels *alpha, const struct bc_alpha_candidate *c,
+                           bool six, unsigned *a0, unsigned *a1)
 {
     const int64_t scale = six ? 5 : 7;
     int64_t aa = 0, ab = 0, bb = 0, ax = 0, bx = 0;
@@ -844,8 +883,8 @@ static bool bc_alpha_solve(const int *alpha, const struct bc_alpha_candidate *c,
         aa += a * a;
         ab += a * b;
         bb += b * b;
-        ax += a * alpha[i];
-        bx += b * alpha[i];
+        ax += a * alpha->value[i];
+        bx += b * alpha->value[i];
     }
     int64_t det = aa * bb - ab * ab;
     if (det == 0)
@@ -855,7 +894,7 @@ static bool bc_alpha_solve(const int *alpha, const struct bc_alpha_candidate *c,
     return true;
 }
 
-static void bc_alpha_refine(const int *alpha, unsigned a0, unsigned a1, bool six,
+static void bc_alpha_refine(const struct bc_alpha_texels *alpha, unsigned a0, unsigned a1, bool six,
                             struct bc_alpha_candidate *best)
 {
     struct bc_alpha_candidate chain = {0, 0, 0, UINT64_MAX};
@@ -884,9 +923,10 @@ static void bc_alpha_refine(const int *alpha, unsigned a0, unsigned a1, bool six
 
 void vt_bc_encode_alpha_block(const unsigned char *rgba, unsigned flags, unsigned char *dst)
 {
-    int alpha[BC_TEXELS], lo = 255, hi = 0, lo6 = 255, hi6 = 0;
+    struct bc_alpha_texels alpha;
+    int lo = 255, hi = 0, lo6 = 255, hi6 = 0;
     for (int i = 0; i < BC_TEXELS; i++) {
-        int a = alpha[i] = rgba[4 * i + 3];
+        int a = alpha.value[i] = alpha.byte[i] = rgba[4 * i + 3];
         lo = a < lo ? a : lo;
         hi = a > hi ? a : hi;
         if (a != 0 && a != 255) {
@@ -900,11 +940,11 @@ void vt_bc_encode_alpha_block(const unsigned char *rgba, unsigned flags, unsigne
         if (lo6 > hi6) /* only 0 and 255 */
             lo6 = hi6 = 0;
         if (flags & VT_BC_ENCODE_BEST) {
-            bc_alpha_refine(alpha, (unsigned)hi, (unsigned)lo, false, &best);
-            bc_alpha_refine(alpha, (unsigned)lo6, (unsigned)hi6, true, &best);
+            bc_alpha_refine(&alpha, (unsigned)hi, (unsigned)lo, false, &best);
+            bc_alpha_refine(&alpha, (unsigned)lo6, (unsigned)hi6, true, &best);
         } else {
-            bc_alpha_try(alpha, (unsigned)hi, (unsigned)lo, false, &best);
-            bc_alpha_try(alpha, (unsigned)lo6, (unsigned)hi6, true, &best);
+            bc_alpha_try(&alpha, (unsigned)hi, (unsigned)lo, false, &best);
+            bc_alpha_try(&alpha, (unsigned)lo6, (unsigned)hi6, true, &best);
         }
     }
     dst[0] = (unsigned char)best.a0;
