@@ -102,9 +102,10 @@ static void bc_tables_init(void)
 /* ---- colour ---- */
 
 struct bc_colour_texels {
-    _Alignas(16) int16_t plane[3][BC_TEXELS]; /* R, G, B planes for the SIMD error loop */
-    _Alignas(16) uint16_t weight[BC_TEXELS];  /* 0 for a transparent texel */
-    _Alignas(16) uint32_t count[BC_TEXELS];   /* ~0 for a texel of weight > 0, else 0 */
+    _Alignas(16) int16_t plane[3][BC_TEXELS];  /* R, G, B planes for the SIMD error loop */
+    _Alignas(16) uint16_t weight[BC_TEXELS];   /* 0 for a transparent texel */
+    _Alignas(16) uint32_t count[BC_TEXELS];    /* ~0 for a texel of weight > 0, else 0 */
+    _Alignas(16) uint32_t weight32[BC_TEXELS]; /* the weights again (non-uniform blocks) */
     uint32_t force;       /* 3 << 2i for a transparent texel i (index 3 of the 3-colour mode) */
     uint32_t transparent; /* bit i: texel i is stored as transparent */
     int32_t wsum, wx[3];  /* the sums of the weights and weighted R, G, B (set by the axis) */
@@ -149,8 +150,7 @@ static uint32_t bc_colour_eval(const struct bc_colour_texels *t, unsigned c0, un
     /* key = distance << 2 | index: one branch-free minimum gives both; the 3-colour mode has no
      * fourth colour for an opaque texel: key INT32_MAX never wins. Integer only: the SSE2 path
      * and the portable one give the same keys. */
-    _Alignas(16) uint32_t key[BC_TEXELS];
-    uint32_t idx = 0, error = 0;
+    uint32_t error = 0;
 #if defined(VT_BC_ENCODE_SSE2)
     const __m128i zero = _mm_setzero_si128();
     __m128i m[4];
@@ -185,11 +185,22 @@ static uint32_t bc_colour_eval(const struct bc_colour_texels *t, unsigned c0, un
             s = _mm_add_epi32(s, _mm_shuffle_epi32(s, _MM_SHUFFLE(1, 0, 3, 2)));
             s = _mm_add_epi32(s, _mm_shuffle_epi32(s, _MM_SHUFFLE(2, 3, 0, 1)));
             error += (uint32_t)_mm_cvtsi128_si32(s);
-            if (error >= bound)
-                return UINT32_MAX;
+        } else { /* distance (< 2^18) times weight (<= 256): 32 x 32 -> 64-bit products */
+            __m128i w_lo = _mm_load_si128((const __m128i *)&t->weight32[8 * half]);
+            __m128i w_hi = _mm_load_si128((const __m128i *)&t->weight32[8 * half + 4]);
+            __m128i d_lo = _mm_srli_epi32(m_lo, 2), d_hi = _mm_srli_epi32(m_hi, 2);
+            __m128i p = _mm_add_epi64(
+                _mm_add_epi64(_mm_mul_epu32(d_lo, w_lo),
+                              _mm_mul_epu32(_mm_srli_epi64(d_lo, 32), _mm_srli_epi64(w_lo, 32))),
+                _mm_add_epi64(_mm_mul_epu32(d_hi, w_hi),
+                              _mm_mul_epu32(_mm_srli_epi64(d_hi, 32), _mm_srli_epi64(w_hi, 32))));
+            p = _mm_add_epi64(p, _mm_unpackhi_epi64(p, p));
+            error += (uint32_t)_mm_cvtsi128_si32(p); /* the block's total is < 2^32 */
         }
+        if (error >= bound)
+            return UINT32_MAX;
     }
-    if (t->uniform) {
+    {
         /* the indices: 16 bytes of 0..3 folded into 2 bits each */
         const __m128i three = _mm_set1_epi32(3);
         __m128i i01 = _mm_packs_epi32(_mm_and_si128(m[0], three), _mm_and_si128(m[1], three));
@@ -202,9 +213,8 @@ static uint32_t bc_colour_eval(const struct bc_colour_texels *t, unsigned c0, un
         *indices = (uint32_t)_mm_cvtsi128_si32(x) | t->force;
         return error;
     }
-    for (int q = 0; q < 4; q++)
-        _mm_store_si128((__m128i *)&key[4 * q], m[q]);
 #else
+    uint32_t key[BC_TEXELS], idx = 0;
     for (int i = 0; i < BC_TEXELS; i++) {
         uint32_t m = INT32_MAX;
         for (int k = 0; k < 4; k++) {
@@ -216,7 +226,6 @@ static uint32_t bc_colour_eval(const struct bc_colour_texels *t, unsigned c0, un
         }
         key[i] = m;
     }
-#endif
     for (int i = 0; i < BC_TEXELS; i++) {
         idx |= (key[i] & 3) << (2 * i);
         uint32_t w = t->uniform ? t->weight[i] != 0 : t->weight[i];
@@ -226,6 +235,7 @@ static uint32_t bc_colour_eval(const struct bc_colour_texels *t, unsigned c0, un
         return UINT32_MAX;
     *indices = idx | t->force;
     return error;
+#endif
 }
 
 /* Evaluates (c0, c1) in the 3-colour mode (three) or the 4-colour mode, ordering the pair as that
@@ -275,11 +285,10 @@ static unsigned bc_pack565(const double e[3])
 static bool bc_colour_solve(const struct bc_colour_texels *t, const struct bc_colour_candidate *c,
                             bool three, unsigned *c0, unsigned *c1)
 {
-    static const int weight4[4] = {3, 0, 2, 1}, weight3[4] = {2, 0, 1, 0};
     const int64_t scale = three ? 2 : 3;
     int32_t sa = 0, saa = 0, sax[3] = {0, 0, 0};
 #if defined(VT_BC_ENCODE_SSE2)
-    if (t->uniform) {
+    {
         /* the 16 indices into 16-bit lanes (lane i: bits 2i..2i+1 moved to the top), then a_i */
         const __m128i up =
             _mm_setr_epi16(1 << 14, 1 << 12, 1 << 10, 1 << 8, 1 << 6, 1 << 4, 1 << 2, 1);
@@ -298,16 +307,18 @@ static bool bc_colour_solve(const struct bc_colour_texels *t, const struct bc_co
                                               _mm_and_si128(is2, _mm_set1_epi16(2))),
                                  _mm_and_si128(is3, ones));
             }
+            /* aw = a times the weight (uniform: 1, or 0 for a transparent texel; < 2^10) */
             __m128i w = _mm_load_si128((const __m128i *)&t->weight[8 * half]);
-            a = _mm_andnot_si128(_mm_cmpeq_epi16(w, zero), a); /* transparent texels: 0 */
-            acc_a = _mm_add_epi32(acc_a, _mm_madd_epi16(a, ones));
-            acc_aa = _mm_add_epi32(acc_aa, _mm_madd_epi16(a, a));
+            __m128i aw =
+                t->uniform ? _mm_andnot_si128(_mm_cmpeq_epi16(w, zero), a) : _mm_mullo_epi16(a, w);
+            acc_a = _mm_add_epi32(acc_a, _mm_madd_epi16(aw, ones));
+            acc_aa = _mm_add_epi32(acc_aa, _mm_madd_epi16(aw, a));
             acc_r = _mm_add_epi32(
-                acc_r, _mm_madd_epi16(a, _mm_load_si128((const __m128i *)&t->plane[0][8 * half])));
+                acc_r, _mm_madd_epi16(aw, _mm_load_si128((const __m128i *)&t->plane[0][8 * half])));
             acc_g = _mm_add_epi32(
-                acc_g, _mm_madd_epi16(a, _mm_load_si128((const __m128i *)&t->plane[1][8 * half])));
+                acc_g, _mm_madd_epi16(aw, _mm_load_si128((const __m128i *)&t->plane[1][8 * half])));
             acc_b = _mm_add_epi32(
-                acc_b, _mm_madd_epi16(a, _mm_load_si128((const __m128i *)&t->plane[2][8 * half])));
+                acc_b, _mm_madd_epi16(aw, _mm_load_si128((const __m128i *)&t->plane[2][8 * half])));
         }
         /* transpose-add: lane j of sum0 = the total of vector j */
         __m128i t0 =
@@ -324,9 +335,10 @@ static bool bc_colour_solve(const struct bc_colour_texels *t, const struct bc_co
         sax[0] = sums[2];
         sax[1] = sums[3];
         sax[2] = _mm_cvtsi128_si32(sb);
-    } else
-#endif
+    }
+#else
     {
+        static const int weight4[4] = {3, 0, 2, 1}, weight3[4] = {2, 0, 1, 0};
         for (int i = 0; i < BC_TEXELS; i++) {
             unsigned k = c->indices >> (2 * i) & 3;
             int32_t w = t->uniform ? t->weight[i] != 0 : t->weight[i];
@@ -337,6 +349,7 @@ static bool bc_colour_solve(const struct bc_colour_texels *t, const struct bc_co
                 sax[ch] += a * t->plane[ch][i];
         }
     }
+#endif
     int64_t aa = saa, ab = scale * sa - saa, bb = scale * scale * t->wsum - 2 * scale * sa + saa;
     int64_t det = aa * bb - ab * ab;
     if (det == 0)
@@ -604,6 +617,7 @@ static void bc_colour_setup(const unsigned char *rgba, unsigned flags, struct bc
         for (int ch = 0; ch < 3; ch++)
             t->plane[ch][i] = x[ch];
         t->weight[i] = (uint16_t)(by_alpha ? a + 1 : 1);
+        t->weight32[i] = t->weight[i];
         t->count[i] = ~0u;
         any |= a;
         all &= a;
@@ -611,6 +625,7 @@ static void bc_colour_setup(const unsigned char *rgba, unsigned flags, struct bc
             t->transparent |= 1u << i;
             t->force |= 3u << (2 * i);
             t->weight[i] = 0;
+            t->weight32[i] = 0;
             t->count[i] = 0;
             continue;
         }
