@@ -101,6 +101,16 @@ static void bc_tables_init(void)
 
 /* ---- colour ---- */
 
+#define BC_MEMO_BITS 6
+#define BC_MEMO      (1 << BC_MEMO_BITS) /* slots of the memo of pairs tried in a block */
+
+struct bc_memo {
+    uint32_t key;     /* c0 << 16 | c1, as stored */
+    uint32_t error;   /* exact: the error; else a lower bound of it */
+    uint32_t indices; /* exact only */
+    bool exact;
+};
+
 struct bc_colour_texels {
     _Alignas(16) int16_t plane[3][BC_TEXELS];  /* R, G, B planes for the SIMD error loop */
     _Alignas(16) uint16_t weight[BC_TEXELS];   /* 0 for a transparent texel */
@@ -110,6 +120,9 @@ struct bc_colour_texels {
     uint32_t transparent; /* bit i: texel i is stored as transparent */
     int32_t wsum, wx[3];  /* the sums of the weights and weighted R, G, B (set by the axis) */
     bool uniform;         /* every weight is 0 or one common value: the error counts texels */
+    unsigned memo_len;    /* pairs in the memo */
+    uint64_t memo_used;   /* bit h: slot h holds a pair */
+    struct bc_memo memo[BC_MEMO];
     bool four_only;
 };
 
@@ -239,8 +252,10 @@ static uint32_t bc_colour_eval(const struct bc_colour_texels *t, unsigned c0, un
 }
 
 /* Evaluates (c0, c1) in the 3-colour mode (three) or the 4-colour mode, ordering the pair as that
- * mode needs; *cand takes it when its error is smaller. Returns true when it did. */
-static bool bc_colour_try(const struct bc_colour_texels *t, unsigned c0, unsigned c1, bool three,
+ * mode needs; *cand takes it when its error is smaller. Returns true when it did. A quarter of the
+ * pairs a block tries were tried before (starts converging, the search stepping back): the memo
+ * of the block answers them with the same result an evaluation would give. */
+static bool bc_colour_try(struct bc_colour_texels *t, unsigned c0, unsigned c1, bool three,
                           struct bc_colour_candidate *cand)
 {
     if (three ? c0 > c1 : c0 < c1) {
@@ -248,8 +263,32 @@ static bool bc_colour_try(const struct bc_colour_texels *t, unsigned c0, unsigne
         c0 = c1;
         c1 = s;
     }
-    uint32_t idx;
-    uint32_t error = bc_colour_eval(t, c0, c1, cand->error, &idx);
+    uint32_t key = c0 << 16 | c1, idx, error;
+    struct bc_memo *m = NULL;
+    unsigned h = (key * 0x9e3779b1u) >> (32 - BC_MEMO_BITS); /* open addressing */
+    while (t->memo_used >> h & 1) {
+        if (t->memo[h].key == key) {
+            m = &t->memo[h];
+            break;
+        }
+        h = (h + 1) & (BC_MEMO - 1);
+    }
+    if (m && m->exact) {
+        error = m->error;
+        idx = m->indices;
+    } else if (m && cand->error <= m->error) {
+        return false; /* its error is at least m->error */
+    } else {
+        error = bc_colour_eval(t, c0, c1, cand->error, &idx);
+        if (!m && t->memo_len < BC_MEMO / 2) { /* at most half full: short probes */
+            m = &t->memo[h];
+            t->memo_used |= (uint64_t)1 << h;
+            t->memo_len++;
+        }
+        if (m)
+            *m = error == UINT32_MAX ? (struct bc_memo){key, cand->error, 0, false}
+                                     : (struct bc_memo){key, error, idx, true};
+    }
     if (error >= cand->error)
         return false;
     *cand = (struct bc_colour_candidate){c0, c1, idx, error};
@@ -366,7 +405,7 @@ static bool bc_colour_solve(const struct bc_colour_texels *t, const struct bc_co
 }
 
 /* From (c0, c1): least-squares rounds while the error falls; the result goes into *best. */
-static void bc_colour_refine(const struct bc_colour_texels *t, unsigned c0, unsigned c1, bool three,
+static void bc_colour_refine(struct bc_colour_texels *t, unsigned c0, unsigned c1, bool three,
                              int rounds, struct bc_colour_candidate *best)
 {
     struct bc_colour_candidate chain = {0, 0, 0, UINT32_MAX};
@@ -385,7 +424,7 @@ static void bc_colour_refine(const struct bc_colour_texels *t, unsigned c0, unsi
 }
 
 /* +-1 on each 565 component of the best pair, in its mode, while the error falls. */
-static void bc_colour_search(const struct bc_colour_texels *t, struct bc_colour_candidate *best)
+static void bc_colour_search(struct bc_colour_texels *t, struct bc_colour_candidate *best)
 {
     static const unsigned shift[3] = {11, 5, 0}, mask[3] = {31, 63, 31};
     bool three = bc_colour_is_three(t, best);
@@ -549,7 +588,7 @@ static void bc_axis_endpoints(const struct bc_axis *ax, double inset, unsigned *
  * spaced palette entries (the top three: c0, c2, c3, or the bottom three: c2, c3, c1), the
  * endpoints solved for those and refined. The blocks of three clusters where one endpoint must
  * lie outside the texels, which starts between the extremes do not find. */
-static void bc_colour_bins(const struct bc_colour_texels *t, const struct bc_axis *ax, bool top,
+static void bc_colour_bins(struct bc_colour_texels *t, const struct bc_axis *ax, bool top,
                            struct bc_colour_candidate *best)
 {
     static const unsigned index_top[3] = {3, 2, 0}, index_bottom[3] = {1, 3, 2};
@@ -566,7 +605,7 @@ static void bc_colour_bins(const struct bc_colour_texels *t, const struct bc_axi
 }
 
 /* A block whose opaque texels are one colour: the per-channel table pairs. */
-static void bc_colour_single(const struct bc_colour_texels *t, const int rgb[3], bool may_four,
+static void bc_colour_single(struct bc_colour_texels *t, const int rgb[3], bool may_four,
                              bool may_three, struct bc_colour_candidate *best)
 {
     static const int table_of_channel[3] = {0, 1, 0};
@@ -607,6 +646,8 @@ static void bc_colour_setup(const unsigned char *rgba, unsigned flags, struct bc
                             bool *single, int rgb[3])
 {
     t->four_only = (flags & VT_BC_ENCODE_FOUR_COLOUR_ONLY) != 0;
+    t->memo_len = 0;
+    t->memo_used = 0;
     t->transparent = 0;
     t->force = 0;
     bool by_alpha = (flags & VT_BC_ENCODE_WEIGHT_BY_ALPHA) != 0;
@@ -670,6 +711,8 @@ static bool bc_colour_setup_sse2(const unsigned char *rgba, unsigned flags,
         _mm_movemask_epi8(_mm_cmpeq_epi8(a, _mm_set1_epi8((char)rgba[3]))) != 0xffff)
         return false; /* weights differ */
     t->four_only = four_only;
+    t->memo_len = 0;
+    t->memo_used = 0;
     t->transparent = 0;
     t->force = 0;
     t->uniform = true;
