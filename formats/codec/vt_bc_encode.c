@@ -804,6 +804,7 @@ void vt_bc_encode_colour_block(const unsigned char *rgba, unsigned flags, unsign
     bc_colour_axis(&t, &mom, is_best ? BC_POWER_BEST : BC_POWER_FAST, &ax);
     unsigned c0, c1;
     if (!is_best) {
+        t.memo_len = BC_MEMO / 2; /* two pairs: no memo (a full one is never written) */
         bc_axis_endpoints(&ax, 1.0 / 16, &c0, &c1);
         bc_colour_refine(&t, c0, c1, !may_four, 1, &best);
         bc_put_colour(&best, dst);
