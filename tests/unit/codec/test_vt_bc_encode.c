@@ -339,6 +339,107 @@ static void bc_ours_one_channel_blocks_near_the_exhaustive_optimum(void)
     }
 }
 
+/* The smallest squared error of 16 alpha values over every (a0, a1) pair of BC3's alpha block in
+ * both modes (the decoder's palettes), by exhaustive search. */
+static long alpha_optimum(const int a[16])
+{
+    long best = -1;
+    for (int a0 = 0; a0 < 256; a0++)
+        for (int a1 = 0; a1 < 256; a1++) {
+            int pal[8] = {a0, a1};
+            if (a0 > a1) {
+                for (int i = 1; i <= 6; i++)
+                    pal[1 + i] = ((7 - i) * a0 + i * a1) / 7;
+            } else {
+                for (int i = 1; i <= 4; i++)
+                    pal[1 + i] = ((5 - i) * a0 + i * a1) / 5;
+                pal[6] = 0;
+                pal[7] = 255;
+            }
+            long err = 0;
+            for (int i = 0; i < 16 && (best < 0 || err < best); i++) {
+                long m = 1L << 30;
+                for (int k = 0; k < 8; k++) {
+                    long d = (long)(a[i] - pal[k]) * (a[i] - pal[k]);
+                    m = d < m ? d : m;
+                }
+                err += m;
+            }
+            if (best < 0 || err < best)
+                best = err;
+        }
+    return best;
+}
+
+static void bc3_ours_alpha_blocks_near_the_exhaustive_optimum(void)
+{
+    /* random alpha blocks (spreads, clusters, with and without 0 and 255: harder than real alpha)
+     * against the exhaustive optimum of the alpha block. Measured: best exact on 29 of 60, 38%
+     * above the optimum in total; fast (min/max endpoints in both modes) 2.05x the optimum. The
+     * gap is blocks whose best palette puts an endpoint past the values; starts from binned
+     * indices closed it to 5% (47 exact) but made bc3 best 3x slower on the benchmark's RGBA
+     * image for +0.002 dB, so they are not in. Indices off by one fail. */
+    rng_state = 31;
+    long total_opt = 0, total_best = 0, total_fast = 0, total_off = 0;
+    int exact_best = 0, below = 0, blocks = 60;
+    for (int n = 0; n < blocks; n++) {
+        uint64_t r = rng_next();
+        int lo = (int)(r & 255), span = (int)(r >> 8 & 255) % (256 - lo) + 1, a[16];
+        for (int i = 0; i < 16; i++) {
+            uint64_t q = rng_next();
+            a[i] = n % 3 == 0 ? lo + (int)(q % 4) * (span - 1) / 3 /* four clusters */
+                              : lo + (int)(q % (unsigned)span);
+            if (n % 4 == 1 && i < 3)
+                a[i] = i == 0 ? 0 : 255; /* the 6-value mode's extremes */
+        }
+        unsigned char texels[16][4], decoded[16][4], out[16];
+        for (int i = 0; i < 16; i++) {
+            texels[i][0] = texels[i][1] = texels[i][2] = 128;
+            texels[i][3] = (unsigned char)a[i];
+        }
+        long optimum = alpha_optimum(a), err[2];
+        static const int efforts[2] = {VT_CODEC_BC_BEST, VT_CODEC_BC_FAST};
+        for (int e = 0; e < 2; e++) {
+            block_round_trip("bc3", efforts[e], texels, decoded);
+            err[e] = 0;
+            for (int i = 0; i < 16; i++)
+                err[e] += (long)(a[i] - decoded[i][3]) * (a[i] - decoded[i][3]);
+        }
+        total_opt += optimum;
+        total_best += err[0];
+        total_fast += err[1];
+        exact_best += err[0] == optimum;
+        below += err[0] < optimum || err[1] < optimum;
+        /* the wrong encoder: best's alpha indices + 1 (mod 8) */
+        struct vt_image src = {4, 4, 4, VTS_SAMPLE_U8, 16, texels};
+        struct vt_codec_params params = {.effort = VT_CODEC_BC_BEST};
+        size_t len = 0;
+        VT_CHECK_INT_EQ(vt_codec_find("bc3")->encode(&src, &params, out, sizeof out, &len, NULL),
+                        0);
+        uint64_t idx = 0;
+        for (int b = 0; b < 6; b++)
+            idx |= (uint64_t)out[2 + b] << (8 * b);
+        uint64_t wrong = 0;
+        for (int i = 0; i < 16; i++)
+            wrong |= (((idx >> (3 * i)) + 1) & 7) << (3 * i);
+        for (int b = 0; b < 6; b++)
+            out[2 + b] = (unsigned char)(wrong >> (8 * b));
+        VT_CHECK_INT_EQ(decode_block("bc3", out, len, decoded), 0);
+        for (int i = 0; i < 16; i++)
+            total_off += (long)(a[i] - decoded[i][3]) * (a[i] - decoded[i][3]);
+    }
+    fprintf(stderr,
+            "  bc3 alpha blocks: optimum %ld, best %ld (%d of %d exact), fast %ld, indices off by "
+            "one %ld\n",
+            total_opt, total_best, exact_best, blocks, total_fast, total_off);
+    VT_CHECK_INT_EQ(below, 0);
+    VT_CHECK(exact_best >= 25);
+    VT_CHECK(total_best <= total_opt + total_opt * 45 / 100);
+    VT_CHECK(total_fast <= total_opt * 21 / 10);
+    VT_CHECK(total_best < total_fast); /* the refinement pays */
+    VT_CHECK(total_off > 100 * total_opt);
+}
+
 /* FNV-1a of a payload */
 static uint64_t fnv1a(const unsigned char *p, size_t n)
 {
@@ -411,6 +512,7 @@ int main(void)
     VT_RUN(bc1_ours_stores_cut_outs_in_the_three_colour_mode);
     VT_RUN(bc_ours_solid_blocks_reach_the_exhaustive_optimum);
     VT_RUN(bc_ours_one_channel_blocks_near_the_exhaustive_optimum);
+    VT_RUN(bc3_ours_alpha_blocks_near_the_exhaustive_optimum);
     VT_RUN(bc_ours_is_deterministic);
     VT_RUN(bc_ours_best_matches_libsquish_cluster_fit);
     return vt_test_main_result();
