@@ -20,11 +20,17 @@
  * uniform weights as PSNR counts; times alpha + 1 with VT_BC_ENCODE_WEIGHT_BY_ALPHA). BC1
  * texels with alpha < 128 take index 3 of the 3-colour mode (transparent black) and count nothing.
  *
- * Alpha (BC3): the 8-value mode between max and min; best refines it (least squares, +-1 search)
- * and tries the 6-value mode (explicit 0 and 255) between the min and max of the other values.
+ * Alpha (BC3): the 8-value mode between max and min and the 6-value mode (explicit 0 and 255)
+ * between the min and max of the other values, whichever has the smaller error; best refines
+ * both (least squares, +-1 search).
+ *
+ * SIMD: the set-up, the error loops and the least-squares sums have SSE2 paths (x86-64's
+ * baseline) and the colour error loop an AVX2 one picked at run time; VT_BC_ENCODE_NO_AVX2 and
+ * VT_BC_ENCODE_PORTABLE (no SIMD) build without them. All give the same integers
+ * (tests/unit/codec/test_vt_bc_encode_portable.c builds this file both ways against the library).
  *
  * Determinism: the error and every choice between candidates are integer; the float steps (axis,
- * least-squares division) are plain double arithmetic in a fixed order, compiled with
+ * projections, least-squares division) are plain IEEE arithmetic in a fixed order, compiled with
  * -ffp-contract=off (CMakeLists.txt) so that no platform fuses them differently. */
 #include <pthread.h>
 #include <stdbool.h>
