@@ -1,6 +1,8 @@
 /* Our BC1/BC3 encoder (formats/codec/vt_bc_encode.c) through the codec table: two-colour and
- * constant blocks exact, gradients bounded, cut-outs in the three-colour mode, pinned output
- * bytes, and `best` against libsquish's cluster fit (`fast` against stb_dxt) on a photo. */
+ * constant blocks exact, gradients bounded, cut-outs in the three-colour mode, solid, one-channel
+ * and alpha blocks against exhaustive searches of every endpoint pair (with wrong encoders shown
+ * to fail), pinned output bytes, and `best` against libsquish's cluster fit (`fast` against
+ * stb_dxt) on a photo. The SIMD paths against the portable code: test_vt_bc_encode_portable.c. */
 #include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
