@@ -21,11 +21,10 @@ struct vt_codec_params {
  * (scripts/bench/bc-encoders) and the tests, which compare ours with them on the same texels
  * through this table; the tools never ask for them (--mode gives 0 or 1). */
 enum vt_codec_bc_effort {
-    VT_CODEC_BC_FAST = 0,         /* stb_dxt; BC1 blocks with a texel of alpha < 128: ours fast */
+    VT_CODEC_BC_FAST = 0,         /* ours: principal axis, one least-squares step */
     VT_CODEC_BC_BEST = 1,         /* ours, several starts, refinement + endpoint search */
     VT_CODEC_BC_REF_STB_DXT = 16, /* stb_dxt 1.12 (libsquish range fit for BC1 cut-outs) */
     VT_CODEC_BC_REF_SQUISH = 17,  /* libsquish 1.15 cluster fit (BC3: colour by alpha) */
-    VT_CODEC_BC_OURS_FAST = 18,   /* ours, one least-squares step: better than stb_dxt, slower */
 };
 
 struct vt_codec {

@@ -2,19 +2,18 @@
  * then top to bottom), 8 bytes (BC1) or 16 bytes (BC3) each, exactly what glCompressedTexImage2D
  * takes for a tile of that size. The tile edge must be a multiple of 4; the encoder never pads.
  *
- * Encoders (params->effort, enum vt_codec_bc_effort):
- *   0 fast: stb_dxt 1.12 (STB_DXT_NORMAL); BC1 blocks holding a texel with alpha < 128 go through
- *           our fast encoder (3-colour + transparent mode, which stb_dxt lacks). Our fast encoder
- *           for every block (18, principal axis + one least-squares step) gains 0.2 dB over
- *           stb_dxt but runs at ~0.7-0.9x its speed, so it is not the default yet.
- *   1 best: ours (vt_bc_encode.c): iterated least squares from four starts along the principal
- *           axis, both colour modes (BC1), +-1 search of the
- *           565 endpoints; for BC3 colour error weighted by alpha (it counts where the texel
- *           shows), alpha refined in both modes. Measured against libsquish's cluster fit in
- *           docs/accuracy.md (scripts/bench/bc-encoders).
- *   16, 17: the references, for the benchmark and the tests only: stb_dxt 1.12 (what fast was,
- *           with libsquish's range fit for BC1 blocks holding a texel of alpha < 128) and
- *           libsquish 1.15's cluster fit (what best was). 18: our fast encoder on every block.
+ * Encoders (params->effort, enum vt_codec_bc_effort), both ours (vt_bc_encode.c):
+ *   0 fast: principal axis, endpoints at the extreme projections (inset 1/16), one least-squares
+ *           step; the BC3 alpha between the block's min and max in the 8- or 6-value mode,
+ *           whichever has the smaller error. Above stb_dxt's PSNR at a higher speed.
+ *   1 best: iterated least squares from several starts along the principal axis, both colour
+ *           modes (BC1), +-1 search of the 565 endpoints; for BC3 colour error weighted by alpha
+ *           (it counts where the texel shows), alpha refined in both modes. Above libsquish's
+ *           cluster fit at more than 10x its speed.
+ *   Both measured against the references in docs/accuracy.md (scripts/bench/bc-encoders).
+ *   16, 17: the references, for the benchmark and the tests only: stb_dxt 1.12 (STB_DXT_NORMAL,
+ *           what fast was, with libsquish's range fit for BC1 blocks holding a texel of alpha
+ *           < 128) and libsquish 1.15's cluster fit (what best was).
  * BC1 keeps alpha as one bit: a 4-channel texel with alpha < 128 is stored as the transparent
  * black (0, 0, 0, 0) of the 3-colour mode, every other texel decodes with alpha 255. BC3 stores
  * alpha in its own block (fast: the 8-alpha mode; best: 8- or 6-alpha, whichever fits better).
@@ -143,13 +142,19 @@ static int bc_image_layout(const struct bc_format *fmt, const struct vt_image *i
 static void bc_gather_block(const struct vt_image *src, uint32_t x0, uint32_t y0,
                             unsigned char *rgba)
 {
-    for (uint32_t y = 0; y < BC_BLOCK_PX; y++) {
+    for (uint32_t y = 0; y < BC_BLOCK_PX; y++, rgba += 16) {
         const unsigned char *row =
             (const unsigned char *)src->pixels + (size_t)(y0 + y) * src->stride;
-        for (uint32_t x = 0; x < BC_BLOCK_PX; x++, rgba += 4) {
-            const unsigned char *texel = row + (size_t)(x0 + x) * src->channels;
-            memcpy(rgba, texel, 3);
-            rgba[3] = src->channels == 4 ? texel[3] : 255;
+        if (src->channels == 4) {
+            memcpy(rgba, row + (size_t)x0 * 4, 16);
+            continue;
+        }
+        const unsigned char *texel = row + (size_t)x0 * 3;
+        for (uint32_t x = 0; x < BC_BLOCK_PX; x++) {
+            rgba[4 * x] = texel[3 * x];
+            rgba[4 * x + 1] = texel[3 * x + 1];
+            rgba[4 * x + 2] = texel[3 * x + 2];
+            rgba[4 * x + 3] = 255;
         }
     }
 }
@@ -175,13 +180,6 @@ static int bc_encode_block(const struct bc_format *fmt, const unsigned char *rgb
     case VT_CODEC_BC_REF_STB_DXT:
         if (!fmt->has_alpha_block && rgba_source && bc_block_has_transparent_texel(rgba))
             return vt_squish_shim_compress_block(rgba, squish_flags, dst); /* range fit */
-        stb_compress_dxt_block(dst, rgba, fmt->has_alpha_block, STB_DXT_NORMAL);
-        return 0;
-    case VT_CODEC_BC_FAST: /* stb_dxt has no 3-colour + transparent mode: ours for cut-outs */
-        if (!fmt->has_alpha_block && rgba_source && bc_block_has_transparent_texel(rgba)) {
-            vt_bc_encode_colour_block(rgba, 0, dst);
-            return 0;
-        }
         stb_compress_dxt_block(dst, rgba, fmt->has_alpha_block, STB_DXT_NORMAL);
         return 0;
     default: {
@@ -211,8 +209,7 @@ static int bc_encode(const struct bc_format *fmt, const struct vt_image *src,
         return rc;
     int effort = params ? params->effort : VT_CODEC_BC_FAST;
     if (effort != VT_CODEC_BC_FAST && effort != VT_CODEC_BC_BEST &&
-        effort != VT_CODEC_BC_REF_STB_DXT && effort != VT_CODEC_BC_REF_SQUISH &&
-        effort != VT_CODEC_BC_OURS_FAST)
+        effort != VT_CODEC_BC_REF_STB_DXT && effort != VT_CODEC_BC_REF_SQUISH)
         return vt_error_set(err, VTS_ERR_ARG,
                             "%s codec: effort %d is neither 0 (fast) nor 1 (best)", fmt->name,
                             effort);

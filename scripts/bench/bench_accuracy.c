@@ -223,6 +223,9 @@ static const struct setting settings[] = {
     {"bc1 best", "bc1", {0, 1, 0}, 3},
     {"bc3 fast (RGBA)", "bc3", {0, 0, 0}, 4},
     {"bc3 best (RGBA)", "bc3", {0, 1, 0}, 4},
+    /* the references of our BC encoders (enum vt_codec_bc_effort), for the plot */
+    {"bc1 ref stb_dxt", "bc1", {0, VT_CODEC_BC_REF_STB_DXT, 0}, 3},
+    {"bc1 ref libsquish cluster fit", "bc1", {0, VT_CODEC_BC_REF_SQUISH, 0}, 3},
     {"raw", "raw", {0, 0, 0}, 3},
 };
 

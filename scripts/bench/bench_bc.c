@@ -8,10 +8,14 @@
  * per second of CPU time of the one encoding thread (CLOCK_THREAD_CPUTIME_ID, so other load on a
  * shared machine counts less than in wall time), best of RUNS runs.
  *
- * usage: vt-bench-bc [--runs N] [--synth EDGE] [--md OUT.md] [IMAGE.png...]
- * --synth adds the tests' photo-like generator (vt_synth_photo, seed 1, chroma 0.6) at EDGE^2.
- * Prints one table per image and format, then the totals over all images (PSNR of the summed
- * squared error, MP/s of the summed time) with the ratios ours/reference. */
+ * usage: vt-bench-bc [--runs N] [--synth EDGE] [--synth-rgba EDGE] [--md OUT.md] [--only LABEL]
+ *                    [IMAGE.png...]
+ * --synth-rgba adds bc3 on the generator's RGBA image with its own alpha at EDGE^2 (a multiple of
+ * 256; PSNR over R, G, B, A; not in the totals).
+ * --only runs the one encoder of that label (e.g. "ours fast"; for perf record), the others'
+ * columns stay empty (NaN). --synth adds the tests' photo-like generator (vt_synth_photo, seed 1,
+ * chroma 0.6) at EDGE^2. Prints one table per image and format, then the totals over all images
+ * (PSNR of the summed squared error, MP/s of the summed time) with the ratios ours/reference. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdint.h>
@@ -66,7 +70,7 @@ struct encoder {
 static const struct encoder encoders[] = {
     {"ours best", VT_CODEC_BC_BEST},
     {"libsquish cluster fit", VT_CODEC_BC_REF_SQUISH},
-    {"ours fast", VT_CODEC_BC_OURS_FAST},
+    {"ours fast", VT_CODEC_BC_FAST},
     {"stb_dxt", VT_CODEC_BC_REF_STB_DXT},
 };
 #define N_ENCODERS (sizeof encoders / sizeof encoders[0])
@@ -82,6 +86,7 @@ static double psnr_of(double se, double samples)
 }
 
 static FILE *md;
+static const char *only; /* --only: the one encoder to run */
 
 static void report(const char *title, const double psnr[N_ENCODERS], const double mps[N_ENCODERS])
 {
@@ -99,13 +104,70 @@ static void report(const char *title, const double psnr[N_ENCODERS], const doubl
     }
     printf("%s\n", title);
     for (size_t e = 0; e < N_ENCODERS; e++) {
-        printf("  %-22s %6.2f dB %8.2f MP/s per core", encoders[e].label, psnr[e], mps[e]);
+        printf("  %-22s %7.3f dB %8.2f MP/s per core", encoders[e].label, psnr[e], mps[e]);
         if (e % 2 == 0)
             printf("   ours/%s: %+.3f dB, %.1fx speed", encoders[e + 1].label,
                    psnr[e] - psnr[e + 1], mps[e] / mps[e + 1]);
         printf("\n");
     }
     fflush(stdout);
+}
+
+/* Encodes the tiles with every encoder (runs times, the fastest kept) and reports PSNR over the
+ * first psnr_channels samples of each texel and MP/s per core; adds to tot[] when not NULL. */
+static void bench_tiles(const char *title, const char *codec_name, struct vt_image *tiles,
+                        uint32_t ntiles, uint32_t psnr_channels, int runs, struct total *tot)
+{
+    const struct vt_codec *codec = vt_codec_find(codec_name);
+    uint32_t channels = tiles[0].channels;
+    size_t cn = (size_t)ntiles * TILE * TILE;
+    struct vts_error err;
+    struct vt_image dec;
+    if (vt_image_alloc(&dec, TILE, TILE, channels, VTS_SAMPLE_U8, &err) != 0)
+        die("tile", &err);
+    size_t bound = codec->encoded_bound(TILE, TILE, channels, VTS_SAMPLE_U8);
+    unsigned char *bytes = xmalloc(bound * ntiles);
+    double psnr[N_ENCODERS], mps[N_ENCODERS];
+    for (size_t e = 0; e < N_ENCODERS; e++) {
+        struct vt_codec_params params = {.effort = encoders[e].effort};
+        double best = INFINITY;
+        if (only && strcmp(only, encoders[e].label) != 0) {
+            psnr[e] = mps[e] = NAN;
+            continue;
+        }
+        for (int r = 0; r < runs; r++) {
+            double t0 = cpu_s();
+            for (uint32_t t = 0; t < ntiles; t++) {
+                size_t len;
+                if (codec->encode(&tiles[t], &params, bytes + t * bound, bound, &len, &err))
+                    die(encoders[e].label, &err);
+            }
+            best = fmin(best, cpu_s() - t0);
+        }
+        double se = 0;
+        for (uint32_t t = 0; t < ntiles; t++) {
+            if (codec->decode(bytes + t * bound, bound, &dec, &err) != 0)
+                die(encoders[e].label, &err);
+            for (uint32_t y = 0; y < TILE; y++)
+                for (uint32_t x = 0; x < TILE; x++) {
+                    const unsigned char *a = vt_image_at(&tiles[t], x, y);
+                    const unsigned char *b = vt_image_at(&dec, x, y);
+                    for (uint32_t c = 0; c < psnr_channels; c++)
+                        se += (double)(a[c] - b[c]) * (a[c] - b[c]);
+                }
+        }
+        psnr[e] = psnr_of(se, (double)cn * psnr_channels);
+        mps[e] = (double)cn / 1e6 / best;
+        if (tot) {
+            tot[e].se += se;
+            tot[e].samples += (double)cn * psnr_channels;
+            tot[e].seconds += best;
+            tot[e].texels += (double)cn;
+        }
+    }
+    report(title, psnr, mps);
+    vt_image_release(&dec);
+    free(bytes);
 }
 
 static void bench_image(const char *name, const struct rgb *src, int runs)
@@ -121,11 +183,8 @@ static void bench_image(const char *name, const struct rgb *src, int runs)
     for (int f = 0; f < 2; f++) {
         const char *codec_name = f ? "bc3" : "bc1";
         uint32_t channels = f ? 4 : 3;
-        const struct vt_codec *codec = vt_codec_find(codec_name);
         struct vts_error err;
-        struct vt_image *tiles = xmalloc(ntiles * sizeof *tiles), dec;
-        if (vt_image_alloc(&dec, TILE, TILE, channels, VTS_SAMPLE_U8, &err) != 0)
-            die("tile", &err);
+        struct vt_image *tiles = xmalloc(ntiles * sizeof *tiles);
         for (uint32_t t = 0; t < ntiles; t++) {
             uint32_t ox = (t % tx) * TILE, oy = (t / tx) * TILE;
             if (vt_image_alloc(&tiles[t], TILE, TILE, channels, VTS_SAMPLE_U8, &err) != 0)
@@ -138,59 +197,50 @@ static void bench_image(const char *name, const struct rgb *src, int runs)
                         d[3] = 255;
                 }
         }
-        size_t bound = codec->encoded_bound(TILE, TILE, channels, VTS_SAMPLE_U8);
-        unsigned char *bytes = xmalloc(bound * ntiles);
-        double psnr[N_ENCODERS], mps[N_ENCODERS];
-        for (size_t e = 0; e < N_ENCODERS; e++) {
-            struct vt_codec_params params = {.effort = encoders[e].effort};
-            double best = INFINITY;
-            for (int r = 0; r < runs; r++) {
-                double t0 = cpu_s();
-                for (uint32_t t = 0; t < ntiles; t++) {
-                    size_t len;
-                    if (codec->encode(&tiles[t], &params, bytes + t * bound, bound, &len, &err))
-                        die(encoders[e].label, &err);
-                }
-                best = fmin(best, cpu_s() - t0);
-            }
-            double se = 0;
-            for (uint32_t t = 0; t < ntiles; t++) {
-                if (codec->decode(bytes + t * bound, bound, &dec, &err) != 0)
-                    die(encoders[e].label, &err);
-                for (uint32_t y = 0; y < TILE; y++)
-                    for (uint32_t x = 0; x < TILE; x++) {
-                        const unsigned char *a = vt_image_at(&tiles[t], x, y);
-                        const unsigned char *b = vt_image_at(&dec, x, y);
-                        for (int c = 0; c < 3; c++)
-                            se += (double)(a[c] - b[c]) * (a[c] - b[c]);
-                    }
-            }
-            psnr[e] = psnr_of(se, (double)cn * 3);
-            mps[e] = (double)cn / 1e6 / best;
-            struct total *tot = &totals[f][e];
-            tot->se += se;
-            tot->samples += (double)cn * 3;
-            tot->seconds += best;
-            tot->texels += (double)cn;
-        }
         char title[256];
         snprintf(title, sizeof title, "#### %s, %s (%ux%u padded to %ux%u%s)", name, codec_name,
                  src->w, src->h, cw, ch, f ? ", RGBA with alpha 255" : ", RGB");
-        report(title, psnr, mps);
+        bench_tiles(title, codec_name, tiles, ntiles, 3, runs, totals[f]);
         for (uint32_t t = 0; t < ntiles; t++)
             vt_image_release(&tiles[t]);
-        vt_image_release(&dec);
         free(tiles);
-        free(bytes);
     }
     free(canvas);
+}
+
+/* bc3 on the tests' photo-like generator with its own alpha (a smooth field and a hard-edged
+ * hole: alpha that varies, which the photographs lack), edge^2 (a multiple of TILE); PSNR over
+ * R, G, B and A; not in the totals. */
+static void bench_synth_rgba(uint32_t edge, int runs)
+{
+    struct vt_image img = vt_synth_photo(edge, edge, 4, 1, 0.6);
+    uint32_t n = edge / TILE, ntiles = n * n;
+    struct vts_error err;
+    struct vt_image *tiles = xmalloc(ntiles * sizeof *tiles);
+    for (uint32_t t = 0; t < ntiles; t++) {
+        if (vt_image_alloc(&tiles[t], TILE, TILE, 4, VTS_SAMPLE_U8, &err) != 0)
+            die("tile", &err);
+        for (uint32_t y = 0; y < TILE; y++)
+            memcpy(vt_image_at(&tiles[t], 0, y),
+                   vt_image_at(&img, (t % n) * TILE, (t / n) * TILE + y), (size_t)TILE * 4);
+    }
+    char title[256];
+    snprintf(
+        title, sizeof title,
+        "#### synthetic photo with alpha %ux%u, bc3 (RGBA, its own alpha; PSNR over R, G, B, A)",
+        edge, edge);
+    bench_tiles(title, "bc3", tiles, ntiles, 4, runs, NULL);
+    for (uint32_t t = 0; t < ntiles; t++)
+        vt_image_release(&tiles[t]);
+    free(tiles);
+    free(img.pixels);
 }
 
 int main(int argc, char **argv)
 {
     bench_name = "vt-bench-bc";
     int runs = 3, i = 1;
-    uint32_t synth = 0;
+    uint32_t synth = 0, synth_rgba = 0;
     const char *md_path = NULL;
     for (; i < argc && argv[i][0] == '-'; i++) {
         if (!strcmp(argv[i], "--runs") && i + 1 < argc)
@@ -199,12 +249,17 @@ int main(int argc, char **argv)
             synth = (uint32_t)atoi(argv[++i]);
         else if (!strcmp(argv[i], "--md") && i + 1 < argc)
             md_path = argv[++i];
+        else if (!strcmp(argv[i], "--only") && i + 1 < argc)
+            only = argv[++i];
+        else if (!strcmp(argv[i], "--synth-rgba") && i + 1 < argc)
+            synth_rgba = (uint32_t)atoi(argv[++i]);
         else
             break;
     }
-    if (runs < 1 || (i >= argc && synth == 0)) {
-        fprintf(stderr,
-                "usage: vt-bench-bc [--runs N] [--synth EDGE] [--md OUT.md] [IMAGE.png...]\n");
+    if (runs < 1 || (i >= argc && synth == 0 && synth_rgba == 0) || synth_rgba % TILE != 0) {
+        fprintf(
+            stderr,
+            "usage: vt-bench-bc [--runs N] [--synth EDGE] [--synth-rgba EDGE] [--md OUT.md] [--only LABEL] [IMAGE.png...]\n");
         return 2;
     }
     md = md_path ? fopen(md_path, "w") : fopen("/dev/null", "w");
@@ -238,13 +293,17 @@ int main(int argc, char **argv)
     for (int f = 0; f < 2; f++) {
         double psnr[N_ENCODERS], mps[N_ENCODERS];
         for (size_t e = 0; e < N_ENCODERS; e++) {
-            psnr[e] = psnr_of(totals[f][e].se, totals[f][e].samples);
+            psnr[e] = totals[f][e].samples > 0 ? psnr_of(totals[f][e].se, totals[f][e].samples)
+                                               : NAN; /* not run (--only) */
             mps[e] = totals[f][e].texels / 1e6 / totals[f][e].seconds;
         }
         char title[128];
         snprintf(title, sizeof title, "#### All %d images, %s", images, f ? "bc3" : "bc1");
-        report(title, psnr, mps);
+        if (images)
+            report(title, psnr, mps);
     }
+    if (synth_rgba)
+        bench_synth_rgba(synth_rgba, runs);
     if (fclose(md) != 0) {
         perror("vt-bench-bc: write");
         return 1;
