@@ -13,7 +13,7 @@
 #include "vt_source.h"
 #include "vts.h"
 
-#define BAND_ROWS 64u /* texture rows decoded at a time */
+#define BAND_ROWS 16u /* texture rows decoded at a time */
 
 struct tex_info {
     uint8_t channels, sample;
