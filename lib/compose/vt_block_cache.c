@@ -27,6 +27,7 @@ struct vt_block_cache {
     uint64_t count;
     struct vt_block_cache_node *lru_head, *lru_tail;
     uint64_t budget, bytes, pinned, peak, peak_unpinned, spilled, reloads, file_end;
+    uint64_t reserved, peak_reserved; /* readers' and writers' buffers counted in the budget */
     int fd;
     char dir[4096];
 };
@@ -124,7 +125,7 @@ static int file_read(struct vt_block_cache *c, void *data, uint32_t bytes, uint6
  * bytes fit in the budget or none is left. Under the lock. */
 static int make_room(struct vt_block_cache *c, uint64_t need, struct vts_error *err)
 {
-    while (c->bytes + need > c->budget && c->lru_head) {
+    while (c->bytes + c->reserved + need > c->budget && c->lru_head) {
         struct vt_block_cache_node *n = c->lru_head;
         if (!n->in_file) {
             int rc = file_append(c, n->data, n->bytes, &n->off, err);
@@ -151,7 +152,7 @@ int vt_block_cache_put(struct vt_block_cache *c, uint64_t id, const void *data, 
     pthread_mutex_lock(&c->mu);
     assert(!c->table[id]);
     int rc = make_room(c, bytes, err);
-    if (rc == 0 && c->bytes + bytes > c->budget) { /* every block in memory is pinned */
+    if (rc == 0 && c->bytes + c->reserved + bytes > c->budget) { /* all in memory is pinned */
         rc = file_append(c, data, n->bytes, &n->off, err);
         n->in_file = true;
     } else if (rc == 0) {
@@ -283,11 +284,34 @@ int vt_block_cache_get(struct vt_block_cache *c, struct vt_block_cache_pins *p, 
     return 0;
 }
 
+int vt_block_cache_reserve(struct vt_block_cache *c, uint64_t bytes, bool first,
+                           struct vts_error *err)
+{
+    pthread_mutex_lock(&c->mu);
+    while (first && c->reserved > 0 && c->reserved + bytes > c->budget / 2)
+        pthread_cond_wait(&c->cv, &c->mu); /* the others' buffers first */
+    c->reserved += bytes;
+    if (c->reserved > c->peak_reserved)
+        c->peak_reserved = c->reserved;
+    int rc = make_room(c, 0, err);
+    pthread_mutex_unlock(&c->mu);
+    return rc;
+}
+
+void vt_block_cache_unreserve(struct vt_block_cache *c, uint64_t bytes)
+{
+    pthread_mutex_lock(&c->mu);
+    assert(bytes <= c->reserved);
+    c->reserved -= bytes;
+    pthread_cond_broadcast(&c->cv);
+    pthread_mutex_unlock(&c->mu);
+}
+
 void vt_block_cache_stats(struct vt_block_cache *c, struct vt_block_cache_stats *out)
 {
     pthread_mutex_lock(&c->mu);
-    *out = (struct vt_block_cache_stats){c->budget,        c->bytes,   c->peak,
-                                         c->peak_unpinned, c->spilled, c->reloads};
+    *out = (struct vt_block_cache_stats){c->budget,  c->bytes,   c->peak,         c->peak_unpinned,
+                                         c->spilled, c->reloads, c->peak_reserved};
     pthread_mutex_unlock(&c->mu);
 }
 
