@@ -233,8 +233,9 @@ static unsigned png_paeth(unsigned a, unsigned b, unsigned c)
 
 /* Writes the filter byte f and row filtered with it into out (n + 1 bytes); prev is the row above
  * (all zero for the first row); bpp bytes per pixel. */
-static void png_filter_row(int f, const unsigned char *row, const unsigned char *prev, size_t n,
-                           size_t bpp, unsigned char *out)
+static void png_filter_row(int f, const unsigned char *restrict row,
+                           const unsigned char *restrict prev, size_t n, size_t bpp,
+                           unsigned char *restrict out)
 {
     *out++ = (unsigned char)f;
     size_t i = 0;
@@ -369,7 +370,7 @@ static size_t png_put_idat(unsigned char *dst, size_t dst_capacity, size_t z)
 static int png_encode(const struct vt_image *src, const struct vt_codec_params *params, void *dst,
                       size_t dst_capacity, size_t *out_len, struct vts_error *err)
 {
-    size_t row_bytes, filtered, scratch;
+    size_t row_bytes = 0, filtered, scratch;
     *out_len = 0;
     int rc = png_image_layout(src, "source", &row_bytes, err);
     if (rc < 0)
@@ -475,7 +476,7 @@ static int png_decode_run(png_structp png, png_infop info, struct vt_image *dst,
 
 static int png_decode(const void *src, size_t src_len, struct vt_image *dst, struct vts_error *err)
 {
-    size_t row_bytes;
+    size_t row_bytes = 0;
     int rc = png_image_layout(dst, "destination", &row_bytes, err);
     if (rc < 0)
         return rc;
