@@ -12,7 +12,7 @@
 /* Encoder settings; zero-initialise for defaults. */
 struct vt_codec_params {
     int quality;     /* lossy codecs: 1..100, 0 = codec default */
-    int effort;      /* png: 1..9 = zlib level, 0 = default (2; 1..3 use the fast SUB filter);
+    int effort;      /* png: 1..9 = deflate level, 0 = default (1; 1..3 use the fast UP filter);
                         bc: enum vt_codec_bc_effort */
     int subsampling; /* jpeg: 420 or 444; 0 = default (420) */
 };

@@ -272,8 +272,9 @@ void vt_atlas_build_stats(const struct vt_atlas_build *b, struct vt_atlas_build_
     struct vt_block_cache_stats cs = {0};
     if (b->t.blocks)
         vt_block_cache_stats(b->t.blocks, &cs);
-    *out = (struct vt_atlas_build_stats){b->decodes, cs.peak,        cs.budget,
-                                         cs.spilled, b->tiles_empty, b->t.texels_mixed};
+    *out = (struct vt_atlas_build_stats){b->decodes,       cs.peak,    cs.budget,
+                                         cs.peak_reserved, cs.spilled, b->tiles_empty,
+                                         b->t.texels_mixed};
 }
 
 void vt_atlas_build_destroy(struct vt_atlas_build *b)

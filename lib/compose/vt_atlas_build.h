@@ -100,6 +100,7 @@ struct vt_atlas_build_stats {
     uint64_t chains_built;  /* texture decodes: each file once, unless noted in atlas-build.md */
     uint64_t cache_peak;    /* most chain block bytes held in memory at once */
     uint64_t cache_budget;  /* the budget they were held to (unpinned blocks never exceed it) */
+    uint64_t buffers_peak;  /* most bytes of texture-pass buffers counted in that budget at once */
     uint64_t spilled_bytes; /* chain block bytes written to the temporary file */
     uint64_t tiles_empty;   /* tile positions emitted empty (per layer) */
     uint64_t texels_mixed;  /* coarse texels computed from several cells */

@@ -13,7 +13,7 @@
 #include "vt_source.h"
 #include "vts.h"
 
-#define BAND_ROWS 64u /* texture rows decoded at a time */
+#define BAND_ROWS 16u /* texture rows decoded at a time */
 
 struct tex_info {
     uint8_t channels, sample;
@@ -183,7 +183,48 @@ struct file_job {
     struct vt_chain_stream **cs;
     struct key_sink *sink;
     bool whole, check_alpha, opaque;
+    uint64_t reserved; /* bytes of its buffers counted in the cache's budget */
 };
+
+/* Bytes the job's buffers hold outside the cache: the decoded rows, one key's converted band
+ * (at most 4 channels) and every stream's buffers, plus `more` expected. */
+static uint64_t job_bytes(const struct file_job *j, uint32_t rows, uint64_t more)
+{
+    const struct vt_source_info *in = &j->src.info;
+    uint64_t b = (uint64_t)in->width * rows * in->channels * vts_sample_bytes(in->sample);
+    b += (uint64_t)in->width * BAND_ROWS * 4 + more;
+    for (uint32_t i = 0; i < j->n; i++)
+        b += j->cs[i] ? vt_chain_stream_bytes(j->cs[i]) : 0;
+    return b;
+}
+
+/* Counts the job's buffers (now `bytes`) in the cache's budget; the first call may wait for the
+ * other workers' buffers (vt_block_cache_reserve). */
+static int job_reserve(struct file_job *j, uint64_t bytes, struct vts_error *err)
+{
+    if (bytes <= j->reserved)
+        return 0;
+    int rc = vt_block_cache_reserve(j->r->t->blocks, bytes - j->reserved, j->reserved == 0, err);
+    j->reserved = bytes;
+    return rc;
+}
+
+/* What the job's first bands will add: per stream, a few float bands of the texture's width
+ * (conversion, output, filter scratch, kept rows); a whole decode, its chains (8-bit levels,
+ * 4/3 of each crop at most 4 channels). */
+static uint64_t job_expected(const struct file_job *j)
+{
+    uint64_t more = 0;
+    for (uint32_t i = 0; i < j->n; i++) {
+        const struct vt_mip_chain_spec *s = &j->spec[i];
+        uint64_t ch = s->colour_channels + (s->alpha ? 1u : 0u);
+        if (j->cs[i])
+            more += 4ull * BAND_ROWS * j->src.info.width * ch * sizeof(float);
+        else
+            more += (uint64_t)s->crop_width * s->crop_height * ch * 4 / 3;
+    }
+    return more;
+}
 
 /* Rows [y, y + band->height) of the file into every streamed key. */
 static int feed_band(struct file_job *j, const struct vt_image *band, struct vts_error *err)
@@ -209,7 +250,9 @@ static int decode_file(struct file_job *j, struct vts_error *err)
     const struct vt_source_info *in = &j->src.info;
     struct vt_image img = {0};
     uint32_t rows = j->whole ? in->height : BAND_ROWS < in->height ? BAND_ROWS : in->height;
-    int rc = vt_image_alloc(&img, in->width, rows, in->channels, in->sample, err);
+    int rc = job_reserve(j, job_bytes(j, rows, job_expected(j)), err);
+    if (rc == 0)
+        rc = vt_image_alloc(&img, in->width, rows, in->channels, in->sample, err);
     for (uint32_t y = 0; rc == 0 && y < in->height; y += rows) {
         struct vt_image band = img;
         band.height = in->height - y < rows ? in->height - y : rows;
@@ -224,6 +267,8 @@ static int decode_file(struct file_job *j, struct vts_error *err)
         } else if (rc == 0) {
             rc = feed_band(j, &band, err);
         }
+        if (rc == 0)
+            rc = job_reserve(j, job_bytes(j, rows, 0), err);
     }
     for (uint32_t i = 0; rc == 0 && j->whole && i < j->n; i++) {
         if (j->cs[i])
@@ -295,6 +340,8 @@ static int build_group(struct chains_run *r, const struct group *g, struct vts_e
             r->tex[r->keys[g->first + i]].opaque = j.opaque;
     for (uint32_t i = 0; i < j.n; i++)
         vt_chain_stream_destroy(j.cs[i]);
+    if (j.reserved)
+        vt_block_cache_unreserve(t->blocks, j.reserved);
     vt_source_close(&j.src);
     free(j.keys);
     free(j.spec);

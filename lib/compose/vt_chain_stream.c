@@ -56,6 +56,7 @@ struct vt_chain_stream {
     size_t gather_n;
     uint8_t *u8, *block; /* a band of 8-bit rows; one block */
     size_t u8_n;
+    size_t bytes; /* of every buffer above */
     vt_chain_stream_emit_fn emit;
     void *user;
 };
@@ -79,8 +80,9 @@ bool vt_chain_stream_fits(const struct vt_mip_chain_spec *s, uint32_t tw, uint32
     return false;
 }
 
-/* Grows *p to hold n floats (bytes for the u8 variant). */
-static int reserve(void **p, size_t *cap, size_t n, size_t elem, struct vts_error *err)
+/* Grows *p (*cap elements) to hold n elements of elem bytes; *total counts the bytes. */
+static int reserve(void **p, size_t *cap, size_t n, size_t elem, size_t *total,
+                   struct vts_error *err)
 {
     if (n <= *cap)
         return 0;
@@ -91,6 +93,7 @@ static int reserve(void **p, size_t *cap, size_t n, size_t elem, struct vts_erro
     if (!q)
         return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for a texture band");
     *p = q;
+    *total += bytes - *cap * elem;
     *cap = n;
     return 0;
 }
@@ -104,10 +107,11 @@ static int reduce_out(struct vt_chain_stream *cs, const struct vt_kernel *k,
                       struct vt_fregion *dst, struct vts_error *err)
 {
     int rc = reserve((void **)&cs->out, &cs->out_n, (size_t)dst->width * dst->height * cs->ch,
-                     sizeof(float), err);
+                     sizeof(float), &cs->bytes, err);
     size_t sn = vt_filter_reduce_scratch(k, src, dst);
     if (rc == 0)
-        rc = reserve((void **)&cs->scratch, &cs->scratch_n, sn ? sn : 1, sizeof(float), err);
+        rc = reserve((void **)&cs->scratch, &cs->scratch_n, sn ? sn : 1, sizeof(float), &cs->bytes,
+                     err);
     if (rc)
         return rc;
     dst->px = cs->out;
@@ -219,7 +223,8 @@ static int wrap_reduce(struct vt_chain_stream *cs, struct stage *s, uint32_t e, 
     if ((uint64_t)p0 + rows <= s->fh && p0 >= s->row0 && p0 + rows <= s->row0 + s->nrows) {
         px = s->buf + (size_t)(p0 - s->row0) * rf; /* contiguous in the buffer */
     } else {
-        int rc = reserve((void **)&cs->gather, &cs->gather_n, rows * rf, sizeof(float), err);
+        int rc =
+            reserve((void **)&cs->gather, &cs->gather_n, rows * rf, sizeof(float), &cs->bytes, err);
         if (rc)
             return rc;
         for (uint32_t r = 0; r < rows; r++)
@@ -271,7 +276,8 @@ static int wrap_feed(struct vt_chain_stream *cs, uint32_t i, const float *rows, 
     size_t rf = (size_t)s->pw * cs->ch, tf = cs->ch * sizeof(float);
     if (s->nrows + n > s->cap) {
         size_t cap = s->small ? s->fh : s->nrows + n + 8;
-        if (reserve((void **)&s->buf, &(size_t){0}, cap * rf, sizeof(float), err))
+        if (reserve((void **)&s->buf, &(size_t){(size_t)s->cap * rf}, cap * rf, sizeof(float),
+                    &cs->bytes, err))
             return err ? err->status : VTS_ERR_NOMEM;
         s->cap = (uint32_t)cap;
     }
@@ -298,7 +304,7 @@ static int stage_output(struct vt_chain_stream *cs, uint32_t i, uint32_t n, stru
 {
     struct stage *s = &cs->st[i];
     size_t nt = (size_t)s->dw * n;
-    int rc = reserve((void **)&cs->u8, &cs->u8_n, nt * cs->ch, 1, err);
+    int rc = reserve((void **)&cs->u8, &cs->u8_n, nt * cs->ch, 1, &cs->bytes, err);
     if (rc)
         return rc;
     bool last_pre = s->level < 0 && i + 1 == cs->pre;
@@ -312,7 +318,8 @@ static int stage_output(struct vt_chain_stream *cs, uint32_t i, uint32_t n, stru
     if (!last_pre) /* the next reduction reads these floats as they are (build_levels) */
         return stage_feed(cs, i + 1, cs->out, n, err);
     /* level 0 from the texture's own mip level: reduced again from its 8-bit texels */
-    if ((rc = reserve((void **)&cs->conv, &cs->conv_n, nt * cs->ch, sizeof(float), err)) != 0)
+    if ((rc = reserve((void **)&cs->conv, &cs->conv_n, nt * cs->ch, sizeof(float), &cs->bytes,
+                      err)) != 0)
         return rc;
     vt_filter_to_working(&cs->mode, VTS_SAMPLE_U8, cs->u8, cs->conv, nt);
     return stage_feed(cs, i + 1, cs->conv, n, err);
@@ -366,7 +373,8 @@ static int stage_feed(struct vt_chain_stream *cs, uint32_t i, const float *rows,
     size_t rf = (size_t)s->fw * cs->ch;
     if (s->nrows + n > s->cap) {
         size_t cap = s->nrows + n + 8;
-        if (reserve((void **)&s->buf, &(size_t){0}, cap * rf, sizeof(float), err))
+        if (reserve((void **)&s->buf, &(size_t){(size_t)s->cap * rf}, cap * rf, sizeof(float),
+                    &cs->bytes, err))
             return err ? err->status : VTS_ERR_NOMEM;
         s->cap = (uint32_t)cap;
     }
@@ -386,7 +394,8 @@ int vt_chain_stream_push(struct vt_chain_stream *cs, const struct vt_image *rows
     if (rc || cs->nstages == 0)
         return rc;
     size_t nt = (size_t)rows->width * rows->height;
-    if ((rc = reserve((void **)&cs->conv, &cs->conv_n, nt * cs->ch, sizeof(float), err)) != 0)
+    if ((rc = reserve((void **)&cs->conv, &cs->conv_n, nt * cs->ch, sizeof(float), &cs->bytes,
+                      err)) != 0)
         return rc;
     for (uint32_t y = 0; y < rows->height; y++)
         vt_filter_to_working(&cs->mode, VTS_SAMPLE_U8, vt_image_at(rows, 0, y),
@@ -440,6 +449,7 @@ struct vt_chain_stream *vt_chain_stream_create(const struct vt_mip_chain_spec *s
             rot = st->y0;
             size_t hn = (size_t)st->nhead * st->pw * cs->ch;
             ok = ok && (hn == 0 || (st->head = malloc(hn * sizeof(float))));
+            cs->bytes += hn * sizeof(float);
         }
         if (st->level >= 0)
             cs->acc[st->level].rot = rot;
@@ -449,6 +459,7 @@ struct vt_chain_stream *vt_chain_stream_create(const struct vt_mip_chain_spec *s
         h = st->dh;
     }
     ok = ok && (cs->block = malloc((size_t)VT_CHAIN_STREAM_EDGE * VT_CHAIN_STREAM_EDGE * cs->ch));
+    cs->bytes += (size_t)VT_CHAIN_STREAM_EDGE * VT_CHAIN_STREAM_EDGE * cs->ch;
     for (uint32_t l = 0; ok && l < cs->nlevels && l < VTS_MAX_LEVELS; l++) {
         struct level_acc *a = &cs->acc[l];
         a->w = ceil_shift(s->width, l);
@@ -458,6 +469,7 @@ struct vt_chain_stream *vt_chain_stream_create(const struct vt_mip_chain_spec *s
         ok = (a->rows = malloc(band));
         if (ok && a->rot % VT_CHAIN_STREAM_EDGE)
             ok = (a->split = malloc(band));
+        cs->bytes += a->split ? 2 * band : band;
     }
     if (!ok) {
         vt_chain_stream_destroy(cs);
@@ -465,6 +477,11 @@ struct vt_chain_stream *vt_chain_stream_create(const struct vt_mip_chain_spec *s
         return NULL;
     }
     return cs;
+}
+
+size_t vt_chain_stream_bytes(const struct vt_chain_stream *cs)
+{
+    return cs->bytes;
 }
 
 void vt_chain_stream_destroy(struct vt_chain_stream *cs)

@@ -205,12 +205,13 @@ static int write_store(struct layout_run *r, struct vts_error *err)
     vt_atlas_build_stats(r->build, &bs);
     vt_log(
         VT_LOG_INFO,
-        "wrote '%s': %ux%u, %u levels, %u layers, %llu tiles stored (%llu shared), %llu empty, %llu payload bytes; %llu texture decodes, cache peak %.1f MiB of %.0f, %.1f MiB spilled",
+        "wrote '%s': %ux%u, %u levels, %u layers, %llu tiles stored (%llu shared), %llu empty, %llu payload bytes; %llu texture decodes, cache peak %.1f MiB of %.0f (texture buffers %.1f), %.1f MiB spilled",
         r->o->output, g.width, g.height, g.level_count, g.layer_count,
         (unsigned long long)st.tiles_stored, (unsigned long long)st.tiles_shared,
         (unsigned long long)st.tiles_empty, (unsigned long long)st.unique_bytes,
         (unsigned long long)bs.chains_built, (double)bs.cache_peak / (1 << 20),
-        (double)bs.cache_budget / (1 << 20), (double)bs.spilled_bytes / (1 << 20));
+        (double)bs.cache_budget / (1 << 20), (double)bs.buffers_peak / (1 << 20),
+        (double)bs.spilled_bytes / (1 << 20));
     return 0;
 }
 

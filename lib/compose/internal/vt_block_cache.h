@@ -38,6 +38,7 @@ struct vt_block_cache_stats {
     uint64_t peak_unpinned; /* most at once that no reader needed (this one never exceeds budget) */
     uint64_t spilled;       /* bytes written to the temporary file */
     uint64_t reloads;       /* blocks read back from it */
+    uint64_t peak_reserved; /* most bytes reserved at once (vt_block_cache_reserve) */
 };
 
 /* An empty cache for block ids 0..block_count-1 keeping at most budget_bytes in memory; the
@@ -63,6 +64,17 @@ int vt_block_cache_get(struct vt_block_cache *c, struct vt_block_cache_pins *p, 
 
 /* Releases every block pinned in p. */
 void vt_block_cache_unpin_all(struct vt_block_cache *c, struct vt_block_cache_pins *p);
+
+/* Counts bytes of the caller's own buffers (a texture stream's) against the budget until
+ * vt_block_cache_unreserve: unreferenced blocks are spilled to make room. With first set (the
+ * caller reserves nothing yet), waits while others hold reservations and this one would take
+ * them over half the budget, so that workers' buffers cannot crowd out the blocks whatever
+ * their number. 0 or VTS_ERR_IO (a spill failed; the bytes are reserved all the same). */
+int vt_block_cache_reserve(struct vt_block_cache *c, uint64_t bytes, bool first,
+                           struct vts_error *err);
+
+/* Gives back bytes reserved before. */
+void vt_block_cache_unreserve(struct vt_block_cache *c, uint64_t bytes);
 
 void vt_block_cache_stats(struct vt_block_cache *c, struct vt_block_cache_stats *out);
 

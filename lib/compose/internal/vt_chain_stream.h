@@ -13,6 +13,7 @@
 #define VT_CHAIN_STREAM_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "vt_error.h"
@@ -43,6 +44,9 @@ struct vt_chain_stream *vt_chain_stream_create(const struct vt_mip_chain_spec *s
  * of the emit callback / VTS_ERR_NOMEM. After the last row every block has been emitted. */
 int vt_chain_stream_push(struct vt_chain_stream *cs, const struct vt_image *rows,
                          struct vts_error *err);
+
+/* Bytes of the buffers the stream holds now (they grow on the first pushes, then stay). */
+size_t vt_chain_stream_bytes(const struct vt_chain_stream *cs);
 
 void vt_chain_stream_destroy(struct vt_chain_stream *cs);
 

@@ -470,6 +470,71 @@ static void png_decode_survives_mutations_with_valid_crcs(void)
     free(src.pixels);
 }
 
+static uint32_t be32(const unsigned char *p)
+{
+    return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
+}
+
+/* Walks the chunks of payload: counts IDATs (each at most 256 KiB) and bad CRCs; true when it is
+ * signature, IHDR (w x h, depth, colour type, no interlace), IDAT..., IEND, nothing after. */
+static bool png_chunks_valid(const unsigned char *p, size_t len, uint32_t w, uint32_t h,
+                             unsigned depth, unsigned colour_type, int *idats, int *bad_crcs)
+{
+    static const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    *idats = *bad_crcs = 0;
+    if (len < 8 + 25 + 12 || memcmp(p, signature, 8) != 0 || be32(p + 8) != 13 ||
+        memcmp(p + 12, "IHDR", 4) != 0 || be32(p + 16) != w || be32(p + 20) != h ||
+        p[24] != depth || p[25] != colour_type || p[26] || p[27] || p[28])
+        return false;
+    size_t pos = 8;
+    bool iend = false;
+    while (pos + 12 <= len && !iend) {
+        uint32_t n = be32(p + pos);
+        if (n > len - pos - 12)
+            return false;
+        *bad_crcs += crc32_png(p + pos + 4, n + 4) != be32(p + pos + 8 + n);
+        if (memcmp(p + pos + 4, "IDAT", 4) == 0)
+            *idats += n <= (1u << 18) ? 1 : 1000;
+        iend = memcmp(p + pos + 4, "IEND", 4) == 0 && n == 0;
+        pos += 12 + (size_t)n;
+    }
+    return iend && pos == len;
+}
+
+static void png_payload_is_a_plain_png_with_idats_cut_at_256k(void)
+{
+    const struct vt_codec *png = vt_codec_find("png");
+    rng_seed(12);
+    struct vt_image src = image_make(264, 264, 4, VTS_SAMPLE_U16, 0); /* 558 KB, incompressible */
+    int idats = 0, bad_crcs = 0;
+    for (int effort = 1; effort <= 9; effort += 8) {
+        size_t len = 0;
+        unsigned char *payload = encode_alloc(png, &src, effort, &len);
+        VT_CHECK(png_chunks_valid(payload, len, 264, 264, 16, 6, &idats, &bad_crcs));
+        VT_CHECK_INT_EQ(idats, 3);
+        VT_CHECK_INT_EQ(bad_crcs, 0);
+        /* a byte changed in the middle IDAT: the walk and the decoder both notice */
+        payload[8 + 25 + 12 + (1u << 18) + 100] ^= 0x10;
+        VT_CHECK(png_chunks_valid(payload, len, 264, 264, 16, 6, &idats, &bad_crcs));
+        VT_CHECK_INT_EQ(bad_crcs, 1);
+        struct vt_image dst;
+        struct vts_error err = {0};
+        VT_CHECK_INT_EQ(decode_into(png, payload, len, &dst, 264, 264, 4, VTS_SAMPLE_U16, &err),
+                        VTS_ERR_BAD_INPUT);
+        free(dst.pixels);
+        free(payload);
+    }
+    free(src.pixels);
+    struct vt_image grey = image_make(5, 3, 1, VTS_SAMPLE_U8, 2);
+    size_t len = 0;
+    unsigned char *payload = encode_alloc(png, &grey, 0, &len);
+    VT_CHECK(png_chunks_valid(payload, len, 5, 3, 8, 0, &idats, &bad_crcs));
+    VT_CHECK(idats == 1 && bad_crcs == 0);
+    VT_CHECK(!png_chunks_valid(payload, len, 5, 3, 8, 2, &idats, &bad_crcs)); /* not RGB */
+    free(payload);
+    free(grey.pixels);
+}
+
 /* 2x1 16-bit gray, samples 0x0102 and 0xa0b0 (written by a Python script, not by libpng). */
 static const unsigned char fixture_gray16_2x1[] = {
     0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48,
@@ -531,6 +596,7 @@ int main(void)
     VT_RUN(png_decode_rejects_other_shapes);
     VT_RUN(png_decode_rejects_garbage_and_trailing_bytes);
     VT_RUN(png_decode_survives_mutations_with_valid_crcs);
+    VT_RUN(png_payload_is_a_plain_png_with_idats_cut_at_256k);
     VT_RUN(png_decodes_foreign_16bit_and_interlaced_payloads);
     return vt_test_main_result();
 }

@@ -2,8 +2,10 @@
  * chain bit for bit; the block cache keeps its memory within the budget and gives back what was
  * spilled; an atlas build decodes each texture file once (both layers from one decode) and holds
  * its budget. */
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "internal/vt_atlas_build_impl.h"
 #include "internal/vt_block_cache.h"
@@ -192,6 +194,78 @@ static void the_block_cache_holds_its_budget_and_reads_back_what_spilled(void)
     vt_block_cache_destroy(c);
 }
 
+static void reserved_bytes_push_blocks_out_of_the_budget(void)
+{
+    enum { N = 12, BYTES = 1000 };
+    struct vt_block_cache *c = vt_block_cache_create(N, 5 * BYTES, NULL, NULL);
+    uint8_t buf[BYTES];
+    struct vt_block_cache_stats st;
+    for (int i = 0; i < 5; i++) {
+        memset(buf, i, sizeof buf);
+        VT_CHECK_INT_EQ(vt_block_cache_put(c, (uint64_t)i, buf, sizeof buf, NULL), 0);
+    }
+    vt_block_cache_stats(c, &st);
+    VT_CHECK(st.bytes == 5 * BYTES && st.spilled == 0);
+    VT_CHECK_INT_EQ(vt_block_cache_reserve(c, 2 * BYTES + 1, true, NULL), 0);
+    vt_block_cache_stats(c, &st);
+    VT_CHECK_INT_EQ(st.bytes, 2 * BYTES); /* 3 blocks made room for the reservation */
+    VT_CHECK_INT_EQ(st.spilled, 3 * BYTES);
+    memset(buf, 5, sizeof buf);
+    VT_CHECK_INT_EQ(vt_block_cache_put(c, 5, buf, sizeof buf, NULL), 0);
+    vt_block_cache_stats(c, &st);
+    VT_CHECK(st.bytes <= 2 * BYTES && st.peak_reserved == 2 * BYTES + 1);
+    vt_block_cache_unreserve(c, 2 * BYTES + 1);
+    for (int i = 6; i < 9; i++) {
+        memset(buf, i, sizeof buf);
+        VT_CHECK_INT_EQ(vt_block_cache_put(c, (uint64_t)i, buf, sizeof buf, NULL), 0);
+    }
+    vt_block_cache_stats(c, &st);
+    VT_CHECK_INT_EQ(st.bytes, 5 * BYTES); /* the whole budget again, nothing more spilled */
+    VT_CHECK_INT_EQ(st.spilled, 4 * BYTES);
+    struct vt_block_cache_pins pins = {0};
+    for (int i = 0; i < 9; i++) {
+        const uint8_t *px = NULL;
+        VT_CHECK_INT_EQ(vt_block_cache_get(c, &pins, (uint64_t)i, &px, NULL), 0);
+        VT_CHECK(px && px[0] == i && px[BYTES - 1] == i);
+        vt_block_cache_unpin_all(c, &pins);
+    }
+    vt_block_cache_destroy(c);
+}
+
+struct reserver {
+    struct vt_block_cache *c;
+    int released; /* set (atomically) by the first reserver just before it unreserves */
+    int seen;     /* what the second one saw when its reservation returned */
+};
+
+static void *second_reserver(void *arg)
+{
+    struct reserver *r = arg;
+    VT_CHECK_INT_EQ(vt_block_cache_reserve(r->c, 1000, true, NULL), 0);
+    r->seen = __atomic_load_n(&r->released, __ATOMIC_SEQ_CST);
+    vt_block_cache_unreserve(r->c, 1000);
+    return NULL;
+}
+
+static void a_first_reservation_waits_for_others_over_half_the_budget(void)
+{
+    struct reserver r = {vt_block_cache_create(4, 10000, NULL, NULL), 0, -1};
+    VT_CHECK_INT_EQ(vt_block_cache_reserve(r.c, 4500, true, NULL), 0);
+    pthread_t th;
+    VT_CHECK_INT_EQ(pthread_create(&th, NULL, second_reserver, &r), 0);
+    nanosleep(&(struct timespec){0, 50 * 1000 * 1000},
+              NULL); /* give it time to try (not a check) */
+    __atomic_store_n(&r.released, 1, __ATOMIC_SEQ_CST);
+    vt_block_cache_unreserve(r.c, 4500);
+    pthread_join(th, NULL);
+    VT_CHECK_INT_EQ(r.seen, 1); /* 4500 + 1000 > 10000 / 2: it waited */
+    /* a reservation that is not the caller's first never waits */
+    VT_CHECK_INT_EQ(vt_block_cache_reserve(r.c, 4500, true, NULL), 0);
+    VT_CHECK_INT_EQ(vt_block_cache_reserve(r.c, 4500, false, NULL), 0);
+    vt_block_cache_unreserve(r.c, 9000);
+    vt_block_cache_destroy(r.c);
+}
+
 /* ---- a build: decodes counted through the open callback ---- */
 
 #define NTEX 4
@@ -285,6 +359,7 @@ static void a_build_decodes_each_file_once_within_its_budget(void)
         VT_CHECK_INT_EQ(rows_read[i], tex_h[i]); /* every row decoded once */
     VT_CHECK(st.spilled_bytes > 0);
     VT_CHECK(st.cache_peak <= 200000 + 3 * VT_BLOCK_CACHE_PINS * 64 * 64 * 4);
+    VT_CHECK(st.buffers_peak > 0); /* the texture streams' buffers were counted */
     VT_CHECK_INT_EQ(tiles, 2 * vt_atlas_build_tile_count(b));
     struct vt_atlas_layer_format f;
     vt_atlas_build_format(b, 0, &f);
@@ -324,6 +399,8 @@ int main(void)
     VT_RUN(a_streamed_wrap_chain_equals_the_whole_chain);
     VT_RUN(a_wrong_texel_is_caught);
     VT_RUN(the_block_cache_holds_its_budget_and_reads_back_what_spilled);
+    VT_RUN(reserved_bytes_push_blocks_out_of_the_budget);
+    VT_RUN(a_first_reservation_waits_for_others_over_half_the_budget);
     VT_RUN(a_build_decodes_each_file_once_within_its_budget);
     return vt_test_main_result();
 }
