@@ -24,6 +24,7 @@ void vtv_options_default(struct vtv_options *o)
     o->width = 1024;
     o->height = 768;
     o->feedback_div = 4;
+    o->aniso = 1;
     o->cache_tiles = 256;
     o->uploads = 32;
     o->threads = 2;
@@ -82,6 +83,8 @@ struct app {
     uint16_t *feedback;
     uint8_t *shot;
     bool three_d, trilinear;
+    uint32_t aniso; /* 1: off */
+    char filtering[16];
     int debug;
     uint32_t layers[VTV_MAP_COUNT]; /* store layer per map kind, UINT32_MAX: none */
 };
@@ -129,6 +132,16 @@ static void set_light(struct vtv_render *r, const struct vtv_options *o)
     }
 }
 
+static const char *filtering_name(struct app *a)
+{
+    if (!a->trilinear)
+        return "bilinear";
+    if (a->aniso <= 1)
+        return "trilinear";
+    snprintf(a->filtering, sizeof(a->filtering), "aniso%u", a->aniso);
+    return a->filtering;
+}
+
 static void frame_view(struct app *a, uint64_t frame, struct vtv_view *v)
 {
     const struct vtv_options *o = a->o;
@@ -147,6 +160,7 @@ static void frame_view(struct app *a, uint64_t frame, struct vtv_view *v)
         vtv_camera_matrix_2d(&cam, o->width, o->height, v->mvp);
     }
     v->trilinear = a->trilinear;
+    v->aniso = a->trilinear ? (int)a->aniso : 1;
     v->debug = a->debug;
     for (int k = 0; k < 3; k++)
         v->eye[k] = a->three_d ? (float)cam.v[k] : 0.0f;
@@ -184,6 +198,15 @@ static int setup(struct app *a, struct vts_error *err)
         return vt_error_set(err, VTS_ERR_ARG, "%s: no layer '%s'", o->store_path, o->layer_name);
     const struct vts_geometry *g = vts_store_geometry(a->store);
     a->three_d = o->obj_path != NULL;
+    /* anisoN's taps reach N/2 texels past the footprint's centre: the border must hold them */
+    a->aniso = o->aniso;
+    if (a->aniso > 1 && a->aniso > 2 * g->border_px) {
+        uint32_t n = 2 * g->border_px;
+        vt_log(VT_LOG_WARN, "%s: border %u px holds anisotropic taps up to %u, not %u: %s",
+               o->store_path, g->border_px, n < 2 ? 1 : n, a->aniso,
+               n < 2 ? "filtering trilinear" : "clamped");
+        a->aniso = n < 2 ? 1 : n;
+    }
     /* materials: 3D, unless --layer asks for one layer as it is, or the plain reference (the
      * store's level 0 through the scene) is drawn */
     bool materials = a->three_d && !o->layer_name && !(o->reference && !o->reference_scene);
@@ -316,7 +339,7 @@ static int loop(struct app *a, struct vts_error *err)
                 snprintf(title, sizeof(title),
                          "vt-view %s | %s%s | req %" PRIu64 " res %" PRIu64 " up %" PRIu64
                          " fallback %" PRIu64 " px | %.1f ms",
-                         o->store_path, a->trilinear ? "trilinear" : "bilinear",
+                         o->store_path, filtering_name(a),
                          a->debug == 1   ? " levels"
                          : a->debug == 2 ? " tiles"
                                          : "",
@@ -348,7 +371,7 @@ static int loop(struct app *a, struct vts_error *err)
         struct vtv_run_info info = {
             .store = o->store_path,
             .mode = a->three_d ? "3d" : "2d",
-            .filtering = a->trilinear ? "trilinear" : "bilinear",
+            .filtering = filtering_name(a),
             .renderer = o->reference ? "reference" : "virtual",
             .width = o->width,
             .height = o->height,

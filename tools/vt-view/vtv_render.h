@@ -79,6 +79,7 @@ struct vtv_view {
     float mvp[16]; /* column-major */
     float eye[3];  /* camera position (specular highlights) */
     bool trilinear;
+    int aniso; /* taps at most along the footprint (1: off) */
     int debug; /* 0 none, 1 levels, 2 tiles */
 };
 
