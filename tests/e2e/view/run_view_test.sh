@@ -118,14 +118,28 @@ lod_auto)
     "256 256 0.41" "256 256 0.41" "256 256 0.41" "256 256 0.41" "256 256 0.41" "256 256 0.41" \
     "300 150 1.5" "300 150 1.5" "300 150 1.5" "300 150 1.5" "300 150 1.5" "300 150 1.5" >path.cam
   vt good.vts --camera path.cam --frames 24 --sync --cache 8 --stats path.json
-  python3 - path.json <<'PY' || fail "thrashing on the path"
+  converged() { # STATS: each view's last frame neither misses nor uploads anything
+    python3 - "$1" <<'PY'
 import json, sys
 frames = json.load(open(sys.argv[1]))["frames"]
 for view in range(4):
     last = frames[view * 6 + 5]
-    assert last["fallback_pixels"] == 0 and last["uploads"] == 0, (view, last)
+    if last["fallback_pixels"] != 0 or last["uploads"] != 0:
+        sys.exit("view %d: %s" % (view, last))
 print("each view converged within 6 frames, biases", [f["lod_bias"] for f in frames])
 PY
+  }
+  converged path.json || fail "thrashing on the path"
+  # the negative control: the same path with the bias fixed at 0 does not converge
+  vt good.vts --camera path.cam --frames 24 --sync --cache 8 --lod-bias 0 --stats path0.json
+  if converged path0.json; then fail "the path converges without the bias: no control"; fi
+  # bounded PSNR loss: each view's converged frame (the path cut after it) against the reference
+  for k in 1 2 3 4; do
+    vt good.vts --camera path.cam --frames $((k * 6)) --sync --cache 8 --screenshot v$k.png
+    sed -n "$((k * 6))p" path.cam >v$k.cam
+    vt good.vts --camera v$k.cam --frames 1 --reference --screenshot v${k}_ref.png
+    "$check" psnr v$k.png v${k}_ref.png --min 30 || fail "view $k: PSNR loss not bounded"
+  done
   ;;
 empty_tiles)
   # Level-0 tiles (1,1) and (2,0) stored with length 0: their 64x64 pixels show level 1.
@@ -213,6 +227,7 @@ ram_prefetch)
       ram_hits) prefetched $(total "$name.json" prefetched) reads $(total "$name.json" reads)"
   }
   run none --ram-cache 0 --prefetch off
+  run pre --ram-cache 0 --prefetch on
   run ram --ram-cache 512 --prefetch off
   run both --ram-cache 512 --prefetch on
   run both2 --ram-cache 512 --prefetch on
@@ -226,6 +241,9 @@ ram_prefetch)
     fail "the RAM cache did not reduce the fallback"
   [ "$(total both.json fallback_pixels)" -lt "$(total ram.json fallback_pixels)" ] ||
     fail "the prefetch did not reduce the fallback"
+  # the prefetch reads into the RAM cache: without one it reads nothing and changes nothing
+  [ "$(total pre.json prefetched)" = 0 ] || fail "prefetched without a RAM cache"
+  "$check" frames-equal none.json pre.json || fail "the prefetch without a RAM cache changed a frame"
   grep -q '"missed_by_level": \[' both.json || fail "no missed_by_level"
   ;;
 aniso)
