@@ -142,10 +142,47 @@ static const char *filtering_name(struct app *a)
     return a->filtering;
 }
 
+/* The 2D view in split coordinates (item 7 of issue 16): the texture's quad clipped to the view
+ * on the CPU in double, positions relative to the camera centre and texcoords in level-0 texels
+ * relative to the level-0 tile under the centre, so that no float holds a coordinate of the size
+ * of the virtual texture (2^20 texels: 1/16 texel in float32). */
+static void quad_2d(struct app *a, const struct vtv_camera *cam, struct vtv_view *v)
+{
+    const struct vts_geometry *g = vts_store_geometry(a->store);
+    double s = cam->v[2], cx = cam->v[0], cy = cam->v[1];
+    double hw = a->o->width / (2 * s), hh = a->o->height / (2 * s);
+    double x0 = fmax(0, cx - hw), x1 = fmin(g->width, cx + hw);
+    double y0 = fmax(0, cy - hh), y1 = fmin(g->height, cy + hh);
+    x1 = fmax(x0, x1);
+    y1 = fmax(y0, y1);
+    double c = g->tile_content_px;
+    double tx = fmin(fmax(floor(cx / c), 0), ceil(g->width / c) - 1);
+    double ty = fmin(fmax(floor(cy / c), 0), ceil(g->height / c) - 1);
+    v->rel = true;
+    v->origin[0] = (int)tx;
+    v->origin[1] = (int)ty;
+    const double corner[4][2] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+    const int order[6] = {0, 1, 2, 0, 2, 3};
+    for (int i = 0; i < 6; i++) {
+        float *p = a->mesh.vertices + i * VTV_VERTEX_FLOATS;
+        const double *k = corner[order[i]];
+        p[0] = (float)(k[0] - cx);
+        p[1] = (float)(k[1] - cy);
+        p[3] = (float)(k[0] - tx * c);
+        p[4] = (float)(k[1] - ty * c);
+    }
+    vtv_render_update_vertices(&a->render, &a->mesh);
+    struct vtv_camera centred = *cam;
+    centred.v[0] = centred.v[1] = 0;
+    vtv_camera_matrix_2d(&centred, a->o->width, a->o->height, v->mvp);
+}
+
 static void frame_view(struct app *a, uint64_t frame, struct vtv_view *v)
 {
     const struct vtv_options *o = a->o;
     struct vtv_camera cam = a->cam;
+    v->rel = false;
+    v->origin[0] = v->origin[1] = 0;
     if (a->path.count)
         cam = *vtv_camera_path_at(&a->path, frame);
     else if (o->orbit)
@@ -156,6 +193,8 @@ static void frame_view(struct app *a, uint64_t frame, struct vtv_view *v)
             d += (a->mesh.hi[k] - a->mesh.lo[k]) * (a->mesh.hi[k] - a->mesh.lo[k]);
         d = sqrt(d) + 1e-6;
         vtv_camera_matrix_3d(&cam, o->width, o->height, d * 1e-3, d * 10, v->mvp);
+    } else if (!o->reference) {
+        quad_2d(a, &cam, v);
     } else {
         vtv_camera_matrix_2d(&cam, o->width, o->height, v->mvp);
     }

@@ -197,6 +197,15 @@ void vtv_render_vertex_layout(void)
     }
 }
 
+void vtv_render_update_vertices(struct vtv_render *r, const struct vtv_mesh *mesh)
+{
+    glBindBuffer(GL_ARRAY_BUFFER, r->vbo);
+    glBufferSubData(GL_ARRAY_BUFFER, 0,
+                    (GLsizeiptr)mesh->vertex_count * VTV_VERTEX_FLOATS * sizeof(float),
+                    mesh->vertices);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
 int vtv_render_set_mesh(struct vtv_render *r, const struct vtv_mesh *mesh, unsigned kinds,
                         struct vts_error *err)
 {
@@ -387,6 +396,9 @@ static void common_uniforms(const struct vtv_render *r, GLuint p, const struct v
     glUniform1iv(glGetUniformLocation(p, "u_pt_row"), r->max_level + 1, r->pt_row);
     glUniform1i(glGetUniformLocation(p, "u_trilinear"), v->trilinear ? 1 : 0);
     glUniform1i(glGetUniformLocation(p, "u_aniso"), v->aniso > 1 ? v->aniso : 1);
+    glUniform1i(glGetUniformLocation(p, "u_rel"), v->rel ? 1 : 0);
+    glUniform2i(glGetUniformLocation(p, "u_origin"), v->rel ? v->origin[0] : 0,
+                v->rel ? v->origin[1] : 0);
     glUniform1f(glGetUniformLocation(p, "u_lod_bias"), lod_bias);
     glUniform2f(glGetUniformLocation(p, "u_phys_size"), (float)r->phys_w, (float)r->phys_h);
     glUniform1f(glGetUniformLocation(p, "u_border"), r->border);

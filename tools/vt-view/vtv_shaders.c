@@ -1,5 +1,6 @@
 /* GLSL 330 core sources of vt-view. Coordinates: v_uv in [0,1]^2 over the virtual texture (v = 0 is
- * the first row of the store); t0 = v_uv * u_virt is in level-0 texels. The level-of-detail comes
+ * the first row of the store); t0 = v_uv * u_virt is in level-0 texels (in the 2D view, t0 = v_uv
+ * relative to a level-0 tile u_origin: split coordinates, see vt_texel). The level-of-detail comes
  * from the gradients of t0 (the virtual texture), not from the physical texture, and the physical
  * lookups get those gradients scaled to the level used (corrected gradients). Every layer of a
  * tile sits in the same slot of its own physical texture, so one page-table lookup addresses all
@@ -47,6 +48,12 @@ static const char vt_common[] =
     "uniform float u_border;\n"
     "uniform float u_payload;\n"
     "uniform int u_aniso;\n"
+    /* Split coordinates (u_rel != 0, the 2D view): v_uv is in level-0 texels relative to the
+       corner of level-0 tile u_origin, so that the float coordinates stay small however large
+       the virtual texture; otherwise v_uv is in [0,1] over it and u_origin is 0. */
+    "uniform int u_rel;\n"
+    "uniform ivec2 u_origin;\n"
+    "vec2 vt_texel() { return u_rel != 0 ? v_uv : v_uv * u_virt; }\n"
     /* Anisotropic filtering (u_aniso > 1): the footprint's major axis over its minor one, at most
        u_aniso, is the number of taps along the major axis; the level is chosen for the major
        axis divided by it (docs/viewer.md, "Anisotropic filtering"). */
@@ -65,7 +72,14 @@ static const char vt_common[] =
     "    return min(int(ceil(lam + 0.5)) - 1, u_max_level);\n"
     "}\n"
     "ivec2 vt_tile(int level, vec2 t0) {\n"
-    "    ivec2 tc = ivec2(floor(t0 / (u_content * exp2(float(level)))));\n"
+    "    ivec2 tc;\n"
+    "    if (u_rel != 0) {\n"
+    "        ivec2 m = ivec2((1 << level) - 1);\n"
+    "        vec2 f = (vec2(u_origin & m) + t0 / u_content) / exp2(float(level));\n"
+    "        tc = (u_origin >> level) + ivec2(floor(f));\n"
+    "    } else {\n"
+    "        tc = ivec2(floor(t0 / (u_content * exp2(float(level)))));\n"
+    "    }\n"
     "    return clamp(tc, ivec2(0), u_pt_tiles[level] - 1);\n"
     "}\n"
     "struct vt_addr { vec2 p; vec2 gx; vec2 gy; vec2 ax; vec2 lo; vec2 hi; int n; };\n"
@@ -81,7 +95,8 @@ static const char vt_common[] =
     "    used = int(e.b);\n"
     "    ivec2 tl = tc >> (used - want);\n"
     "    float s = exp2(float(used));\n"
-    "    vec2 t = t0 / s - vec2(tl) * u_content;\n"
+    "    vec2 t = u_rel != 0 ? (vec2(u_origin - (tl << used)) * u_content + t0) / s\n"
+    "                        : t0 / s - vec2(tl) * u_content;\n"
     "    in_tile = clamp(t, vec2(0.5 - u_border), vec2(u_content + u_border - 0.5));\n"
     "    vec2 org = vec2(e.rg) * u_payload;\n"
     "    a.p = (org + u_border + in_tile) / u_phys_size;\n"
@@ -197,7 +212,7 @@ static const char vt_body[] =
     "    return c[clamp(l, 0, 7)];\n"
     "}\n"
     "void main() {\n"
-    "    vec2 t0 = v_uv * u_virt;\n"
+    "    vec2 t0 = vt_texel();\n"
     "    vec2 gx = dFdx(t0), gy = dFdy(t0);\n"
     "    float lam = vt_lambda(gx, gy);\n"
     "    float texels_per_px = exp2(lam - u_lod_bias);\n"
@@ -242,7 +257,7 @@ static const char vt_body[] =
 static const char feedback_body[] =
     "layout(location = 0) out uvec4 o_request;\n"
     "void main() {\n"
-    "    vec2 t0 = v_uv * u_virt;\n"
+    "    vec2 t0 = vt_texel();\n"
     "    vec2 gx = dFdx(t0), gy = dFdy(t0);\n"
     "    float lam = vt_lambda(gx, gy);\n"
     "    int want = u_trilinear != 0 ? int(floor(clamp(lam, 0.0, float(u_max_level))))\n"

@@ -8,6 +8,7 @@ set -euo pipefail
 case_name=$1 view=$2 make_store=$3 check=$4 work=$5 vt_tiles=${6:-} synth_image=${7:-}
 atlas=${VT_ATLAS:-} offset=${VT_OFFSET:-} layout_tiles=${VT_TILES:-} make_scene=${VTV_MAKE_SCENE:-}
 sample_scene=${VT_SAMPLE_SCENE:-} make_effects=${VTV_MAKE_EFFECTS:-}
+make_sparse=${VTV_MAKE_SPARSE:-}
 rm -rf "$work"
 mkdir -p "$work"
 cd "$work"
@@ -245,6 +246,24 @@ ram_prefetch)
   [ "$(total pre.json prefetched)" = 0 ] || fail "prefetched without a RAM cache"
   "$check" frames-equal none.json pre.json || fail "the prefetch without a RAM cache changed a frame"
   grep -q '"missed_by_level": \[' both.json || fail "no missed_by_level"
+  ;;
+full_size)
+  # Precision at full size (issue 16, item 7): a 2^20 x 2^20 store (1016-texel tiles, 1033 x 1033
+  # at level 0) with only its far corner's 2 x 2 level-0 tiles stored, the rest empty; a 2D view
+  # there, magnified x2.37 across the corner tiles' edges, against a CPU reference of the same
+  # texels in double precision (vtv_make_sparse --reference): >= 40 dB (float32 coordinates of
+  # that size are 1/16 texel apart: 33.6 dB measured before split coordinates). The control: the
+  # reference moved by 1/8 texel scores < 35 dB, so an error of that size fails the comparison.
+  "$make_sparse" big.vts
+  echo "1048500.3 1048490.7 2.37" >far.cam
+  vt big.vts --camera far.cam --frames 8 --sync --screenshot far.png --stats far.json
+  "$check" stat far.json fallback_pixels == 0 || fail "fallback at the far corner"
+  "$check" stat far.json failed == 0 || fail "failed tiles"
+  "$make_sparse" --reference ref.png 1048500.3 1048490.7 2.37 256 256
+  "$make_sparse" --reference shifted.png 1048500.3 1048490.7 2.37 256 256 --shift 0.125
+  "$check" psnr far.png ref.png --min 40 || fail "the far corner against the CPU reference"
+  "$check" psnr shifted.png ref.png --max 35 || fail "a 1/8-texel shift passes: no control"
+  "$check" psnr far.png shifted.png --max 35 || fail "the far corner matches a shifted reference"
   ;;
 aniso)
   # --filtering anisoN on a plane seen at a grazing angle, a photo-like store (64 px tiles, border
