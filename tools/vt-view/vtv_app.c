@@ -24,6 +24,7 @@ void vtv_options_default(struct vtv_options *o)
     o->width = 1024;
     o->height = 768;
     o->feedback_div = 4;
+    o->aniso = 1;
     o->cache_tiles = 256;
     o->uploads = 32;
     o->threads = 2;
@@ -82,6 +83,8 @@ struct app {
     uint16_t *feedback;
     uint8_t *shot;
     bool three_d, trilinear;
+    uint32_t aniso; /* 1: off */
+    char filtering[16];
     int debug;
     uint32_t layers[VTV_MAP_COUNT]; /* store layer per map kind, UINT32_MAX: none */
 };
@@ -129,10 +132,57 @@ static void set_light(struct vtv_render *r, const struct vtv_options *o)
     }
 }
 
+static const char *filtering_name(struct app *a)
+{
+    if (!a->trilinear)
+        return "bilinear";
+    if (a->aniso <= 1)
+        return "trilinear";
+    snprintf(a->filtering, sizeof(a->filtering), "aniso%u", a->aniso);
+    return a->filtering;
+}
+
+/* The 2D view in split coordinates (item 7 of issue 16): the texture's quad clipped to the view
+ * on the CPU in double, positions relative to the camera centre and texcoords in level-0 texels
+ * relative to the level-0 tile under the centre, so that no float holds a coordinate of the size
+ * of the virtual texture (2^20 texels: 1/16 texel in float32). */
+static void quad_2d(struct app *a, const struct vtv_camera *cam, struct vtv_view *v)
+{
+    const struct vts_geometry *g = vts_store_geometry(a->store);
+    double s = cam->v[2], cx = cam->v[0], cy = cam->v[1];
+    double hw = a->o->width / (2 * s), hh = a->o->height / (2 * s);
+    double x0 = fmax(0, cx - hw), x1 = fmin(g->width, cx + hw);
+    double y0 = fmax(0, cy - hh), y1 = fmin(g->height, cy + hh);
+    x1 = fmax(x0, x1);
+    y1 = fmax(y0, y1);
+    double c = g->tile_content_px;
+    double tx = fmin(fmax(floor(cx / c), 0), ceil(g->width / c) - 1);
+    double ty = fmin(fmax(floor(cy / c), 0), ceil(g->height / c) - 1);
+    v->rel = true;
+    v->origin[0] = (int)tx;
+    v->origin[1] = (int)ty;
+    const double corner[4][2] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+    const int order[6] = {0, 1, 2, 0, 2, 3};
+    for (int i = 0; i < 6; i++) {
+        float *p = a->mesh.vertices + i * VTV_VERTEX_FLOATS;
+        const double *k = corner[order[i]];
+        p[0] = (float)(k[0] - cx);
+        p[1] = (float)(k[1] - cy);
+        p[3] = (float)(k[0] - tx * c);
+        p[4] = (float)(k[1] - ty * c);
+    }
+    vtv_render_update_vertices(&a->render, &a->mesh);
+    struct vtv_camera centred = *cam;
+    centred.v[0] = centred.v[1] = 0;
+    vtv_camera_matrix_2d(&centred, a->o->width, a->o->height, v->mvp);
+}
+
 static void frame_view(struct app *a, uint64_t frame, struct vtv_view *v)
 {
     const struct vtv_options *o = a->o;
     struct vtv_camera cam = a->cam;
+    v->rel = false;
+    v->origin[0] = v->origin[1] = 0;
     if (a->path.count)
         cam = *vtv_camera_path_at(&a->path, frame);
     else if (o->orbit)
@@ -143,10 +193,13 @@ static void frame_view(struct app *a, uint64_t frame, struct vtv_view *v)
             d += (a->mesh.hi[k] - a->mesh.lo[k]) * (a->mesh.hi[k] - a->mesh.lo[k]);
         d = sqrt(d) + 1e-6;
         vtv_camera_matrix_3d(&cam, o->width, o->height, d * 1e-3, d * 10, v->mvp);
+    } else if (!o->reference) {
+        quad_2d(a, &cam, v);
     } else {
         vtv_camera_matrix_2d(&cam, o->width, o->height, v->mvp);
     }
     v->trilinear = a->trilinear;
+    v->aniso = a->trilinear ? (int)a->aniso : 1;
     v->debug = a->debug;
     for (int k = 0; k < 3; k++)
         v->eye[k] = a->three_d ? (float)cam.v[k] : 0.0f;
@@ -184,6 +237,15 @@ static int setup(struct app *a, struct vts_error *err)
         return vt_error_set(err, VTS_ERR_ARG, "%s: no layer '%s'", o->store_path, o->layer_name);
     const struct vts_geometry *g = vts_store_geometry(a->store);
     a->three_d = o->obj_path != NULL;
+    /* anisoN's taps reach N/2 texels past the footprint's centre: the border must hold them */
+    a->aniso = o->aniso;
+    if (a->aniso > 1 && a->aniso > 2 * g->border_px) {
+        uint32_t n = 2 * g->border_px;
+        vt_log(VT_LOG_WARN, "%s: border %u px holds anisotropic taps up to %u, not %u: %s",
+               o->store_path, g->border_px, n < 2 ? 1 : n, a->aniso,
+               n < 2 ? "filtering trilinear" : "clamped");
+        a->aniso = n < 2 ? 1 : n;
+    }
     /* materials: 3D, unless --layer asks for one layer as it is, or the plain reference (the
      * store's level 0 through the scene) is drawn */
     bool materials = a->three_d && !o->layer_name && !(o->reference && !o->reference_scene);
@@ -316,7 +378,7 @@ static int loop(struct app *a, struct vts_error *err)
                 snprintf(title, sizeof(title),
                          "vt-view %s | %s%s | req %" PRIu64 " res %" PRIu64 " up %" PRIu64
                          " fallback %" PRIu64 " px | %.1f ms",
-                         o->store_path, a->trilinear ? "trilinear" : "bilinear",
+                         o->store_path, filtering_name(a),
                          a->debug == 1   ? " levels"
                          : a->debug == 2 ? " tiles"
                                          : "",
@@ -348,7 +410,7 @@ static int loop(struct app *a, struct vts_error *err)
         struct vtv_run_info info = {
             .store = o->store_path,
             .mode = a->three_d ? "3d" : "2d",
-            .filtering = a->trilinear ? "trilinear" : "bilinear",
+            .filtering = filtering_name(a),
             .renderer = o->reference ? "reference" : "virtual",
             .width = o->width,
             .height = o->height,

@@ -11,6 +11,7 @@ struct vtv_options {
     const char *reference_scene; /* --reference-scene ORIGINAL.obj (with --reference) */
     bool headless, sync, reference, trilinear, no_bc_upload, prefetch;
     int debug;
+    uint32_t aniso; /* --filtering anisoN: N (implies trilinear), else 1 */
     uint32_t width, height, orbit, frames, feedback_div, cache_tiles, uploads, threads;
     uint32_t ram_tiles; /* --ram-cache (UINT32_MAX: as --cache) */
     uint32_t reads;     /* --reads: --sync reads per frame (0: no limit) */

@@ -24,7 +24,8 @@ static const char usage_text[] =
     "  --screenshot OUT.png  write the last frame (- for standard output, not a terminal)\n"
     "  --stats OUT.json      write per-frame statistics (- for standard output)\n"
     "  --feedback-scale 1/K  resolution of the tile-determination pass (default 1/4)\n"
-    "  --filtering MODE      bilinear (default) or trilinear\n"
+    "  --filtering MODE      bilinear (default), trilinear or anisoN (N = 2..16 taps along the\n"
+    "                        footprint, trilinear between levels; at most twice the store's border)\n"
     "  --debug MODE          none (default), levels (colour by level used), tiles (outlines)\n"
     "  --cache N             physical cache size in tiles (default 256)\n"
     "  --uploads N           tile uploads per frame at most (default 32)\n"
@@ -193,12 +194,17 @@ int main(int argc, char **argv)
                                       optarg);
             break;
         case OPT_FILTERING:
+            o.aniso = 1;
             if (strcmp(optarg, "bilinear") == 0)
                 o.trilinear = false;
             else if (strcmp(optarg, "trilinear") == 0)
                 o.trilinear = true;
+            else if (strncmp(optarg, "aniso", 5) == 0 && !vt_parse_u32(optarg + 5, 2, 16, &o.aniso))
+                o.trilinear = true;
             else
-                return vt_usage_error("--filtering '%s': expected bilinear or trilinear", optarg);
+                return vt_usage_error(
+                    "--filtering '%s': expected bilinear, trilinear or anisoN (N in 2..16)",
+                    optarg);
             break;
         case OPT_DEBUG:
             if (strcmp(optarg, "none") == 0)

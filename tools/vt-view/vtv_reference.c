@@ -514,6 +514,8 @@ void vtv_reference_scene_draw(struct vtv_render *r, const struct vtv_reference_s
             glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
             glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
                             v->trilinear ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR_MIPMAP_NEAREST);
+            glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MAX_ANISOTROPY,
+                            (float)(v->aniso > 1 ? v->aniso : 1));
         }
         glActiveTexture(GL_TEXTURE0);
         vtv_render_reference_uniforms(r, p, &part->mat, v, (const float(*)[4])st);

@@ -197,6 +197,15 @@ void vtv_render_vertex_layout(void)
     }
 }
 
+void vtv_render_update_vertices(struct vtv_render *r, const struct vtv_mesh *mesh)
+{
+    glBindBuffer(GL_ARRAY_BUFFER, r->vbo);
+    glBufferSubData(GL_ARRAY_BUFFER, 0,
+                    (GLsizeiptr)mesh->vertex_count * VTV_VERTEX_FLOATS * sizeof(float),
+                    mesh->vertices);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
 int vtv_render_set_mesh(struct vtv_render *r, const struct vtv_mesh *mesh, unsigned kinds,
                         struct vts_error *err)
 {
@@ -386,6 +395,10 @@ static void common_uniforms(const struct vtv_render *r, GLuint p, const struct v
     glUniform2iv(glGetUniformLocation(p, "u_pt_tiles"), r->max_level + 1, r->pt_tiles);
     glUniform1iv(glGetUniformLocation(p, "u_pt_row"), r->max_level + 1, r->pt_row);
     glUniform1i(glGetUniformLocation(p, "u_trilinear"), v->trilinear ? 1 : 0);
+    glUniform1i(glGetUniformLocation(p, "u_aniso"), v->aniso > 1 ? v->aniso : 1);
+    glUniform1i(glGetUniformLocation(p, "u_rel"), v->rel ? 1 : 0);
+    glUniform2i(glGetUniformLocation(p, "u_origin"), v->rel ? v->origin[0] : 0,
+                v->rel ? v->origin[1] : 0);
     glUniform1f(glGetUniformLocation(p, "u_lod_bias"), lod_bias);
     glUniform2f(glGetUniformLocation(p, "u_phys_size"), (float)r->phys_w, (float)r->phys_h);
     glUniform1f(glGetUniformLocation(p, "u_border"), r->border);
@@ -570,6 +583,7 @@ void vtv_render_reference(struct vtv_render *r, const struct vtv_view *v)
     glBindTexture(GL_TEXTURE_2D, r->tex_reference);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
                     v->trilinear ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR_MIPMAP_NEAREST);
+    glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MAX_ANISOTROPY, (float)(v->aniso > 1 ? v->aniso : 1));
     glBindVertexArray(r->vao);
     for (uint32_t i = 0; i < r->group_count; i++) {
         const struct vtv_mesh_group *g = &r->groups[i];

@@ -79,7 +79,10 @@ struct vtv_view {
     float mvp[16]; /* column-major */
     float eye[3];  /* camera position (specular highlights) */
     bool trilinear;
-    int debug; /* 0 none, 1 levels, 2 tiles */
+    int aniso;     /* taps at most along the footprint (1: off) */
+    bool rel;      /* texcoords are level-0 texels relative to tile origin (the 2D view) */
+    int origin[2]; /* with rel: that level-0 tile */
+    int debug;     /* 0 none, 1 levels, 2 tiles */
 };
 
 int vtv_render_init(struct vtv_render *r, uint32_t width, uint32_t height, uint32_t fb_width,
@@ -89,6 +92,8 @@ void vtv_render_free(struct vtv_render *r);
 /* The scene's geometry and groups (mesh must outlive the renderer's use of it), and the shader
  * variants of its feature sets for kinds (bit (1 << enum vtv_program_kind)). Returns 0 or a
  * compile error. */
+/* Uploads the mesh's vertices again (same count: the 2D view's quad, clipped to the view). */
+void vtv_render_update_vertices(struct vtv_render *r, const struct vtv_mesh *mesh);
 int vtv_render_set_mesh(struct vtv_render *r, const struct vtv_mesh *mesh, unsigned kinds,
                         struct vts_error *err);
 

@@ -1,5 +1,6 @@
 /* GLSL 330 core sources of vt-view. Coordinates: v_uv in [0,1]^2 over the virtual texture (v = 0 is
- * the first row of the store); t0 = v_uv * u_virt is in level-0 texels. The level-of-detail comes
+ * the first row of the store); t0 = v_uv * u_virt is in level-0 texels (in the 2D view, t0 = v_uv
+ * relative to a level-0 tile u_origin: split coordinates, see vt_texel). The level-of-detail comes
  * from the gradients of t0 (the virtual texture), not from the physical texture, and the physical
  * lookups get those gradients scaled to the level used (corrected gradients). Every layer of a
  * tile sits in the same slot of its own physical texture, so one page-table lookup addresses all
@@ -46,37 +47,79 @@ static const char vt_common[] =
     "uniform vec2 u_phys_size;\n"
     "uniform float u_border;\n"
     "uniform float u_payload;\n"
+    "uniform int u_aniso;\n"
+    /* Split coordinates (u_rel != 0, the 2D view): v_uv is in level-0 texels relative to the
+       corner of level-0 tile u_origin, so that the float coordinates stay small however large
+       the virtual texture; otherwise v_uv is in [0,1] over it and u_origin is 0. */
+    "uniform int u_rel;\n"
+    "uniform ivec2 u_origin;\n"
+    "vec2 vt_texel() { return u_rel != 0 ? v_uv : v_uv * u_virt; }\n"
+    /* Anisotropic filtering (u_aniso > 1): the footprint's major axis over its minor one, at most
+       u_aniso, is the number of taps along the major axis; the level is chosen for the major
+       axis divided by it (docs/viewer.md, "Anisotropic filtering"). */
+    "int vt_taps(vec2 gx, vec2 gy) {\n"
+    "    if (u_aniso <= 1) return 1;\n"
+    "    float a = dot(gx, gx), b = dot(gy, gy);\n"
+    "    float r = sqrt(max(a, b) / max(min(a, b), 1e-20));\n"
+    "    return int(clamp(ceil(r - 1e-3), 1.0, float(u_aniso)));\n"
+    "}\n"
     "float vt_lambda(vec2 gx, vec2 gy) {\n"
-    "    return 0.5 * log2(max(max(dot(gx, gx), dot(gy, gy)), 1e-20)) + u_lod_bias;\n"
+    "    return 0.5 * log2(max(max(dot(gx, gx), dot(gy, gy)), 1e-20))\n"
+    "           - log2(float(vt_taps(gx, gy))) + u_lod_bias;\n"
     "}\n"
     "int vt_nearest_level(float lam) {\n"
     "    if (lam <= 0.5) return 0;\n"
     "    return min(int(ceil(lam + 0.5)) - 1, u_max_level);\n"
     "}\n"
     "ivec2 vt_tile(int level, vec2 t0) {\n"
-    "    ivec2 tc = ivec2(floor(t0 / (u_content * exp2(float(level)))));\n"
+    "    ivec2 tc;\n"
+    "    if (u_rel != 0) {\n"
+    "        ivec2 m = ivec2((1 << level) - 1);\n"
+    "        vec2 f = (vec2(u_origin & m) + t0 / u_content) / exp2(float(level));\n"
+    "        tc = (u_origin >> level) + ivec2(floor(f));\n"
+    "    } else {\n"
+    "        tc = ivec2(floor(t0 / (u_content * exp2(float(level)))));\n"
+    "    }\n"
     "    return clamp(tc, ivec2(0), u_pt_tiles[level] - 1);\n"
     "}\n"
-    "struct vt_addr { vec2 p; vec2 gx; vec2 gy; };\n"
+    "struct vt_addr { vec2 p; vec2 gx; vec2 gy; vec2 ax; vec2 lo; vec2 hi; int n; };\n"
     /* The physical position of t0 at level want (or its resident ancestor): false when the
        page table has no entry. */
     "bool vt_address(int want, vec2 t0, vec2 gx, vec2 gy, out vt_addr a, out int used,\n"
     "                out vec2 in_tile) {\n"
     "    ivec2 tc = vt_tile(want, t0);\n"
     "    uvec4 e = texelFetch(u_pt, ivec2(tc.x, tc.y + u_pt_row[want]), 0);\n"
-    "    a.p = vec2(0.0); a.gx = vec2(0.0); a.gy = vec2(0.0);\n"
+    "    a.p = vec2(0.0); a.gx = vec2(0.0); a.gy = vec2(0.0); a.ax = vec2(0.0);\n"
+    "    a.lo = vec2(0.0); a.hi = vec2(0.0); a.n = 1;\n"
     "    if (e.a == 0u) { used = 99; in_tile = vec2(0.0); return false; }\n"
     "    used = int(e.b);\n"
     "    ivec2 tl = tc >> (used - want);\n"
     "    float s = exp2(float(used));\n"
-    "    vec2 t = t0 / s - vec2(tl) * u_content;\n"
+    "    vec2 t = u_rel != 0 ? (vec2(u_origin - (tl << used)) * u_content + t0) / s\n"
+    "                        : t0 / s - vec2(tl) * u_content;\n"
     "    in_tile = clamp(t, vec2(0.5 - u_border), vec2(u_content + u_border - 0.5));\n"
-    "    a.p = (vec2(e.rg) * u_payload + u_border + in_tile) / u_phys_size;\n"
+    "    vec2 org = vec2(e.rg) * u_payload;\n"
+    "    a.p = (org + u_border + in_tile) / u_phys_size;\n"
     "    vec2 k = 1.0 / (s * u_phys_size);\n"
     "    a.gx = gx * k; a.gy = gy * k;\n"
+    "    a.n = vt_taps(gx, gy);\n"
+    "    a.ax = (dot(gx, gx) >= dot(gy, gy) ? gx : gy) * k;\n"
+    "    a.lo = (org + 0.5) / u_phys_size;\n"
+    "    a.hi = (org + u_payload - 0.5) / u_phys_size;\n"
     "    return true;\n"
     "}\n"
-    "vec4 vt_at(sampler2D s, vt_addr a) { return textureGrad(s, a.p, a.gx, a.gy); }\n";
+    /* n bilinear taps spread evenly over the major axis, each kept inside the slot's payload
+       (content and borders): a border of n/2 texels holds them (the option is clamped to it). */
+    "vec4 vt_at(sampler2D s, vt_addr a) {\n"
+    "    if (a.n <= 1) return textureGrad(s, a.p, a.gx, a.gy);\n"
+    "    vec4 c = vec4(0.0);\n"
+    "    float n = float(a.n);\n"
+    "    for (int i = 0; i < a.n; i++) {\n"
+    "        vec2 q = clamp(a.p + a.ax * ((float(i) + 0.5) / n - 0.5), a.lo, a.hi);\n"
+    "        c += textureGrad(s, q, a.gx / n, a.gy / n);\n"
+    "    }\n"
+    "    return c / n;\n"
+    "}\n";
 
 /* The material and the light, shared by the main pass and the reference. map_sample(k) is the
  * kind's: k is enum vtv_map (0 map_Kd, 1 normal, 2 map_Ks, 3 map_d). */
@@ -169,7 +212,7 @@ static const char vt_body[] =
     "    return c[clamp(l, 0, 7)];\n"
     "}\n"
     "void main() {\n"
-    "    vec2 t0 = v_uv * u_virt;\n"
+    "    vec2 t0 = vt_texel();\n"
     "    vec2 gx = dFdx(t0), gy = dFdy(t0);\n"
     "    float lam = vt_lambda(gx, gy);\n"
     "    float texels_per_px = exp2(lam - u_lod_bias);\n"
@@ -214,7 +257,7 @@ static const char vt_body[] =
 static const char feedback_body[] =
     "layout(location = 0) out uvec4 o_request;\n"
     "void main() {\n"
-    "    vec2 t0 = v_uv * u_virt;\n"
+    "    vec2 t0 = vt_texel();\n"
     "    vec2 gx = dFdx(t0), gy = dFdy(t0);\n"
     "    float lam = vt_lambda(gx, gy);\n"
     "    int want = u_trilinear != 0 ? int(floor(clamp(lam, 0.0, float(u_max_level))))\n"

@@ -1,5 +1,8 @@
 /* Test helper for vt-view: compares screenshots and reads statistics.
- *   vtv_check psnr A.png B.png --min DB | --max DB   PSNR over RGB (prints it)
+ *   vtv_check psnr A.png B.png --min DB | --max DB   PSNR over RGB (prints it); a B K times as
+ *                                                     wide and high as A (a supersampled
+ *                                                     reference) is first box-averaged K x K in
+ *                                                     linear light (sRGB frames)
  *   vtv_check stat S.json KEY OP VALUE               KEY in "last" (OP: == != < <= > >=)
  *   vtv_check frames-equal A.json B.json             the "frames" arrays are identical
  *   vtv_check dark A.png MAX                          at most MAX pixels with R+G+B < 24
@@ -30,6 +33,28 @@ static int load(const char *path, struct vt_image *img)
     return 0;
 }
 
+static double srgb_to_linear(double v)
+{
+    return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4);
+}
+
+static double linear_to_srgb(double v)
+{
+    return v <= 0.0031308 ? v * 12.92 : 1.055 * pow(v, 1 / 2.4) - 0.055;
+}
+
+/* Pixel (x, y) channel c of b seen at a's size: b's K x K block averaged in linear light. */
+static double sample_down(const struct vt_image *b, uint32_t k, uint32_t x, uint32_t y, int c)
+{
+    if (k == 1)
+        return ((const uint8_t *)vt_image_at(b, x, y))[c];
+    double s = 0;
+    for (uint32_t j = 0; j < k; j++)
+        for (uint32_t i = 0; i < k; i++)
+            s += srgb_to_linear(((const uint8_t *)vt_image_at(b, x * k + i, y * k + j))[c] / 255.0);
+    return floor(linear_to_srgb(s / ((double)k * k)) * 255.0 + 0.5);
+}
+
 static int psnr(int argc, char **argv)
 {
     if (argc != 6)
@@ -37,16 +62,20 @@ static int psnr(int argc, char **argv)
     struct vt_image a = {0}, b = {0};
     if (load(argv[2], &a) || load(argv[3], &b))
         return 2;
-    if (a.width != b.width || a.height != b.height || a.channels < 3 || b.channels < 3) {
+    uint32_t k = a.width ? b.width / a.width : 0;
+    if (k == 0 || b.width != a.width * k || b.height != a.height * k || a.channels < 3 ||
+        b.channels < 3) {
         fprintf(stderr, "vtv_check: images differ in size or channels\n");
         return 2;
     }
     double se = 0;
     for (uint32_t y = 0; y < a.height; y++)
         for (uint32_t x = 0; x < a.width; x++) {
-            const uint8_t *p = vt_image_at(&a, x, y), *q = vt_image_at(&b, x, y);
-            for (int c = 0; c < 3; c++)
-                se += (double)(p[c] - q[c]) * (p[c] - q[c]);
+            const uint8_t *p = vt_image_at(&a, x, y);
+            for (int c = 0; c < 3; c++) {
+                double d = p[c] - sample_down(&b, k, x, y, c);
+                se += d * d;
+            }
         }
     double mse = se / ((double)a.width * a.height * 3);
     double db = mse > 0 ? 10 * log10(255.0 * 255.0 / mse) : 99.0;
