@@ -1,5 +1,7 @@
 /* .vts writer. Payloads arrive in any order from any thread and are appended, deduplicated, to a
- * hidden spool file next to the output. finish() lays out header, layer table, index, metadata and
+ * hidden spool file next to the output, through a buffer written SPOOL_BUFFER bytes at a time (a
+ * write per tile costs the kernel more than the copy: partial file-system blocks zeroed, the
+ * inode lock taken per call). finish() lays out header, layer table, index, metadata and
  * then copies the payloads from the spool in data order (coarse levels first, Hilbert order within
  * a level, the layers of a tile together) into a hidden temporary file, which is renamed onto the
  * output. Memory: 4 bytes per tile plus 32 bytes per distinct payload. */
@@ -25,7 +27,8 @@
 #define SLOT_FIRST  2u /* slot = SLOT_FIRST + payload record number */
 #define NOT_PLACED  UINT64_MAX
 #define DATA_ALIGN  64u
-#define COPY_BUFFER (4u << 20) /* spool bytes read at a time when laying out payloads */
+#define COPY_BUFFER  (4u << 20) /* spool bytes read at a time when laying out payloads */
+#define SPOOL_BUFFER (4u << 20) /* spool bytes written at a time (a multiple of the page size) */
 
 struct payload_rec {
     uint64_t spool_off;
@@ -52,7 +55,9 @@ struct vts_writer {
     uint32_t *buckets; /* record number + 1, 0 = empty bucket */
     uint32_t bucket_mask;
     struct vt_atomic_file spool;
-    uint64_t spool_end;
+    uint64_t spool_end;     /* spool bytes appended, buffered ones included */
+    unsigned char *pending; /* the spool bytes [spool_end - pending_len, spool_end), not written */
+    size_t pending_len;
     struct vts_writer_stats stats;
     uint64_t max_payload_bytes; /* limit on unique payload bytes (vts_writer_set_max_bytes) */
     int failed;                 /* sticky status of a failed put */
@@ -98,7 +103,8 @@ struct vts_writer *vts_writer_create(const char *path, const struct vts_geometry
     size_t slot_bytes;
     if (!vt_size_mul((size_t)w->tile_count, sizeof *w->slots, &slot_bytes) ||
         !(w->slots = calloc(1, slot_bytes)) ||
-        !(w->buckets = calloc(w->bucket_mask + 1, sizeof *w->buckets))) {
+        !(w->buckets = calloc(w->bucket_mask + 1, sizeof *w->buckets)) ||
+        !(w->pending = malloc(SPOOL_BUFFER))) {
         vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the index of '%s' (%llu tiles)", path,
                      (unsigned long long)w->tile_count);
         goto fail;
@@ -133,6 +139,58 @@ static int grow_buckets(struct vts_writer *w)
     return 0;
 }
 
+/* Reads [off, off + len) of the spool into buf: the part already written from the file, the rest
+ * from the pending buffer. Called with the lock held (or after the puts). */
+static int read_spool(struct vts_writer *w, unsigned char *buf, uint64_t off, size_t len,
+                      struct vts_error *err)
+{
+    uint64_t written = w->spool_end - w->pending_len;
+    size_t from_file = off >= written ? 0 : (size_t)(written - off < len ? written - off : len);
+    for (size_t done = 0; done < from_file;) {
+        ssize_t n = pread(w->spool.fd, buf + done, from_file - done, (off_t)(off + done));
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            return vt_error_set(err, VTS_ERR_IO, "cannot read back the spool of '%s': %s",
+                                w->spool.final_path, n < 0 ? strerror(errno) : "short read");
+        done += (size_t)n;
+    }
+    if (from_file < len)
+        memcpy(buf + from_file, w->pending + (off + from_file - written), len - from_file);
+    return 0;
+}
+
+/* Writes the pending spool bytes. Called with the lock held. */
+static int flush_spool(struct vts_writer *w, struct vts_error *err)
+{
+    int rc = vt_atomic_file_pwrite(&w->spool, w->pending, w->pending_len,
+                                   w->spool_end - w->pending_len, err);
+    if (rc == 0)
+        w->pending_len = 0;
+    return rc;
+}
+
+/* Appends len bytes to the spool, writing the buffer each time it is full (whole buffers at
+ * multiples of its size: page-aligned writes). Called with the lock held. */
+static int append_spool(struct vts_writer *w, const unsigned char *payload, size_t len,
+                        struct vts_error *err)
+{
+    while (len > 0) {
+        size_t n = SPOOL_BUFFER - w->pending_len < len ? SPOOL_BUFFER - w->pending_len : len;
+        memcpy(w->pending + w->pending_len, payload, n);
+        w->pending_len += n;
+        w->spool_end += n;
+        payload += n;
+        len -= n;
+        if (w->pending_len == SPOOL_BUFFER) {
+            int rc = flush_spool(w, err);
+            if (rc)
+                return rc;
+        }
+    }
+    return 0;
+}
+
 /* Returns true when the spooled payload of rec equals payload (read back to compare bytes). */
 static int spooled_equals(struct vts_writer *w, const struct payload_rec *rec, const void *payload,
                           bool *equal, struct vts_error *err)
@@ -140,22 +198,10 @@ static int spooled_equals(struct vts_writer *w, const struct payload_rec *rec, c
     unsigned char *buf = malloc(rec->length);
     if (!buf)
         return vt_error_set(err, VTS_ERR_NOMEM, "out of memory comparing tiles");
-    size_t done = 0;
-    while (done < rec->length) {
-        ssize_t n =
-            pread(w->spool.fd, buf + done, rec->length - done, (off_t)(rec->spool_off + done));
-        if (n < 0 && errno == EINTR)
-            continue;
-        if (n <= 0) {
-            free(buf);
-            return vt_error_set(err, VTS_ERR_IO, "cannot read back the spool of '%s': %s",
-                                w->spool.final_path, n < 0 ? strerror(errno) : "short read");
-        }
-        done += (size_t)n;
-    }
-    *equal = memcmp(buf, payload, rec->length) == 0;
+    int rc = read_spool(w, buf, rec->spool_off, rec->length, err);
+    *equal = rc == 0 && memcmp(buf, payload, rec->length) == 0;
     free(buf);
-    return 0;
+    return rc;
 }
 
 /* Finds an identical spooled payload or appends this one. Called with the lock held. */
@@ -191,14 +237,13 @@ static int store_payload(struct vts_writer *w, const void *payload, uint32_t len
         return vt_error_set(err, VTS_ERR_LIMIT,
                             "'%s' would hold more than %llu bytes of tiles (the store size limit)",
                             w->spool.final_path, (unsigned long long)w->max_payload_bytes);
-    int rc = vt_atomic_file_pwrite(&w->spool, payload, length, w->spool_end, err);
+    uint64_t at = w->spool_end;
+    int rc = append_spool(w, payload, length, err);
     if (rc)
         return rc;
     uint32_t k = bucket_of(w, crc, length);
-    w->recs[w->rec_count] =
-        (struct payload_rec){w->spool_end, NOT_PLACED, length, crc, w->buckets[k]};
+    w->recs[w->rec_count] = (struct payload_rec){at, NOT_PLACED, length, crc, w->buckets[k]};
     w->buckets[k] = ++w->rec_count;
-    w->spool_end += length;
     w->stats.unique_bytes += length;
     *rec_out = w->rec_count - 1;
     *shared = false;
@@ -315,6 +360,7 @@ void vts_writer_destroy(struct vts_writer *w)
     free(w->slots);
     free(w->recs);
     free(w->buckets);
+    free(w->pending);
     free(w);
 }
 
@@ -385,22 +431,6 @@ static int by_src(const void *a, const void *b)
 {
     const struct copy_run *x = a, *y = b;
     return x->src < y->src ? -1 : x->src > y->src;
-}
-
-/* Reads [off, off + len) of the spool into buf. */
-static int read_spool(struct vts_writer *w, unsigned char *buf, uint64_t off, size_t len,
-                      struct vts_error *err)
-{
-    for (size_t done = 0; done < len;) {
-        ssize_t n = pread(w->spool.fd, buf + done, len - done, (off_t)(off + done));
-        if (n < 0 && errno == EINTR)
-            continue;
-        if (n <= 0)
-            return vt_error_set(err, VTS_ERR_IO, "cannot read back the spool of '%s'%s%s",
-                                w->out.final_path, n < 0 ? ": " : "", n < 0 ? strerror(errno) : "");
-        done += (size_t)n;
-    }
-    return 0;
 }
 
 /* Copies the payloads from the spool to their places in the output. The spool is read once,
@@ -580,6 +610,8 @@ int vts_writer_finish(struct vts_writer *w, struct vts_error *err)
         rc = write_layers_and_meta(w, &lay, &layers_crc, &meta_crc, err);
     if (rc == 0)
         rc = write_index(w, &lay, &index_crc, err);
+    if (rc == 0)
+        rc = flush_spool(w, err);
     if (rc == 0)
         rc = copy_payloads(w, &lay, err);
     if (rc == 0)
