@@ -9,6 +9,7 @@
 #include "vts_writer.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,11 +23,11 @@
 #include "vt_checked.h"
 #include "vt_error.h"
 
-#define SLOT_UNSET  0u /* tile never put: stored as empty */
-#define SLOT_EMPTY  1u /* tile put with no payload */
-#define SLOT_FIRST  2u /* slot = SLOT_FIRST + payload record number */
-#define NOT_PLACED  UINT64_MAX
-#define DATA_ALIGN  64u
+#define SLOT_UNSET   0u /* tile never put: stored as empty */
+#define SLOT_EMPTY   1u /* tile put with no payload */
+#define SLOT_FIRST   2u /* slot = SLOT_FIRST + payload record number */
+#define NOT_PLACED   UINT64_MAX
+#define DATA_ALIGN   64u
 #define COPY_BUFFER  (4u << 20) /* spool bytes read at a time when laying out payloads */
 #define SPOOL_BUFFER (4u << 20) /* spool bytes written at a time (a multiple of the page size) */
 
@@ -427,45 +428,43 @@ static int place_payloads(struct vts_writer *w, struct layout *lay, struct vts_e
     return rc;
 }
 
-static int by_src(const void *a, const void *b)
-{
-    const struct copy_run *x = a, *y = b;
-    return x->src < y->src ? -1 : x->src > y->src;
-}
-
-/* Copies the payloads from the spool to their places in the output. The spool is read once,
- * front to back, COPY_BUFFER bytes at a time, and each run is written where it goes from the
- * buffer: a few large sequential reads and one write per run, instead of an in-kernel copy call
- * per run (copy_file_range costs tens of microseconds a call on ext4, and the runs are single
- * tiles: the spool holds them in the order the workers finished them). */
+/* Writes the data section [lay->data_off, + data_size) front to back: each run is read from the
+ * spool (its page cache, or the pending buffer) into an output buffer that is written whenever it
+ * reaches a page boundary COPY_BUFFER bytes on. Large page-aligned writes in file order: one write
+ * per tile at scattered offsets made the kernel zero partial blocks and allocate them piecemeal.
+ * Each written piece is handed to writeback at once, so that the final fsync finds little left. */
 static int copy_payloads(struct vts_writer *w, struct layout *lay, struct vts_error *err)
 {
     if (lay->run_count == 0)
         return 0;
-    qsort(lay->runs, (size_t)lay->run_count, sizeof *lay->runs, by_src);
     unsigned char *buf = malloc(COPY_BUFFER);
     if (!buf)
         return vt_error_set(err, VTS_ERR_NOMEM, "out of memory copying tiles");
-    uint64_t held0 = 0, held1 = 0; /* the spool bytes [held0, held1) in buf */
+    uint64_t start = lay->data_off, fill = 0; /* buf holds output bytes [start, start + fill) */
+    uint64_t limit = (start + COPY_BUFFER) / 4096 * 4096 - start; /* ends on a page boundary */
     int rc = 0;
     for (uint64_t i = 0; i < lay->run_count && rc == 0; i++) {
-        uint64_t src = lay->runs[i].src, dst = lay->runs[i].dst, left = lay->runs[i].len;
+        uint64_t src = lay->runs[i].src, left = lay->runs[i].len;
+        if (lay->runs[i].dst != start + fill || src + left > w->spool_end) {
+            rc = vt_error_set(err, VTS_ERR_ARG, "payload run out of place in '%s'",
+                              w->out.final_path);
+            break;
+        }
         while (left > 0 && rc == 0) {
-            if (src >= w->spool_end) {
-                rc = vt_error_set(err, VTS_ERR_ARG, "payload run past the spool of '%s'",
-                                  w->out.final_path);
-            } else if (src < held0 || src >= held1) {
-                uint64_t end = w->spool_end - src < COPY_BUFFER ? w->spool_end : src + COPY_BUFFER;
-                rc = read_spool(w, buf, src, (size_t)(end - src), err);
-                held0 = src;
-                held1 = rc ? src : end;
-            } else {
-                size_t n = (size_t)(held1 - src < left ? held1 - src : left);
-                rc = vt_atomic_file_pwrite(&w->out, buf + (src - held0), n, (unsigned long long)dst,
-                                           err);
-                src += n;
-                dst += n;
-                left -= n;
+            size_t n = (size_t)(limit - fill < left ? limit - fill : left);
+            rc = read_spool(w, buf + fill, src, n, err);
+            src += n;
+            left -= n;
+            fill += n;
+            if (rc == 0 && (fill == limit || (left == 0 && i + 1 == lay->run_count))) {
+                rc = vt_atomic_file_pwrite(&w->out, buf, (size_t)fill, start, err);
+#ifdef SYNC_FILE_RANGE_WRITE
+                if (rc == 0)
+                    sync_file_range(w->out.fd, (off_t)start, (off_t)fill, SYNC_FILE_RANGE_WRITE);
+#endif
+                start += fill;
+                fill = 0;
+                limit = COPY_BUFFER;
             }
         }
     }
