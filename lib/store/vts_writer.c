@@ -23,13 +23,15 @@
 #include "vt_checked.h"
 #include "vt_error.h"
 
-#define SLOT_UNSET   0u /* tile never put: stored as empty */
-#define SLOT_EMPTY   1u /* tile put with no payload */
-#define SLOT_FIRST   2u /* slot = SLOT_FIRST + payload record number */
-#define NOT_PLACED   UINT64_MAX
-#define DATA_ALIGN   64u
-#define COPY_BUFFER  (4u << 20) /* spool bytes read at a time when laying out payloads */
-#define SPOOL_BUFFER (4u << 20) /* spool bytes written at a time (a multiple of the page size) */
+#define SLOT_UNSET       0u /* tile never put: stored as empty */
+#define SLOT_EMPTY       1u /* tile put with no payload */
+#define SLOT_FIRST       2u /* slot = SLOT_FIRST + payload record number */
+#define NOT_PLACED       UINT64_MAX
+#define DATA_ALIGN       64u
+#define COPY_BUFFER      (4u << 20) /* spool bytes read at a time when laying out payloads */
+#define SPOOL_BUFFER     (4u << 20) /* spool bytes written at a time (a multiple of the page size) */
+#define DIRECT_ALIGN     4096u      /* block alignment of direct I/O (and of the output's pieces) */
+#define DIRECT_MIN_BYTES (8u << 20) /* data sections from this size on are written directly */
 
 struct payload_rec {
     uint64_t spool_off;
@@ -428,21 +430,82 @@ static int place_payloads(struct vts_writer *w, struct layout *lay, struct vts_e
     return rc;
 }
 
+/* Direct I/O for the data section of a large store: the output's pages never enter the page
+ * cache (allocating them and writing them back cost more than the copy itself), so the final
+ * fsync has only the head left. Only for a regular file that accepts O_DIRECT. */
+static bool direct_begin(struct vts_writer *w, const struct layout *lay, int *flags)
+{
+#ifdef O_DIRECT
+    if (w->out.mode != VT_ATOMIC_FILE_RENAME || lay->data_size < DIRECT_MIN_BYTES)
+        return false;
+    *flags = fcntl(w->out.fd, F_GETFL);
+    return *flags >= 0 && fcntl(w->out.fd, F_SETFL, *flags | O_DIRECT) == 0;
+#else
+    (void)w, (void)lay, (void)flags;
+    return false;
+#endif
+}
+
+/* Writes the len bytes of buf (a piece of the data section) at off: directly when *direct (len
+ * rounded up to whole blocks with zeros past it: buf has room, and the file is cut back to its
+ * size at the end), else buffered and handed to writeback at once. A file system that refuses
+ * the direct write gets it buffered, and so do the rest. */
+static int write_piece(struct vts_writer *w, unsigned char *buf, size_t len, uint64_t off,
+                       bool *direct, int flags, struct vts_error *err)
+{
+    if (*direct) {
+        size_t whole = (len + DIRECT_ALIGN - 1) / DIRECT_ALIGN * DIRECT_ALIGN;
+        memset(buf + len, 0, whole - len);
+        size_t done = 0;
+        while (done < whole) {
+            ssize_t n = pwrite(w->out.fd, buf + done, whole - done, (off_t)(off + done));
+            if (n < 0 && errno == EINTR)
+                continue;
+            if (n <= 0 || (size_t)n % DIRECT_ALIGN != 0)
+                break;
+            done += (size_t)n;
+        }
+        if (done == whole)
+            return 0;
+        *direct = false; /* the rest of this piece and all after it, buffered */
+        fcntl(w->out.fd, F_SETFL, flags);
+        buf += done;
+        off += done;
+        len = done < len ? len - done : 0;
+    }
+    int rc = vt_atomic_file_pwrite(&w->out, buf, len, off, err);
+#ifdef SYNC_FILE_RANGE_WRITE
+    if (rc == 0)
+        sync_file_range(w->out.fd, (off_t)off, (off_t)len, SYNC_FILE_RANGE_WRITE);
+#endif
+    return rc;
+}
+
 /* Writes the data section [lay->data_off, + data_size) front to back: each run is read from the
  * spool (its page cache, or the pending buffer) into an output buffer that is written whenever it
- * reaches a page boundary COPY_BUFFER bytes on. Large page-aligned writes in file order: one write
- * per tile at scattered offsets made the kernel zero partial blocks and allocate them piecemeal.
- * Each written piece is handed to writeback at once, so that the final fsync finds little left. */
+ * reaches a block boundary COPY_BUFFER bytes on: large aligned writes in file order (one write
+ * per tile at scattered offsets made the kernel zero partial blocks and allocate them piecemeal).
+ * With direct I/O the buffer starts at the block holding data_off, with the head's bytes before
+ * it read back. */
 static int copy_payloads(struct vts_writer *w, struct layout *lay, struct vts_error *err)
 {
     if (lay->run_count == 0)
         return 0;
-    unsigned char *buf = malloc(COPY_BUFFER);
+    unsigned char *buf = aligned_alloc(DIRECT_ALIGN, COPY_BUFFER);
     if (!buf)
         return vt_error_set(err, VTS_ERR_NOMEM, "out of memory copying tiles");
-    uint64_t start = lay->data_off, fill = 0; /* buf holds output bytes [start, start + fill) */
-    uint64_t limit = (start + COPY_BUFFER) / 4096 * 4096 - start; /* ends on a page boundary */
-    int rc = 0;
+    int flags = 0, rc = 0;
+    /* the head's bytes in the block holding data_off, read before the descriptor goes direct
+     * (zeros past what was written: the alignment padding) */
+    uint64_t start = lay->data_off / DIRECT_ALIGN * DIRECT_ALIGN, fill = lay->data_off - start;
+    memset(buf, 0, (size_t)fill);
+    ssize_t got = pread(w->out.fd, buf, (size_t)fill, (off_t)start);
+    bool direct = got >= 0 && direct_begin(w, lay, &flags);
+    if (!direct) {
+        start = lay->data_off;
+        fill = 0;
+    }
+    uint64_t limit = (start + COPY_BUFFER) / DIRECT_ALIGN * DIRECT_ALIGN - start;
     for (uint64_t i = 0; i < lay->run_count && rc == 0; i++) {
         uint64_t src = lay->runs[i].src, left = lay->runs[i].len;
         if (lay->runs[i].dst != start + fill || src + left > w->spool_end) {
@@ -457,16 +520,18 @@ static int copy_payloads(struct vts_writer *w, struct layout *lay, struct vts_er
             left -= n;
             fill += n;
             if (rc == 0 && (fill == limit || (left == 0 && i + 1 == lay->run_count))) {
-                rc = vt_atomic_file_pwrite(&w->out, buf, (size_t)fill, start, err);
-#ifdef SYNC_FILE_RANGE_WRITE
-                if (rc == 0)
-                    sync_file_range(w->out.fd, (off_t)start, (off_t)fill, SYNC_FILE_RANGE_WRITE);
-#endif
+                rc = write_piece(w, buf, (size_t)fill, start, &direct, flags, err);
                 start += fill;
                 fill = 0;
                 limit = COPY_BUFFER;
             }
         }
+    }
+    if (direct) {
+        fcntl(w->out.fd, F_SETFL, flags);
+        if (rc == 0 && ftruncate(w->out.fd, (off_t)(lay->data_off + lay->data_size)) != 0)
+            rc = vt_error_set(err, VTS_ERR_IO, "cannot write '%s': %s", w->out.final_path,
+                              strerror(errno));
     }
     free(buf);
     return rc;
