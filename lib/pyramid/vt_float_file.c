@@ -17,6 +17,7 @@
 struct vt_float_file {
     int fd;
     uint32_t width, height, channels, tile;
+    char dir[256]; /* for messages */
 };
 
 struct vt_float_file *vt_float_file_create(const char *dir, uint32_t width, uint32_t height,
@@ -50,6 +51,7 @@ struct vt_float_file *vt_float_file_create(const char *dir, uint32_t width, uint
     f->height = height;
     f->channels = channels;
     f->tile = tile_px;
+    snprintf(f->dir, sizeof f->dir, "%s", dir ? dir : ".");
     return f;
 }
 
@@ -80,8 +82,9 @@ static int move_all(const struct vt_float_file *f, bool write, struct iovec *iov
         if (n < 0 && errno == EINTR)
             continue;
         if (n < 0 || (n == 0 && write))
-            return vt_error_set(err, VTS_ERR_IO, "cannot %s a temporary pass image: %s",
-                                write ? "write" : "read", n < 0 ? strerror(errno) : "disk full");
+            return vt_error_set(err, VTS_ERR_IO, "cannot %s a temporary pass image in '%s': %s",
+                                write ? "write" : "read", f->dir,
+                                n < 0 ? strerror(errno) : "disk full");
         if (n == 0) {
             for (int i = 0; i < count; i++)
                 memset(iov[i].iov_base, 0, iov[i].iov_len);
