@@ -443,11 +443,36 @@ static void tiff_convert_row(const struct tiff_input *t, const unsigned char *sr
     }
 }
 
+/* True when dst is exactly the tile at (x, y), with rows as libtiff decodes them: the tile can be
+ * decoded straight into dst, without the chunk buffer and its copy. */
+static bool whole_tile(const struct tiff_input *t, uint32_t x, uint32_t y,
+                       const struct vt_image *dst)
+{
+    return t->layout == TIFF_TILES && !t->separate && t->convert == TIFF_COPY && !t->min_is_white &&
+           x % t->chunk_w == 0 && y % t->chunk_h == 0 && dst->width == t->chunk_w &&
+           dst->height == t->chunk_h && dst->stride == t->row_bytes &&
+           t->row_bytes * t->chunk_h == t->chunk_bytes;
+}
+
+static int tiff_decode_tile(struct tiff_input *t, uint32_t x, uint32_t y, void *pixels,
+                            struct vts_error *err)
+{
+    t->message[0] = '\0';
+    uint32_t index = TIFFComputeTile(t->tif, x, y, 0, 0);
+    if (TIFFReadEncodedTile(t->tif, index, pixels, (tmsize_t)t->chunk_bytes) !=
+        (tmsize_t)t->chunk_bytes)
+        return vt_error_set(err, tiff_status(t), "cannot read '%s': tile at %u,%u: %s", t->name, x,
+                            y, tiff_message(t));
+    return 0;
+}
+
 static int tiff_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,
                             struct vts_error *err)
 {
     struct tiff_input *t = ctx;
     size_t texel = vt_image_texel_bytes(dst);
+    if (whole_tile(t, x, y, dst)) /* decoded where it goes (the tile cache's reads) */
+        return tiff_decode_tile(t, x, y, dst->pixels, err);
     uint32_t planes = t->separate ? t->channels : 1;
     uint32_t x_end = x + dst->width, y_end = y + dst->height;
     for (uint32_t cy = y / t->chunk_h; cy <= (y_end - 1) / t->chunk_h; cy++) {

@@ -11,6 +11,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "internal/vt_filter_impl.h"
 #include "vts.h"
 
 /* ---- half floats ---- */
@@ -368,6 +369,49 @@ static inline void unpremultiply(const struct mode_info *mi, const float *src, f
     }
     for (uint32_t c = 0; c < mi->normal_n; c++)
         px[c] = (px[c] + 1.0f) * 0.5f;
+}
+
+/* ---- pairs of 8-bit samples, box-filtered ---- */
+
+static float pair_lin_u8[65536], pair_unorm_u8[65536];
+static pthread_once_t once_pair_lin = PTHREAD_ONCE_INIT;
+static pthread_once_t once_pair_unorm = PTHREAD_ONCE_INIT;
+
+static void build_pairs(float *pairs, const float *t)
+{
+    for (unsigned p = 0; p < 256; p++)
+        for (unsigned q = 0; q < 256; q++) {
+            float acc = 0.5f * t[p]; /* the reduction's order: first tap, then the next added */
+            acc += 0.5f * t[q];
+            pairs[p << 8 | q] = acc;
+        }
+}
+
+static void build_pair_lin(void)
+{
+    pthread_once(&once_u8, build_u8_tables);
+    build_pairs(pair_lin_u8, lin_u8);
+}
+
+static void build_pair_unorm(void)
+{
+    pthread_once(&once_u8, build_u8_tables);
+    build_pairs(pair_unorm_u8, unorm_u8);
+}
+
+const float *vt_filter_u8_pair_table(const struct vt_pixel_mode *m, const float *w)
+{
+    struct mode_info mi = mode_info(m);
+    if (w[0] != 0.5f || w[1] != 0.5f || mi.premultiply || mi.normal_n != 0)
+        return NULL;
+    if (!mi.srgb) { /* vt_filter_to_working: unorm_u8 for every channel */
+        pthread_once(&once_pair_unorm, build_pair_unorm);
+        return pair_unorm_u8;
+    }
+    if (mi.colour_n != mi.channels)
+        return NULL;
+    pthread_once(&once_pair_lin, build_pair_lin);
+    return pair_lin_u8;
 }
 
 /* The common case, with the sample type hoisted out of the loop. */

@@ -9,6 +9,7 @@
 
 #include <string.h>
 
+#include "internal/vt_filter_impl.h"
 #include "vt_checked.h"
 #include "vt_error.h"
 #include "vts.h"
@@ -193,6 +194,28 @@ static void h_row(const struct axis *a, const float *w, uint32_t ch, uint32_t ib
         memcpy(out + (size_t)x * ch, out + (size_t)(rep - 1) * ch, ch * sizeof(float));
 }
 
+/* The horizontal pass of one stored 8-bit row with the box kernel, every texel before rep
+ * interior: one table load per sample gives w[0] * t[a] + w[1] * t[b] for its two taps (the
+ * conversion and the sum h_interior would compute); copies of texel rep - 1 from rep on. */
+static void h_row_pairs(const struct axis *a, const float *pairs, uint32_t ch, uint32_t rep,
+                        const uint8_t *src_row, float *out)
+{
+    const uint8_t *p = src_row + (size_t)(2 * a->dst0 + a->first - a->src0) * ch;
+    if (ch == 3) {
+        for (uint32_t x = 0; x < rep; x++, p += 6) {
+            float r = pairs[p[0] << 8 | p[3]], g = pairs[p[1] << 8 | p[4]];
+            float b = pairs[p[2] << 8 | p[5]];
+            out[3 * x] = r, out[3 * x + 1] = g, out[3 * x + 2] = b;
+        }
+    } else {
+        for (uint32_t x = 0; x < rep; x++, p += 2 * ch)
+            for (uint32_t c = 0; c < ch; c++)
+                out[(size_t)x * ch + c] = pairs[p[c] << 8 | p[ch + c]];
+    }
+    for (uint32_t x = rep; x < a->dst_n; x++)
+        memcpy(out + (size_t)x * ch, out + (size_t)(rep - 1) * ch, ch * sizeof(float));
+}
+
 /* out[i] = w[0] * rows[0][i] + w[1] * rows[1][i] + ... in that order. */
 static ALWAYS_INLINE void v_row(const float *const *rows, const float *w, int count, float *out,
                                 size_t n)
@@ -316,6 +339,11 @@ static int reduce(const struct vt_kernel *k, const struct vt_edges *edges,
      * use stay in cache (and each stored row is converted once). Output rows from rep_y on are
      * copies of row rep_y - 1 (past the coarser level's edge). */
     int64_t row0 = tap_pos(&ay, ay.dst0, 0), filled = row0;
+    /* 8-bit rows, box kernel, no clamped texel: table pairs instead of convert + sum */
+    const float *pairs =
+        stored && stored->sample == VTS_SAMPLE_U8 && k->count == 2 && ib == 0 && ie == rep_x
+            ? vt_filter_u8_pair_table(stored->mode, k->weights)
+            : NULL;
     for (uint32_t y = 0; y < dst->height; y++) {
         const float *rows[VT_KERNEL_MAX_TAPS];
         float *out = dst->px + (size_t)y * row_floats;
@@ -324,9 +352,15 @@ static int reduce(const struct vt_kernel *k, const struct vt_edges *edges,
             continue;
         }
         int64_t last = tap_pos(&ay, ay.dst0 + y, k->count - 1);
-        for (; filled <= last; filled++)
-            h_row(&ax, k->weights, ch, ib, ie, rep_x, source_row(&rs, filled, read0, read1),
-                  scratch + (size_t)(filled - row0) * row_floats);
+        for (; filled <= last; filled++) {
+            float *h = scratch + (size_t)(filled - row0) * row_floats;
+            if (pairs)
+                h_row_pairs(
+                    &ax, pairs, ch, rep_x,
+                    (const uint8_t *)stored->px + (size_t)(filled - src->y0) * stored->stride, h);
+            else
+                h_row(&ax, k->weights, ch, ib, ie, rep_x, source_row(&rs, filled, read0, read1), h);
+        }
         for (int t = 0; t < k->count; t++)
             rows[t] = scratch + (size_t)(tap_pos(&ay, ay.dst0 + y, t) - row0) * row_floats;
         if (k->count == 2)

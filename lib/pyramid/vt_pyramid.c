@@ -254,7 +254,8 @@ int vt_pyramid_build(struct vt_source *const *sources, const struct vt_pyramid_o
         p.carry = o->part && !seams && p.depth < left;
         if (p.depth < left && (!o->part || seams)) {
             p.next = vt_float_file_create(o->temp_dir, vt_pyramid_level_extent(p.w, p.depth),
-                                          vt_pyramid_level_extent(p.h, p.depth), p.channels, err);
+                                          vt_pyramid_level_extent(p.h, p.depth), p.channels,
+                                          o->tile_content_px, err);
             if (!p.next) {
                 rc = err ? err->status : VTS_ERR_IO;
                 break;

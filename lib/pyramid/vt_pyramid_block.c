@@ -220,15 +220,13 @@ static int store_next_pass(const struct vt_pyramid_pass *p, unsigned worker,
                            (uint32_t)(sx.inner - sx.c0), (uint32_t)(sy.inner - sy.c0), w->channels,
                            first, (size_t)w->width * w->channels, err);
     }
-    for (int64_t y = sy.c0; y < sy.inner; y++) {
-        const float *row =
-            w->px + ((size_t)(y - w->y0) * w->width + (size_t)(sx.c0 - w->x0)) * w->channels;
-        int rc = vt_float_file_write(p->next, (uint32_t)sx.c0, (uint32_t)y, row,
-                                     (uint32_t)(sx.inner - sx.c0), err);
-        if (rc)
-            return rc;
-    }
-    return 0;
+    if (sx.inner <= sx.c0 || sy.inner <= sy.c0)
+        return 0;
+    const float *first =
+        w->px + ((size_t)(sy.c0 - w->y0) * w->width + (size_t)(sx.c0 - w->x0)) * w->channels;
+    return vt_float_file_write(p->next, (uint32_t)sx.c0, (uint32_t)sy.c0,
+                               (uint32_t)(sx.inner - sx.c0), (uint32_t)(sy.inner - sy.c0), first,
+                               (size_t)w->width * w->channels, err);
 }
 
 /* End of the texels relative level r must hold: its whole tiles, and at least twice the end of

@@ -30,8 +30,8 @@ static int resume_assemble(struct vt_pyramid_resume *r, const struct vt_pyramid_
             uint32_t h = plan->carry_height - ty * c < c ? plan->carry_height - ty * c : c;
             size_t stride = (size_t)c * channels;
             rc = read_level(user, tx, ty, w, h, tile, stride, err);
-            for (uint32_t y = 0; rc == 0 && y < h; y++)
-                rc = vt_float_file_write(r->level, tx * c, ty * c + y, tile + y * stride, w, err);
+            if (rc == 0)
+                rc = vt_float_file_write(r->level, tx * c, ty * c, w, h, tile, stride, err);
         }
     free(tile);
     return rc;
@@ -54,8 +54,8 @@ struct vt_pyramid_resume *vt_pyramid_resume_create(const struct vt_pyramid_optio
     }
     r->o = o;
     const struct vt_source_info *in = o->resume_input;
-    r->level =
-        vt_float_file_create(o->temp_dir, plan.carry_width, plan.carry_height, in->channels, err);
+    r->level = vt_float_file_create(o->temp_dir, plan.carry_width, plan.carry_height, in->channels,
+                                    o->tile_content_px, err);
     if (!r->level)
         goto out_destroy;
     if (resume_assemble(r, &plan, read_level, user, err) != 0)

@@ -329,7 +329,7 @@ static int level_open(struct vt_seams *s, uint32_t l, struct level_io *io, struc
                                      .name = "(seam level)"};
         return 0;
     }
-    io->file = vt_float_file_create(s->o->temp_dir, w, h, s->channels, err);
+    io->file = vt_float_file_create(s->o->temp_dir, w, h, s->channels, s->c, err);
     if (!io->file)
         return err ? err->status : VTS_ERR_IO;
     return vt_float_file_source(io->file, s->o->colour, false, &io->src, err);
@@ -357,16 +357,13 @@ static void level_move(struct level_io *to, struct level_io *from)
 static int write_rect(struct level_io *io, const struct vt_seams_rect *r, const float *texels,
                       size_t stride, struct vts_error *err)
 {
-    int rc = 0;
     size_t row_floats = (size_t)r->width * io->src.info.channels;
-    for (uint32_t y = 0; rc == 0 && y < r->height; y++)
-        if (io->mem)
-            memcpy(io->mem + (size_t)(r->y + y) * io->row_floats +
-                       (size_t)r->x * io->src.info.channels,
-                   texels + y * stride, row_floats * sizeof(float));
-        else
-            rc = vt_float_file_write(io->file, r->x, r->y + y, texels + y * stride, r->width, err);
-    return rc;
+    if (!io->mem)
+        return vt_float_file_write(io->file, r->x, r->y, r->width, r->height, texels, stride, err);
+    for (uint32_t y = 0; y < r->height; y++)
+        memcpy(io->mem + (size_t)(r->y + y) * io->row_floats + (size_t)r->x * io->src.info.channels,
+               texels + y * stride, row_floats * sizeof(float));
+    return 0;
 }
 
 static int read_rect(struct vt_seams *s, struct level_io *io, const struct vt_seams_rect *r,

@@ -1,5 +1,7 @@
 /* .vts writer. Payloads arrive in any order from any thread and are appended, deduplicated, to a
- * hidden spool file next to the output. finish() lays out header, layer table, index, metadata and
+ * hidden spool file next to the output, through a buffer written SPOOL_BUFFER bytes at a time (a
+ * write per tile costs the kernel more than the copy: partial file-system blocks zeroed, the
+ * inode lock taken per call). finish() lays out header, layer table, index, metadata and
  * then copies the payloads from the spool in data order (coarse levels first, Hilbert order within
  * a level, the layers of a tile together) into a hidden temporary file, which is renamed onto the
  * output. Memory: 4 bytes per tile plus 32 bytes per distinct payload. */
@@ -7,6 +9,7 @@
 #include "vts_writer.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,12 +23,15 @@
 #include "vt_checked.h"
 #include "vt_error.h"
 
-#define SLOT_UNSET  0u /* tile never put: stored as empty */
-#define SLOT_EMPTY  1u /* tile put with no payload */
-#define SLOT_FIRST  2u /* slot = SLOT_FIRST + payload record number */
-#define NOT_PLACED  UINT64_MAX
-#define DATA_ALIGN  64u
-#define COPY_BUFFER (4u << 20) /* spool bytes read at a time when laying out payloads */
+#define SLOT_UNSET       0u /* tile never put: stored as empty */
+#define SLOT_EMPTY       1u /* tile put with no payload */
+#define SLOT_FIRST       2u /* slot = SLOT_FIRST + payload record number */
+#define NOT_PLACED       UINT64_MAX
+#define DATA_ALIGN       64u
+#define COPY_BUFFER      (4u << 20) /* spool bytes read at a time when laying out payloads */
+#define SPOOL_BUFFER     (4u << 20) /* spool bytes written at a time (a multiple of the page size) */
+#define DIRECT_ALIGN     4096u      /* block alignment of direct I/O (and of the output's pieces) */
+#define DIRECT_MIN_BYTES (8u << 20) /* data sections from this size on are written directly */
 
 struct payload_rec {
     uint64_t spool_off;
@@ -52,7 +58,9 @@ struct vts_writer {
     uint32_t *buckets; /* record number + 1, 0 = empty bucket */
     uint32_t bucket_mask;
     struct vt_atomic_file spool;
-    uint64_t spool_end;
+    uint64_t spool_end;     /* spool bytes appended, buffered ones included */
+    unsigned char *pending; /* the spool bytes [spool_end - pending_len, spool_end), not written */
+    size_t pending_len;
     struct vts_writer_stats stats;
     uint64_t max_payload_bytes; /* limit on unique payload bytes (vts_writer_set_max_bytes) */
     int failed;                 /* sticky status of a failed put */
@@ -98,7 +106,8 @@ struct vts_writer *vts_writer_create(const char *path, const struct vts_geometry
     size_t slot_bytes;
     if (!vt_size_mul((size_t)w->tile_count, sizeof *w->slots, &slot_bytes) ||
         !(w->slots = calloc(1, slot_bytes)) ||
-        !(w->buckets = calloc(w->bucket_mask + 1, sizeof *w->buckets))) {
+        !(w->buckets = calloc(w->bucket_mask + 1, sizeof *w->buckets)) ||
+        !(w->pending = malloc(SPOOL_BUFFER))) {
         vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the index of '%s' (%llu tiles)", path,
                      (unsigned long long)w->tile_count);
         goto fail;
@@ -133,6 +142,58 @@ static int grow_buckets(struct vts_writer *w)
     return 0;
 }
 
+/* Reads [off, off + len) of the spool into buf: the part already written from the file, the rest
+ * from the pending buffer. Called with the lock held (or after the puts). */
+static int read_spool(struct vts_writer *w, unsigned char *buf, uint64_t off, size_t len,
+                      struct vts_error *err)
+{
+    uint64_t written = w->spool_end - w->pending_len;
+    size_t from_file = off >= written ? 0 : (size_t)(written - off < len ? written - off : len);
+    for (size_t done = 0; done < from_file;) {
+        ssize_t n = pread(w->spool.fd, buf + done, from_file - done, (off_t)(off + done));
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            return vt_error_set(err, VTS_ERR_IO, "cannot read back the spool of '%s': %s",
+                                w->spool.final_path, n < 0 ? strerror(errno) : "short read");
+        done += (size_t)n;
+    }
+    if (from_file < len)
+        memcpy(buf + from_file, w->pending + (off + from_file - written), len - from_file);
+    return 0;
+}
+
+/* Writes the pending spool bytes. Called with the lock held. */
+static int flush_spool(struct vts_writer *w, struct vts_error *err)
+{
+    int rc = vt_atomic_file_pwrite(&w->spool, w->pending, w->pending_len,
+                                   w->spool_end - w->pending_len, err);
+    if (rc == 0)
+        w->pending_len = 0;
+    return rc;
+}
+
+/* Appends len bytes to the spool, writing the buffer each time it is full (whole buffers at
+ * multiples of its size: page-aligned writes). Called with the lock held. */
+static int append_spool(struct vts_writer *w, const unsigned char *payload, size_t len,
+                        struct vts_error *err)
+{
+    while (len > 0) {
+        size_t n = SPOOL_BUFFER - w->pending_len < len ? SPOOL_BUFFER - w->pending_len : len;
+        memcpy(w->pending + w->pending_len, payload, n);
+        w->pending_len += n;
+        w->spool_end += n;
+        payload += n;
+        len -= n;
+        if (w->pending_len == SPOOL_BUFFER) {
+            int rc = flush_spool(w, err);
+            if (rc)
+                return rc;
+        }
+    }
+    return 0;
+}
+
 /* Returns true when the spooled payload of rec equals payload (read back to compare bytes). */
 static int spooled_equals(struct vts_writer *w, const struct payload_rec *rec, const void *payload,
                           bool *equal, struct vts_error *err)
@@ -140,22 +201,10 @@ static int spooled_equals(struct vts_writer *w, const struct payload_rec *rec, c
     unsigned char *buf = malloc(rec->length);
     if (!buf)
         return vt_error_set(err, VTS_ERR_NOMEM, "out of memory comparing tiles");
-    size_t done = 0;
-    while (done < rec->length) {
-        ssize_t n =
-            pread(w->spool.fd, buf + done, rec->length - done, (off_t)(rec->spool_off + done));
-        if (n < 0 && errno == EINTR)
-            continue;
-        if (n <= 0) {
-            free(buf);
-            return vt_error_set(err, VTS_ERR_IO, "cannot read back the spool of '%s': %s",
-                                w->spool.final_path, n < 0 ? strerror(errno) : "short read");
-        }
-        done += (size_t)n;
-    }
-    *equal = memcmp(buf, payload, rec->length) == 0;
+    int rc = read_spool(w, buf, rec->spool_off, rec->length, err);
+    *equal = rc == 0 && memcmp(buf, payload, rec->length) == 0;
     free(buf);
-    return 0;
+    return rc;
 }
 
 /* Finds an identical spooled payload or appends this one. Called with the lock held. */
@@ -191,14 +240,13 @@ static int store_payload(struct vts_writer *w, const void *payload, uint32_t len
         return vt_error_set(err, VTS_ERR_LIMIT,
                             "'%s' would hold more than %llu bytes of tiles (the store size limit)",
                             w->spool.final_path, (unsigned long long)w->max_payload_bytes);
-    int rc = vt_atomic_file_pwrite(&w->spool, payload, length, w->spool_end, err);
+    uint64_t at = w->spool_end;
+    int rc = append_spool(w, payload, length, err);
     if (rc)
         return rc;
     uint32_t k = bucket_of(w, crc, length);
-    w->recs[w->rec_count] =
-        (struct payload_rec){w->spool_end, NOT_PLACED, length, crc, w->buckets[k]};
+    w->recs[w->rec_count] = (struct payload_rec){at, NOT_PLACED, length, crc, w->buckets[k]};
     w->buckets[k] = ++w->rec_count;
-    w->spool_end += length;
     w->stats.unique_bytes += length;
     *rec_out = w->rec_count - 1;
     *shared = false;
@@ -315,6 +363,7 @@ void vts_writer_destroy(struct vts_writer *w)
     free(w->slots);
     free(w->recs);
     free(w->buckets);
+    free(w->pending);
     free(w);
 }
 
@@ -381,63 +430,108 @@ static int place_payloads(struct vts_writer *w, struct layout *lay, struct vts_e
     return rc;
 }
 
-static int by_src(const void *a, const void *b)
+/* Direct I/O for the data section of a large store: the output's pages never enter the page
+ * cache (allocating them and writing them back cost more than the copy itself), so the final
+ * fsync has only the head left. Only for a regular file that accepts O_DIRECT. */
+static bool direct_begin(struct vts_writer *w, const struct layout *lay, int *flags)
 {
-    const struct copy_run *x = a, *y = b;
-    return x->src < y->src ? -1 : x->src > y->src;
+#ifdef O_DIRECT
+    if (w->out.mode != VT_ATOMIC_FILE_RENAME || lay->data_size < DIRECT_MIN_BYTES)
+        return false;
+    *flags = fcntl(w->out.fd, F_GETFL);
+    return *flags >= 0 && fcntl(w->out.fd, F_SETFL, *flags | O_DIRECT) == 0;
+#else
+    (void)w, (void)lay, (void)flags;
+    return false;
+#endif
 }
 
-/* Reads [off, off + len) of the spool into buf. */
-static int read_spool(struct vts_writer *w, unsigned char *buf, uint64_t off, size_t len,
-                      struct vts_error *err)
+/* Writes the len bytes of buf (a piece of the data section) at off: directly when *direct (len
+ * rounded up to whole blocks with zeros past it: buf has room, and the file is cut back to its
+ * size at the end), else buffered and handed to writeback at once. A file system that refuses
+ * the direct write gets it buffered, and so do the rest. */
+static int write_piece(struct vts_writer *w, unsigned char *buf, size_t len, uint64_t off,
+                       bool *direct, int flags, struct vts_error *err)
 {
-    for (size_t done = 0; done < len;) {
-        ssize_t n = pread(w->spool.fd, buf + done, len - done, (off_t)(off + done));
-        if (n < 0 && errno == EINTR)
-            continue;
-        if (n <= 0)
-            return vt_error_set(err, VTS_ERR_IO, "cannot read back the spool of '%s'%s%s",
-                                w->out.final_path, n < 0 ? ": " : "", n < 0 ? strerror(errno) : "");
-        done += (size_t)n;
+    if (*direct) {
+        size_t whole = (len + DIRECT_ALIGN - 1) / DIRECT_ALIGN * DIRECT_ALIGN;
+        memset(buf + len, 0, whole - len);
+        size_t done = 0;
+        while (done < whole) {
+            ssize_t n = pwrite(w->out.fd, buf + done, whole - done, (off_t)(off + done));
+            if (n < 0 && errno == EINTR)
+                continue;
+            if (n <= 0 || (size_t)n % DIRECT_ALIGN != 0)
+                break;
+            done += (size_t)n;
+        }
+        if (done == whole)
+            return 0;
+        *direct = false; /* the rest of this piece and all after it, buffered */
+        fcntl(w->out.fd, F_SETFL, flags);
+        buf += done;
+        off += done;
+        len = done < len ? len - done : 0;
     }
-    return 0;
+    int rc = vt_atomic_file_pwrite(&w->out, buf, len, off, err);
+#ifdef SYNC_FILE_RANGE_WRITE
+    if (rc == 0)
+        sync_file_range(w->out.fd, (off_t)off, (off_t)len, SYNC_FILE_RANGE_WRITE);
+#endif
+    return rc;
 }
 
-/* Copies the payloads from the spool to their places in the output. The spool is read once,
- * front to back, COPY_BUFFER bytes at a time, and each run is written where it goes from the
- * buffer: a few large sequential reads and one write per run, instead of an in-kernel copy call
- * per run (copy_file_range costs tens of microseconds a call on ext4, and the runs are single
- * tiles: the spool holds them in the order the workers finished them). */
+/* Writes the data section [lay->data_off, + data_size) front to back: each run is read from the
+ * spool (its page cache, or the pending buffer) into an output buffer that is written whenever it
+ * reaches a block boundary COPY_BUFFER bytes on: large aligned writes in file order (one write
+ * per tile at scattered offsets made the kernel zero partial blocks and allocate them piecemeal).
+ * With direct I/O the buffer starts at the block holding data_off, with the head's bytes before
+ * it read back. */
 static int copy_payloads(struct vts_writer *w, struct layout *lay, struct vts_error *err)
 {
     if (lay->run_count == 0)
         return 0;
-    qsort(lay->runs, (size_t)lay->run_count, sizeof *lay->runs, by_src);
-    unsigned char *buf = malloc(COPY_BUFFER);
+    unsigned char *buf = aligned_alloc(DIRECT_ALIGN, COPY_BUFFER);
     if (!buf)
         return vt_error_set(err, VTS_ERR_NOMEM, "out of memory copying tiles");
-    uint64_t held0 = 0, held1 = 0; /* the spool bytes [held0, held1) in buf */
-    int rc = 0;
+    int flags = 0, rc = 0;
+    /* the head's bytes in the block holding data_off, read before the descriptor goes direct
+     * (zeros past what was written: the alignment padding) */
+    uint64_t start = lay->data_off / DIRECT_ALIGN * DIRECT_ALIGN, fill = lay->data_off - start;
+    memset(buf, 0, (size_t)fill);
+    ssize_t got = pread(w->out.fd, buf, (size_t)fill, (off_t)start);
+    bool direct = got >= 0 && direct_begin(w, lay, &flags);
+    if (!direct) {
+        start = lay->data_off;
+        fill = 0;
+    }
+    uint64_t limit = (start + COPY_BUFFER) / DIRECT_ALIGN * DIRECT_ALIGN - start;
     for (uint64_t i = 0; i < lay->run_count && rc == 0; i++) {
-        uint64_t src = lay->runs[i].src, dst = lay->runs[i].dst, left = lay->runs[i].len;
+        uint64_t src = lay->runs[i].src, left = lay->runs[i].len;
+        if (lay->runs[i].dst != start + fill || src + left > w->spool_end) {
+            rc = vt_error_set(err, VTS_ERR_ARG, "payload run out of place in '%s'",
+                              w->out.final_path);
+            break;
+        }
         while (left > 0 && rc == 0) {
-            if (src >= w->spool_end) {
-                rc = vt_error_set(err, VTS_ERR_ARG, "payload run past the spool of '%s'",
-                                  w->out.final_path);
-            } else if (src < held0 || src >= held1) {
-                uint64_t end = w->spool_end - src < COPY_BUFFER ? w->spool_end : src + COPY_BUFFER;
-                rc = read_spool(w, buf, src, (size_t)(end - src), err);
-                held0 = src;
-                held1 = rc ? src : end;
-            } else {
-                size_t n = (size_t)(held1 - src < left ? held1 - src : left);
-                rc = vt_atomic_file_pwrite(&w->out, buf + (src - held0), n, (unsigned long long)dst,
-                                           err);
-                src += n;
-                dst += n;
-                left -= n;
+            size_t n = (size_t)(limit - fill < left ? limit - fill : left);
+            rc = read_spool(w, buf + fill, src, n, err);
+            src += n;
+            left -= n;
+            fill += n;
+            if (rc == 0 && (fill == limit || (left == 0 && i + 1 == lay->run_count))) {
+                rc = write_piece(w, buf, (size_t)fill, start, &direct, flags, err);
+                start += fill;
+                fill = 0;
+                limit = COPY_BUFFER;
             }
         }
+    }
+    if (direct) {
+        fcntl(w->out.fd, F_SETFL, flags);
+        if (rc == 0 && ftruncate(w->out.fd, (off_t)(lay->data_off + lay->data_size)) != 0)
+            rc = vt_error_set(err, VTS_ERR_IO, "cannot write '%s': %s", w->out.final_path,
+                              strerror(errno));
     }
     free(buf);
     return rc;
@@ -580,6 +674,8 @@ int vts_writer_finish(struct vts_writer *w, struct vts_error *err)
         rc = write_layers_and_meta(w, &lay, &layers_crc, &meta_crc, err);
     if (rc == 0)
         rc = write_index(w, &lay, &index_crc, err);
+    if (rc == 0)
+        rc = flush_spool(w, err);
     if (rc == 0)
         rc = copy_payloads(w, &lay, err);
     if (rc == 0)

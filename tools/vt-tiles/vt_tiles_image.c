@@ -293,6 +293,11 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
                plan.blocks_y, po.part_x0 < po.part_x1 && po.part_y0 < po.part_y1 ? "" : " (empty)");
     }
     rc = build(&r, src, &po, &err);
+    if (rc == VTS_ERR_IO && !strstr(err.message, o->output)) { /* a temporary file: say whose */
+        char m[sizeof err.message];
+        snprintf(m, sizeof m, "%s", err.message);
+        vt_error_set(&err, rc, "'%s': %s", o->output, m);
+    }
     if (rc == 0)
         rc = set_metadata(r.writer, o, r.codec->name, &err);
     if (rc == 0 && o->shard)
