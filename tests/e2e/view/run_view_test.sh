@@ -266,13 +266,13 @@ full_size)
   "$check" psnr far.png shifted.png --max 35 || fail "the far corner matches a shifted reference"
   ;;
 aniso)
-  # --filtering anisoN on a plane seen at a grazing angle, a photo-like store (64 px tiles, border
+  # --filtering anisoN on a plane seen at a grazing angle, a photo-like store (64 px stored tiles, border
   # 4): against an 8x8 supersampled reference (the original texture drawn trilinear at 2048x2048,
   # box-averaged in linear light), aniso8 is >= 40 dB and at least 4 dB better than trilinear,
   # which scores < 37 dB (so the comparison can fail: trilinear's blur along the view is seen).
   "$synth_image" img.png --format png --size 1024x1024 --channels 3 --seed 3 --photo
-  "$vt_tiles" img.png -o photo.vts --codec png --tile-size 64 --border 4 -q
-  "$vt_tiles" img.png -o thin.vts --codec png --tile-size 64 --border 2 -q
+  "$vt_tiles" img.png -o photo.vts --codec png --tile-size 64 --keep payload --border 4 -q
+  "$vt_tiles" img.png -o thin.vts --codec png --tile-size 64 --keep payload --border 2 -q
   printf 'v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\nf 1/1 2/2 3/3 4/4\n' \
     >plane.vt.obj
   echo "0 0.12 1.3 0 0 -0.6 50" >graze.cam
