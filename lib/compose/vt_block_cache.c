@@ -19,8 +19,10 @@ struct vt_block_cache_node {
     uint64_t off;  /* in the file, when in_file */
     uint32_t bytes;
     int refs;
-    bool in_file, loading;
-    struct vt_block_cache_node *prev, *next; /* LRU list of unreferenced blocks in memory */
+    bool in_file;
+    bool loading; /* busy: being read back, or being written out (then data is still set) */
+    /* LRU list of unreferenced blocks in memory; next also chains the blocks one caller writes */
+    struct vt_block_cache_node *prev, *next;
 };
 
 struct vt_block_cache {
@@ -30,6 +32,7 @@ struct vt_block_cache {
     uint64_t count;
     struct vt_block_cache_node *lru_head, *lru_tail;
     uint64_t budget, bytes, pinned, peak, peak_unpinned, spilled, reloads, file_end;
+    uint64_t writing; /* bytes of evicted blocks still being written out (outside the lock) */
     uint64_t reserved, peak_reserved; /* readers' and writers' buffers counted in the budget */
     uint64_t freed; /* block bytes freed since memory was last given back (trim_due) */
     int fd;
@@ -62,8 +65,8 @@ static void lru_push(struct vt_block_cache *c, struct vt_block_cache_node *n)
 
 static void note_peak(struct vt_block_cache *c)
 {
-    if (c->bytes > c->peak)
-        c->peak = c->bytes;
+    if (c->bytes + c->writing > c->peak)
+        c->peak = c->bytes + c->writing;
     if (c->bytes - c->pinned > c->peak_unpinned)
         c->peak_unpinned = c->bytes - c->pinned;
 }
@@ -80,29 +83,38 @@ static int open_file(struct vt_block_cache *c, struct vts_error *err)
     return 0;
 }
 
-/* Appends bytes to the file; *off receives where. Under the lock. */
-static int file_append(struct vt_block_cache *c, const void *data, uint32_t bytes, uint64_t *off,
-                       struct vts_error *err)
+/* Reserves `bytes` at the end of the file (opened on first use) and returns where. Under the
+ * lock; the caller writes them with file_write once it has let go of it, so that the threads
+ * never wait on each other's disk writes. */
+static int file_reserve(struct vt_block_cache *c, uint32_t bytes, uint64_t *off,
+                        struct vts_error *err)
 {
     if (c->fd < 0 && open_file(c, err))
         return err ? err->status : VTS_ERR_IO;
+    *off = c->file_end;
+    c->file_end += bytes;
+    c->spilled += bytes;
+    return 0;
+}
+
+/* Writes a reserved range of the file. Outside the lock (fd is set before any range is
+ * reserved and never changes afterwards). */
+static int file_write(struct vt_block_cache *c, const void *data, uint32_t bytes, uint64_t off,
+                      struct vts_error *err)
+{
     const char *p = data;
     size_t left = bytes;
-    uint64_t at = c->file_end;
     while (left > 0) {
-        ssize_t n = pwrite(c->fd, p, left, (off_t)at);
+        ssize_t n = pwrite(c->fd, p, left, (off_t)off);
         if (n < 0 && errno == EINTR)
             continue;
         if (n <= 0)
             return vt_error_set(err, VTS_ERR_IO, "cannot write the temporary file in '%s': %s",
                                 c->dir, n < 0 ? strerror(errno) : "disk full");
         p += n;
-        at += (uint64_t)n;
+        off += (uint64_t)n;
         left -= (size_t)n;
     }
-    *off = c->file_end;
-    c->file_end = at;
-    c->spilled += bytes;
     return 0;
 }
 
@@ -151,25 +163,62 @@ static void trim(bool due)
 #endif
 }
 
-/* Frees unreferenced blocks, oldest first (writing those not yet in the file), until `need` more
- * bytes fit in the budget or none is left. Under the lock. */
+/* Frees unreferenced blocks, oldest first, until `need` more bytes fit in the budget or none is
+ * left. Under the lock, but it lets go of it while it writes the blocks not yet in the file:
+ * those are taken off the LRU list under the lock (busy, their file range reserved, their bytes
+ * counted in c->writing until freed, so that the budget holds), written outside it, then freed
+ * under it again; and then it looks again, since other threads may have taken room meanwhile. */
 static int make_room(struct vt_block_cache *c, uint64_t need, struct vts_error *err)
 {
-    while (c->bytes + c->reserved + need > c->budget && c->lru_head) {
-        struct vt_block_cache_node *n = c->lru_head;
-        if (!n->in_file) {
-            int rc = file_append(c, n->data, n->bytes, &n->off, err);
-            if (rc)
-                return rc;
-            n->in_file = true;
+    for (;;) {
+        struct vt_block_cache_node *chain = NULL;
+        uint64_t mine = 0; /* bytes of the chain: the room this caller makes (others' writing
+                            * bytes are the room they make for themselves) */
+        int rc = 0;
+        while (c->bytes + (c->writing - mine) + c->reserved + need > c->budget && c->lru_head) {
+            struct vt_block_cache_node *n = c->lru_head;
+            if (!n->in_file && (rc = file_reserve(c, n->bytes, &n->off, err)) != 0)
+                break;
+            lru_unlink(c, n);
+            c->bytes -= n->bytes;
+            if (n->in_file) {
+                free(n->data);
+                n->data = NULL;
+                c->freed += n->bytes;
+            } else {
+                n->loading = true;
+                c->writing += n->bytes;
+                mine += n->bytes;
+                n->next = chain;
+                chain = n;
+            }
         }
-        lru_unlink(c, n);
-        free(n->data);
-        n->data = NULL;
-        c->bytes -= n->bytes;
-        c->freed += n->bytes;
+        if (!chain)
+            return rc;
+        pthread_mutex_unlock(&c->mu);
+        for (struct vt_block_cache_node *n = chain; n && rc == 0; n = n->next)
+            rc = file_write(c, n->data, n->bytes, n->off, err);
+        pthread_mutex_lock(&c->mu);
+        while (chain) {
+            struct vt_block_cache_node *n = chain;
+            chain = n->next;
+            n->next = NULL;
+            n->loading = false;
+            c->writing -= n->bytes;
+            if (rc == 0) { /* written: only in the file from now on */
+                n->in_file = true;
+                free(n->data);
+                n->data = NULL;
+                c->freed += n->bytes;
+            } else { /* maybe not written: back in memory (its file range stays unused) */
+                c->bytes += n->bytes;
+                lru_push(c, n);
+            }
+        }
+        pthread_cond_broadcast(&c->cv); /* readers waiting for these blocks */
+        if (rc)
+            return rc;
     }
-    return 0;
 }
 
 int vt_block_cache_put(struct vt_block_cache *c, uint64_t id, const void *data, size_t bytes,
@@ -183,8 +232,15 @@ int vt_block_cache_put(struct vt_block_cache *c, uint64_t id, const void *data, 
     pthread_mutex_lock(&c->mu);
     assert(!c->table[id]);
     int rc = make_room(c, bytes, err);
-    if (rc == 0 && c->bytes + c->reserved + bytes > c->budget) { /* all in memory is pinned */
-        rc = file_append(c, data, n->bytes, &n->off, err);
+    if (rc == 0 && c->bytes + c->writing + c->reserved + bytes > c->budget) {
+        /* all in memory is pinned or being written: straight to the file (outside the lock; no
+         * other thread knows this block before it is in the table) */
+        rc = file_reserve(c, n->bytes, &n->off, err);
+        if (rc == 0) {
+            pthread_mutex_unlock(&c->mu);
+            rc = file_write(c, data, n->bytes, n->off, err);
+            pthread_mutex_lock(&c->mu);
+        }
         n->in_file = true;
     } else if (rc == 0) {
         n->data = malloc(bytes);
@@ -211,8 +267,10 @@ void vt_block_cache_drop(struct vt_block_cache *c, uint64_t id)
 {
     pthread_mutex_lock(&c->mu);
     struct vt_block_cache_node *n = c->table[id];
+    while (n && n->loading)
+        pthread_cond_wait(&c->cv, &c->mu); /* another thread is writing it out */
     if (n) {
-        assert(n->refs == 0 && !n->loading);
+        assert(n->refs == 0);
         if (n->data) {
             lru_unlink(c, n);
             c->bytes -= n->bytes;

@@ -5,7 +5,9 @@
  * read back, unreferenced blocks are written to an unlinked temporary file (once each: blocks do
  * not change) and freed, least recently used first. Readers pin blocks (reference counts) while
  * they use them; only pinned blocks may take the memory over the budget (a reader needs the one it
- * reads), at most VT_BLOCK_CACHE_PINS per reader. Thread safe, except create/destroy. */
+ * reads), at most VT_BLOCK_CACHE_PINS per reader. Thread safe, except create/destroy; the file
+ * is written and read outside the cache's lock (a block being written stays counted in memory
+ * until it is freed). */
 #ifndef VT_BLOCK_CACHE_H
 #define VT_BLOCK_CACHE_H
 
@@ -34,7 +36,7 @@ struct vt_block_cache_pins {
 struct vt_block_cache_stats {
     uint64_t budget;        /* bytes */
     uint64_t bytes;         /* block bytes in memory now */
-    uint64_t peak;          /* most block bytes in memory at once */
+    uint64_t peak;          /* most block bytes in memory at once (those being written included) */
     uint64_t peak_unpinned; /* most at once that no reader needed (this one never exceeds budget) */
     uint64_t spilled;       /* bytes written to the temporary file */
     uint64_t reloads;       /* blocks read back from it */
