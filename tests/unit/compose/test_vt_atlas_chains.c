@@ -393,6 +393,106 @@ static void a_build_decodes_each_file_once_within_its_budget(void)
         vt_image_release(&textures[i]);
 }
 
+/* Workers put their own blocks and read everyone's while the others put, under a budget of a few
+ * blocks: spills are written outside the cache's lock while other workers evict, reload, pin and
+ * drop. Every block read holds its own bytes (a block reloaded from the wrong file range, or freed
+ * while being written, fails it), the unpinned bytes never exceed the budget, and no block is
+ * written twice. Failures are counted per worker and checked on the main thread. */
+enum { SPILL_WORKERS = 4, SPILL_PER_WORKER = 48, SPILL_BYTES = 1500, SPILL_BUDGET = 6 };
+
+struct spill_worker {
+    struct vt_block_cache *c;
+    int index;
+    int errors, wrong;
+};
+
+static uint8_t spill_byte(uint64_t id, size_t i)
+{
+    return (uint8_t)(id * 131u + i * 7u + (i >> 8));
+}
+
+static void *spill_worker_run(void *arg)
+{
+    struct spill_worker *w = arg;
+    uint8_t buf[SPILL_BYTES];
+    struct vt_block_cache_pins pins = {0};
+    for (int k = 0; k < SPILL_PER_WORKER; k++) {
+        uint64_t id = (uint64_t)k * SPILL_WORKERS + (uint64_t)w->index;
+        for (size_t i = 0; i < sizeof buf; i++)
+            buf[i] = spill_byte(id, i);
+        if (vt_block_cache_put(w->c, id, buf, sizeof buf, NULL))
+            w->errors++;
+        /* read back the newest blocks of this worker */
+        for (int j = k; j >= 0 && j > k - 3; j--) {
+            uint64_t rid = (uint64_t)j * SPILL_WORKERS + (uint64_t)w->index;
+            const uint8_t *px = NULL;
+            if (vt_block_cache_get(w->c, &pins, rid, &px, NULL) || !px) {
+                w->errors++;
+                continue;
+            }
+            for (size_t i = 0; i < SPILL_BYTES; i += 97)
+                w->wrong += px[i] != spill_byte(rid, i);
+        }
+        /* and an older one, spilled by now (a reload) */
+        const uint8_t *px = NULL;
+        uint64_t old = (uint64_t)(k / 2) * SPILL_WORKERS + (uint64_t)w->index;
+        if (vt_block_cache_get(w->c, &pins, old, &px, NULL) || !px)
+            w->errors++;
+        else
+            for (size_t i = 0; i < SPILL_BYTES; i += 13)
+                w->wrong += px[i] != spill_byte(old, i);
+        vt_block_cache_unpin_all(w->c, &pins);
+    }
+    /* drop every third block of its own: the others' reads must not see it go */
+    for (int k = 2; k < SPILL_PER_WORKER; k += 3)
+        vt_block_cache_drop(w->c, (uint64_t)k * SPILL_WORKERS + (uint64_t)w->index);
+    return NULL;
+}
+
+static void concurrent_spills_keep_every_block_and_the_budget(void)
+{
+    uint64_t n = (uint64_t)SPILL_WORKERS * SPILL_PER_WORKER;
+    struct vt_block_cache *c =
+        vt_block_cache_create(n, (uint64_t)SPILL_BUDGET * SPILL_BYTES, NULL, NULL);
+    VT_CHECK(c != NULL);
+    if (!c)
+        return;
+    struct spill_worker w[SPILL_WORKERS];
+    pthread_t th[SPILL_WORKERS];
+    for (int i = 0; i < SPILL_WORKERS; i++) {
+        w[i] = (struct spill_worker){c, i, 0, 0};
+        VT_CHECK_INT_EQ(pthread_create(&th[i], NULL, spill_worker_run, &w[i]), 0);
+    }
+    for (int i = 0; i < SPILL_WORKERS; i++) {
+        pthread_join(th[i], NULL);
+        VT_CHECK_INT_EQ(w[i].errors, 0);
+        VT_CHECK_INT_EQ(w[i].wrong, 0);
+    }
+    struct vt_block_cache_stats st;
+    vt_block_cache_stats(c, &st);
+    VT_CHECK(st.spilled > 0 && st.reloads > 0); /* the budget did force spills and reloads */
+    VT_CHECK(st.peak_unpinned <= (uint64_t)SPILL_BUDGET * SPILL_BYTES);
+    VT_CHECK(st.spilled <= n * SPILL_BYTES); /* each block written once at most */
+    /* every block not dropped still reads back whole, after all the workers are gone */
+    struct vt_block_cache_pins pins = {0};
+    int wrong = 0, errors = 0;
+    for (uint64_t id = 0; id < n; id++) {
+        if ((id / SPILL_WORKERS) % 3 == 2 && id / SPILL_WORKERS >= 2)
+            continue;
+        const uint8_t *px = NULL;
+        if (vt_block_cache_get(c, &pins, id, &px, NULL) || !px) {
+            errors++;
+            continue;
+        }
+        for (size_t i = 0; i < SPILL_BYTES; i++)
+            wrong += px[i] != spill_byte(id, i);
+        vt_block_cache_unpin_all(c, &pins);
+    }
+    VT_CHECK_INT_EQ(errors, 0);
+    VT_CHECK_INT_EQ(wrong, 0);
+    vt_block_cache_destroy(c);
+}
+
 int main(void)
 {
     VT_RUN(a_streamed_chain_equals_the_whole_chain);
@@ -401,6 +501,7 @@ int main(void)
     VT_RUN(the_block_cache_holds_its_budget_and_reads_back_what_spilled);
     VT_RUN(reserved_bytes_push_blocks_out_of_the_budget);
     VT_RUN(a_first_reservation_waits_for_others_over_half_the_budget);
+    VT_RUN(concurrent_spills_keep_every_block_and_the_budget);
     VT_RUN(a_build_decodes_each_file_once_within_its_budget);
     return vt_test_main_result();
 }
