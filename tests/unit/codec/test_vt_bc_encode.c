@@ -468,8 +468,10 @@ static void bc_ours_is_deterministic(void)
     for (int c = 0; c < 2; c++)
         for (int e = 0; e < 2; e++) {
             size_t la = 0, lb = 0;
-            unsigned char *a = encode_alloc(vt_codec_find(names[c]), imgs[c], efforts[e], &la);
-            unsigned char *b = encode_alloc(vt_codec_find(names[c]), imgs[c], efforts[e], &lb);
+            unsigned char *a =
+                encode_alloc_exact(vt_codec_find(names[c]), imgs[c], efforts[e], &la);
+            unsigned char *b =
+                encode_alloc_exact(vt_codec_find(names[c]), imgs[c], efforts[e], &lb);
             VT_CHECK(a && b && la == lb && memcmp(a, b, la) == 0);
             uint64_t h = a ? fnv1a(a, la) : 0;
             fprintf(stderr, "  %s effort %d: 0x%016llxull\n", names[c], efforts[e],

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "codec_test_util.h"
 #include "vt_codec.h"
 #include "vt_test.h"
 #include "vts.h"
@@ -60,25 +61,6 @@ static bool image_equal(const struct vt_image *a, const struct vt_image *b)
                    image_row_bytes(a)) != 0)
             return false;
     return true;
-}
-
-/* Encodes img with codec into a freshly allocated buffer of exactly encoded_bound() bytes. */
-static unsigned char *encode_alloc(const struct vt_codec *codec, const struct vt_image *img,
-                                   int effort, size_t *len)
-{
-    size_t bound = codec->encoded_bound(img->width, img->height, img->channels, img->sample);
-    unsigned char *buf = malloc(bound ? bound : 1);
-    struct vt_codec_params params = {.effort = effort};
-    struct vts_error err = {0};
-    int rc = codec->encode(img, &params, buf, bound, len, &err);
-    VT_CHECK_INT_EQ(rc, 0);
-    if (rc != 0) {
-        fprintf(stderr, "  encode: %s\n", err.message);
-        free(buf);
-        return NULL;
-    }
-    VT_CHECK(*len <= bound);
-    return buf;
 }
 
 /* Decodes payload into a fresh image of the given shape (pad bytes of padding, preset to 0xcd). */
