@@ -13,8 +13,8 @@
 
 /* Reduces a whole w x h level of ch-channel floats with kind (clamped, or wrapped) into out
  * (ceil(w/2) x ceil(h/2)). Wrapped odd sizes read past px: even sizes only. */
-static int reduce_level(enum vt_filter_kind kind, float *px, uint32_t w, uint32_t h,
-                        uint32_t ch, bool wrap, float *out)
+static int reduce_level(enum vt_filter_kind kind, float *px, uint32_t w, uint32_t h, uint32_t ch,
+                        bool wrap, float *out)
 {
     struct vt_kernel k;
     vt_kernel_init(&k, kind);
@@ -236,22 +236,21 @@ static void stored_rows_and_splits_match_the_whole(void)
             /* regions of the coarser level, some past its edge (clamped copies) */
             static const int64_t regs[][4] = {{0, 0, 7, 5}, {7, 0, 12, 5}, {0, 5, 19, 7}};
             for (int r = 0; r < 3; r++) {
-                struct vt_fregion dst = {regs[r][0], regs[r][1], (uint32_t)regs[r][2],
-                                         (uint32_t)regs[r][3], ch, NULL};
+                struct vt_fregion dst = {regs[r][0],           regs[r][1], (uint32_t)regs[r][2],
+                                         (uint32_t)regs[r][3], ch,         NULL};
                 int64_t fx0 = 2 * dst.x0, fy0 = 2 * dst.y0;
                 uint32_t fw = (uint32_t)(2 * dst.width < w - fx0 ? 2 * dst.width : w - fx0);
                 uint32_t fh = (uint32_t)(2 * dst.height < h - fy0 ? 2 * dst.height : h - fy0);
                 struct vt_fregion src = {fx0, fy0, fw, fh, ch, NULL};
-                struct vt_stored_rows st = {
-                    stored + ((size_t)fy0 * w + (size_t)fx0) * ch * bytes, (size_t)w * ch * bytes,
-                    samples[s], &m};
+                struct vt_stored_rows st = {stored + ((size_t)fy0 * w + (size_t)fx0) * ch * bytes,
+                                            (size_t)w * ch * bytes, samples[s], &m};
                 float out[19 * 12 * 3];
                 dst.px = out;
                 size_t n = vt_filter_reduce_stored_scratch(&k, &src, &dst);
                 float *scratch = malloc(n * sizeof(float));
                 struct vts_error err = {0};
-                VT_CHECK_INT_EQ(
-                    vt_filter_reduce_stored(&k, &e, &src, &st, &dst, scratch, n, &err), 0);
+                VT_CHECK_INT_EQ(vt_filter_reduce_stored(&k, &e, &src, &st, &dst, scratch, n, &err),
+                                0);
                 VT_CHECK_INT_EQ(
                     vt_filter_reduce_stored(&k, &e, &src, &st, &dst, scratch, n - 1, &err),
                     VTS_ERR_ARG); /* the scratch it asked for, not less */
