@@ -320,16 +320,23 @@ static void select_nearest(const struct footprint *f, uint32_t ch, float *out)
  * equals the same NaN); ties go to the first in footprint order. */
 static void select_mode(const struct footprint *f, uint32_t ch, float *out)
 {
-    int best = 0, best_count = 0;
-    for (int i = 0; i < 4; i++) {
-        int count = 0;
-        for (int j = 0; j < 4; j++)
-            count += memcmp(f->p[i], f->p[j], ch * sizeof(float)) == 0;
-        if (count > best_count) {
-            best = i;
-            best_count = count;
+    /* the texels' bits, zero past ch, so that whole rows compare as the texels do */
+    uint32_t bits[4][4] = {{0}};
+    for (int i = 0; i < 4; i++)
+        for (uint32_t c = 0; c < ch; c++)
+            memcpy(&bits[i][c], f->p[i] + c, sizeof(float));
+    int count[4] = {1, 1, 1, 1};
+    for (int i = 0; i < 4; i++)
+        for (int j = i + 1; j < 4; j++) {
+            bool same = bits[i][0] == bits[j][0] && bits[i][1] == bits[j][1] &&
+                        bits[i][2] == bits[j][2] && bits[i][3] == bits[j][3];
+            count[i] += same;
+            count[j] += same;
         }
-    }
+    int best = 0;
+    for (int i = 1; i < 4; i++)
+        if (count[i] > count[best])
+            best = i;
     memcpy(out, f->p[best], ch * sizeof(float));
 }
 
