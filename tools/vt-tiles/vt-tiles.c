@@ -133,7 +133,8 @@ static int check_selection(struct options *o)
     if (!selection && !o->index)
         return -1;
     if (o->layout)
-        return vt_usage_error("--filter %s and --colour index do not apply to --layout",
+        return vt_usage_error("--filter %s does not apply to --layout (selections build single "
+                              "images)",
                               vt_filter_name(o->filter));
     if (o->colour_set && o->colour != VTS_COLOUR_DATA)
         return vt_usage_error("--filter %s keeps exact values of data: use --colour data or "
