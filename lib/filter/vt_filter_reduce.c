@@ -311,25 +311,26 @@ struct footprint {
     const float *p[4];
 };
 
-static void select_nearest(const struct footprint *f, uint32_t ch, float *out)
+static ALWAYS_INLINE void select_nearest(const struct footprint *f, uint32_t ch, float *out)
 {
-    memcpy(out, f->p[0], ch * sizeof(float));
+    for (uint32_t c = 0; c < ch; c++)
+        out[c] = f->p[0][c];
 }
 
 /* The most frequent texel (whole texels compared bit for bit, so -0 and 0 differ and a NaN
  * equals the same NaN); ties go to the first in footprint order. */
-static void select_mode(const struct footprint *f, uint32_t ch, float *out)
+static ALWAYS_INLINE void select_mode(const struct footprint *f, uint32_t ch, float *out)
 {
-    /* the texels' bits, zero past ch, so that whole rows compare as the texels do */
-    uint32_t bits[4][4] = {{0}};
+    uint32_t bits[4][4];
     for (int i = 0; i < 4; i++)
         for (uint32_t c = 0; c < ch; c++)
             memcpy(&bits[i][c], f->p[i] + c, sizeof(float));
     int count[4] = {1, 1, 1, 1};
     for (int i = 0; i < 4; i++)
         for (int j = i + 1; j < 4; j++) {
-            bool same = bits[i][0] == bits[j][0] && bits[i][1] == bits[j][1] &&
-                        bits[i][2] == bits[j][2] && bits[i][3] == bits[j][3];
+            bool same = true;
+            for (uint32_t c = 0; c < ch; c++)
+                same &= bits[i][c] == bits[j][c];
             count[i] += same;
             count[j] += same;
         }
@@ -337,12 +338,14 @@ static void select_mode(const struct footprint *f, uint32_t ch, float *out)
     for (int i = 1; i < 4; i++)
         if (count[i] > count[best])
             best = i;
-    memcpy(out, f->p[best], ch * sizeof(float));
+    for (uint32_t c = 0; c < ch; c++)
+        out[c] = f->p[best][c];
 }
 
 /* Per channel, the smallest (or largest) value; a NaN is passed over unless all four are NaN
  * (then the last one's bits). Equal values (0 and -0) keep the first in footprint order. */
-static void select_extreme(const struct footprint *f, uint32_t ch, bool max, float *out)
+static ALWAYS_INLINE void select_extreme(const struct footprint *f, uint32_t ch, bool max,
+                                         float *out)
 {
     for (uint32_t c = 0; c < ch; c++) {
         float v = f->p[0][c];
@@ -371,9 +374,11 @@ static const float *select_row(const struct vt_fregion *src, const struct vt_sto
 }
 
 /* One output row of a selection from finer rows top and bottom: texels [0, rep) computed, the
- * ones after copies of texel rep - 1 (past the coarser level's edge). */
-static void select_out_row(enum vt_filter_kind kind, const struct axis *ax, uint32_t ch,
-                           uint32_t rep, const float *top, const float *bottom, float *out)
+ * ones after copies of texel rep - 1 (past the coarser level's edge). Called with a constant ch
+ * (select_out_row), so that the channel loops unroll. */
+static ALWAYS_INLINE void select_out_row_ch(enum vt_filter_kind kind, const struct axis *ax,
+                                            uint32_t ch, uint32_t rep, const float *top,
+                                            const float *bottom, float *out)
 {
     for (uint32_t x = 0; x < rep; x++) {
         size_t a = (size_t)(tap_pos(ax, ax->dst0 + x, 0) - ax->src0) * ch;
@@ -389,6 +394,19 @@ static void select_out_row(enum vt_filter_kind kind, const struct axis *ax, uint
     }
     for (uint32_t x = rep; x < ax->dst_n; x++)
         memcpy(out + (size_t)x * ch, out + (size_t)(rep - 1) * ch, ch * sizeof(float));
+}
+
+static void select_out_row(enum vt_filter_kind kind, const struct axis *ax, uint32_t ch,
+                           uint32_t rep, const float *top, const float *bottom, float *out)
+{
+    if (ch == 1)
+        select_out_row_ch(kind, ax, 1, rep, top, bottom, out);
+    else if (ch == 2)
+        select_out_row_ch(kind, ax, 2, rep, top, bottom, out);
+    else if (ch == 3)
+        select_out_row_ch(kind, ax, 3, rep, top, bottom, out);
+    else
+        select_out_row_ch(kind, ax, 4, rep, top, bottom, out);
 }
 
 /* A selection: every coarser texel from the 2x2 finer texels the box would read (the same
