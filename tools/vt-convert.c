@@ -8,6 +8,7 @@
 #include "vt_atomic_file.h"
 #include "vt_codec.h"
 #include "vt_error.h"
+#include "vt_filter.h"
 #include "vt_output_path.h"
 #include "vt_pool.h"
 #include "vt_tile_sink.h"
@@ -73,6 +74,8 @@ static void usage(void)
         "Samples: u16 tiles become u8 for jpeg, bc1 and bc3 (rounded, with a warning); f16 and\n"
         "f32 tiles convert to raw only. jpeg refuses alpha; bc1/bc3 need a tile payload that is\n"
         "a multiple of 4. Re-encoding lossy tiles (jpeg, bc1, bc3) with a lossy codec warns.\n"
+        "A store built with --filter nearest|mode|min|max (exact values) converts to png or\n"
+        "raw only, keeping its sample type.\n"
         "The output is the same for every -j.\n"
         "Exit status: 0 ok, 1 bad input (unreadable or corrupt store, a tile that does not\n"
         "decode, a layer the codec cannot store, output not written), 2 bad usage (including a\n"
@@ -216,6 +219,14 @@ static int plan_layer(struct run *r, uint32_t layer, bool *lossy_warned, struct 
         return vt_error_set(err, rc, "'%s' layer %u '%s' (%u channels, %s): %s",
                             vts_store_name(r->in), layer, in->name, in->channels,
                             vts_sample_name(in->sample), why.message);
+    enum vt_filter_kind filter; /* a selection's values are exact: keep them so */
+    if (vt_filter_parse(vts_store_meta_find(r->in, "filter"), &filter) == 0 &&
+        vt_filter_is_selection(filter) && (!r->codec->lossless || sample != in->sample))
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
+                            "'%s' layer %u '%s': built with --filter %s (exact values), which %s "
+                            "would change; use png or raw",
+                            vts_store_name(r->in), layer, in->name, vt_filter_name(filter),
+                            r->codec->name);
     if (!p->src_codec->lossless && !r->codec->lossless && !*lossy_warned) {
         vt_log(VT_LOG_WARN, "'%s' layer %u: re-encoding lossy %s tiles as %s loses quality twice",
                vts_store_name(r->in), layer, p->src_codec->name, r->codec->name);

@@ -10,6 +10,7 @@
 #include "vt_codec.h"
 #include "vt_error.h"
 #include "vt_export.h"
+#include "vt_filter.h"
 #include "vt_pool.h"
 #include "vts.h"
 
@@ -67,7 +68,8 @@ static void usage(void)
         "                        iiif: info.json (Image API 3.0, level 0) +\n"
         "                        REGION/SIZE/0/default.EXT; xyz: Z/X/Y.EXT, tiles padded\n"
         "                        with zeros (default dzi)\n"
-        "      --format F        png | jpeg (default: jpeg for 8-bit grey or RGB, else png)\n"
+        "      --format F        png | jpeg (default: jpeg for 8-bit grey or RGB, else png;\n"
+        "                        png for a store built with --filter nearest|mode|min|max)\n"
         "      --quality Q       jpeg quality, integer 1..100 (default 85)\n"
         "      --layer L         the layer, by number or name (default 0)\n"
         "      --tile-size N     edge of a tile without overlap, integer 1..4096 (default: the\n"
@@ -284,7 +286,11 @@ static int make_params(const struct options *o, const struct vts_store *store,
     if (find_layer(o, store, &p->layer) != 0)
         return VT_EXIT_USAGE;
     const struct vts_layer *l = vts_store_layer(store, p->layer);
-    bool jpeg_ok = l->sample == VTS_SAMPLE_U8 && (l->channels == 1 || l->channels == 3);
+    /* a store reduced by a selection (filter=mode, min...) holds exact values: png keeps them */
+    enum vt_filter_kind filter;
+    bool exact = vt_filter_parse(vts_store_meta_find(store, "filter"), &filter) == 0 &&
+                 vt_filter_is_selection(filter);
+    bool jpeg_ok = l->sample == VTS_SAMPLE_U8 && (l->channels == 1 || l->channels == 3) && !exact;
     const char *format = o->format ? o->format : jpeg_ok ? "jpeg" : "png";
     if (o->has_quality && strcmp(format, "jpeg") != 0)
         return vt_usage_error("--quality applies to jpeg tiles only (layer %u exports as png)",

@@ -111,7 +111,8 @@ static int read_rect(struct run *r, struct worker *w, uint32_t j, struct vt_expo
 /* ---- the levels coarser than the store's ---- */
 
 /* Box 2:1 reduction in the layer's working space (linear light for sRGB, premultiplied alpha,
- * renormalised normals), clamped or wrapped as the store: what the store's own box levels are. */
+ * renormalised normals), clamped or wrapped as the store: what the store's own box levels are; or
+ * the store's selection (docs/filters.md, "Selections"). */
 static int reduce_level(struct run *r, const struct vt_image *src, struct vt_image *dst,
                         struct vts_error *err)
 {
@@ -124,8 +125,14 @@ static int reduce_level(struct run *r, const struct vt_image *src, struct vt_ima
     uint32_t flags = vts_store_geometry(r->store)->flags;
     struct vt_edges edges = {src->width, src->height, flags & VTS_STORE_WRAP_X,
                              flags & VTS_STORE_WRAP_Y};
+    /* a store reduced by a selection (filter=mode, min...) goes on with it: its levels hold
+     * values of level 0 only */
+    enum vt_filter_kind kind;
+    if (vt_filter_parse(vts_store_meta_find(r->store, "filter"), &kind) != 0 ||
+        !vt_filter_is_selection(kind))
+        kind = VT_FILTER_BOX;
     struct vt_kernel k;
-    vt_kernel_init(&k, VT_FILTER_BOX);
+    vt_kernel_init(&k, kind);
     uint32_t w = (src->width + 1) / 2, h = (src->height + 1) / 2;
     int rc = vt_image_alloc(dst, w, h, l->channels, l->sample, err);
     if (rc != 0)

@@ -11,7 +11,8 @@
 
 /* ---- names ---- */
 
-static const char *const filter_names[] = {"box", "triangle", "lanczos3", "kaiser"};
+static const char *const filter_names[] = {"box",     "triangle", "lanczos3", "kaiser",
+                                           "nearest", "mode",     "min",      "max"};
 
 int vt_filter_parse(const char *name, enum vt_filter_kind *out)
 {
@@ -29,6 +30,12 @@ const char *vt_filter_name(enum vt_filter_kind kind)
     if ((unsigned)kind < sizeof filter_names / sizeof filter_names[0])
         return filter_names[kind];
     return "?";
+}
+
+bool vt_filter_is_selection(enum vt_filter_kind kind)
+{
+    return kind == VT_FILTER_NEAREST || kind == VT_FILTER_MODE || kind == VT_FILTER_MIN ||
+           kind == VT_FILTER_MAX;
 }
 
 /* ---- kernels ---- */
@@ -65,6 +72,10 @@ static double kernel_eval(enum vt_filter_kind kind, double x)
     double ax = fabs(x);
     switch (kind) {
     case VT_FILTER_BOX:
+    case VT_FILTER_NEAREST: /* selections have the box's taps and use no weights */
+    case VT_FILTER_MODE:
+    case VT_FILTER_MIN:
+    case VT_FILTER_MAX:
         return ax <= 0.5 ? 1.0 : 0.0;
     case VT_FILTER_TRIANGLE:
         return ax < 1.0 ? 1.0 - ax : 0.0;
@@ -84,11 +95,13 @@ void vt_kernel_init(struct vt_kernel *k, enum vt_filter_kind kind)
 {
     static const int firsts[] = {0, -1, -5, -5};
     static const int counts[] = {2, 4, 12, 12};
-    assert((unsigned)kind < 4);
+    assert((unsigned)kind <= VT_FILTER_MAX);
     memset(k, 0, sizeof *k);
     k->kind = kind;
-    k->first = firsts[kind];
-    k->count = counts[kind];
+    /* a selection reads the box's 2x2 taps (its weights are never used) */
+    enum vt_filter_kind taps = vt_filter_is_selection(kind) ? VT_FILTER_BOX : kind;
+    k->first = firsts[taps];
+    k->count = counts[taps];
     assert(k->count <= VT_KERNEL_MAX_TAPS);
 
     /* Tap t is finer texel j = 2i + first + t, whose centre lies (j + 0.5) - (2i + 1) finer

@@ -14,16 +14,29 @@ enum vt_filter_kind {
     VT_FILTER_TRIANGLE = 1, /* tent over 4x4 texels (bilinear-like), smoother */
     VT_FILTER_LANCZOS3 = 2, /* windowed sinc, 3 lobes (12x12 texels): sharpest, may ring */
     VT_FILTER_KAISER = 3,   /* Kaiser-windowed sinc (alpha 4, width 3): sharp, less ringing */
+    /* Selections (docs/filters.md, "Selections"): each coarser texel is one of the values of the
+     * 2x2 finer texels it covers (per texel, or per channel for min/max), never a mix. */
+    VT_FILTER_NEAREST = 4, /* the top-left texel of the 2x2 */
+    VT_FILTER_MODE = 5,    /* the most frequent texel of the 2x2; ties: the first in the order
+                              top-left, top-right, bottom-left, bottom-right */
+    VT_FILTER_MIN = 6,     /* per channel, the smallest of the 2x2 (NaN only if all are) */
+    VT_FILTER_MAX = 7,     /* per channel, the largest of the 2x2 (NaN only if all are) */
 };
 
-/* Parses "box", "triangle", "lanczos3", "kaiser"; returns 0 or VTS_ERR_ARG. */
+/* Parses "box", "triangle", "lanczos3", "kaiser", "nearest", "mode", "min", "max"; returns 0 or
+ * VTS_ERR_ARG. */
 int vt_filter_parse(const char *name, enum vt_filter_kind *out);
 const char *vt_filter_name(enum vt_filter_kind kind);
+
+/* True for the selections (nearest, mode, min, max): every output value is one of the input's
+ * working values, so stored values survive exactly when the stored sample is kept. */
+bool vt_filter_is_selection(enum vt_filter_kind kind);
 
 #define VT_KERNEL_MAX_TAPS 16
 
 /* Taps of a 2:1 reduction: output texel i of the coarser level is the weighted sum of texels
- * 2i + first .. 2i + first + count - 1 of the finer level. Weights sum to 1 (float). */
+ * 2i + first .. 2i + first + count - 1 of the finer level. Weights sum to 1 (float). A selection
+ * has the box's taps (first 0, count 2) and reads them without weights. */
 struct vt_kernel {
     enum vt_filter_kind kind;
     int first;
@@ -78,7 +91,9 @@ struct vt_edges {
  * [0, level_w) unless wrap. Every position read must lie inside src: otherwise VTS_ERR_ARG and
  * dst is unspecified (a caller bug). Separable (horizontal then vertical); scratch must hold
  * scratch_floats >= vt_filter_reduce_scratch(k, src, dst) floats. Deterministic: the same
- * inputs give the same bits whatever the region split. */
+ * inputs give the same bits whatever the region split. A selection kernel (vt_filter_is_selection)
+ * reads the same 2x2 finer texels per coarser texel (clamped or wrapped alike) and picks among
+ * them; it reads src directly (no scratch). */
 int vt_filter_reduce(const struct vt_kernel *k, const struct vt_edges *edges,
                      const struct vt_fregion *src, struct vt_fregion *dst, float *scratch,
                      size_t scratch_floats, struct vts_error *err);

@@ -274,7 +274,7 @@ static int check_reduce_args(const struct vt_kernel *k, const struct vt_edges *e
             src->width, src->height, (long long)src->x0, (long long)src->y0,
             vt_filter_name(k->kind), dst->width, dst->height, (long long)dst->x0,
             (long long)dst->y0);
-    if (scratch_floats < vt_filter_reduce_scratch(k, src, dst))
+    if (!vt_filter_is_selection(k->kind) && scratch_floats < vt_filter_reduce_scratch(k, src, dst))
         return vt_error_set(err, VTS_ERR_ARG, "reduce: scratch of %zu floats is too small",
                             scratch_floats);
     return 0;
@@ -304,6 +304,145 @@ static const float *source_row(const struct row_source *rs, int64_t y, uint32_t 
     return rs->row;
 }
 
+/* ---- selections (nearest, mode, min, max) ---- */
+
+/* Texel t of a 2x2 footprint, in the order top-left, top-right, bottom-left, bottom-right. */
+struct footprint {
+    const float *p[4];
+};
+
+static ALWAYS_INLINE void select_nearest(const struct footprint *f, uint32_t ch, float *out)
+{
+    for (uint32_t c = 0; c < ch; c++)
+        out[c] = f->p[0][c];
+}
+
+/* The most frequent texel (whole texels compared bit for bit, so -0 and 0 differ and a NaN
+ * equals the same NaN); ties go to the first in footprint order. */
+static ALWAYS_INLINE void select_mode(const struct footprint *f, uint32_t ch, float *out)
+{
+    uint32_t bits[4][4];
+    for (int i = 0; i < 4; i++)
+        for (uint32_t c = 0; c < ch; c++)
+            memcpy(&bits[i][c], f->p[i] + c, sizeof(float));
+    int count[4] = {1, 1, 1, 1};
+    for (int i = 0; i < 4; i++)
+        for (int j = i + 1; j < 4; j++) {
+            bool same = true;
+            for (uint32_t c = 0; c < ch; c++)
+                same &= bits[i][c] == bits[j][c];
+            count[i] += same;
+            count[j] += same;
+        }
+    int best = 0;
+    for (int i = 1; i < 4; i++)
+        if (count[i] > count[best])
+            best = i;
+    for (uint32_t c = 0; c < ch; c++)
+        out[c] = f->p[best][c];
+}
+
+/* Per channel, the smallest (or largest) value; a NaN is passed over unless all four are NaN
+ * (then the last one's bits). Equal values (0 and -0) keep the first in footprint order. */
+static ALWAYS_INLINE void select_extreme(const struct footprint *f, uint32_t ch, bool max,
+                                         float *out)
+{
+    for (uint32_t c = 0; c < ch; c++) {
+        float v = f->p[0][c];
+        for (int t = 1; t < 4; t++) {
+            float u = f->p[t][c];
+            if (v != v || (max ? u > v : u < v))
+                v = u;
+        }
+        out[c] = v;
+    }
+}
+
+/* A finer row of a selection: src's own floats, or stored samples converted in [x0, x1) into
+ * buf (src->width texels). */
+static const float *select_row(const struct vt_fregion *src, const struct vt_stored_rows *stored,
+                               int64_t y, uint32_t x0, uint32_t x1, float *buf)
+{
+    size_t r = (size_t)(y - src->y0);
+    if (!stored)
+        return src->px + r * src->width * src->channels;
+    size_t texel = vts_sample_bytes(stored->sample) * src->channels;
+    vt_filter_to_working(stored->mode, stored->sample,
+                         (const unsigned char *)stored->px + r * stored->stride + x0 * texel,
+                         buf + (size_t)x0 * src->channels, x1 - x0);
+    return buf;
+}
+
+/* One output row of a selection from finer rows top and bottom: texels [0, rep) computed, the
+ * ones after copies of texel rep - 1 (past the coarser level's edge). Called with a constant ch
+ * (select_out_row), so that the channel loops unroll. */
+static ALWAYS_INLINE void select_out_row_ch(enum vt_filter_kind kind, const struct axis *ax,
+                                            uint32_t ch, uint32_t rep, const float *top,
+                                            const float *bottom, float *out)
+{
+    for (uint32_t x = 0; x < rep; x++) {
+        size_t a = (size_t)(tap_pos(ax, ax->dst0 + x, 0) - ax->src0) * ch;
+        size_t b = (size_t)(tap_pos(ax, ax->dst0 + x, 1) - ax->src0) * ch;
+        struct footprint f = {{top + a, top + b, bottom + a, bottom + b}};
+        float *o = out + (size_t)x * ch;
+        if (kind == VT_FILTER_NEAREST)
+            select_nearest(&f, ch, o);
+        else if (kind == VT_FILTER_MODE)
+            select_mode(&f, ch, o);
+        else
+            select_extreme(&f, ch, kind == VT_FILTER_MAX, o);
+    }
+    for (uint32_t x = rep; x < ax->dst_n; x++)
+        memcpy(out + (size_t)x * ch, out + (size_t)(rep - 1) * ch, ch * sizeof(float));
+}
+
+static void select_out_row(enum vt_filter_kind kind, const struct axis *ax, uint32_t ch,
+                           uint32_t rep, const float *top, const float *bottom, float *out)
+{
+    if (ch == 1)
+        select_out_row_ch(kind, ax, 1, rep, top, bottom, out);
+    else if (ch == 2)
+        select_out_row_ch(kind, ax, 2, rep, top, bottom, out);
+    else if (ch == 3)
+        select_out_row_ch(kind, ax, 3, rep, top, bottom, out);
+    else
+        select_out_row_ch(kind, ax, 4, rep, top, bottom, out);
+}
+
+/* A selection: every coarser texel from the 2x2 finer texels the box would read (the same
+ * clamped or wrapped positions), no weights. Stored rows are converted two at a time into
+ * scratch (2 * src->width texels). */
+static int select_reduce(const struct vt_kernel *k, const struct axis *ax, const struct axis *ay,
+                         const struct vt_fregion *src, const struct vt_stored_rows *stored,
+                         struct vt_fregion *dst, float *scratch, size_t scratch_floats,
+                         struct vts_error *err)
+{
+    uint32_t ch = src->channels, rep_x = axis_replicas(ax), rep_y = axis_replicas(ay);
+    size_t row_floats = (size_t)src->width * ch, out_floats = (size_t)dst->width * ch;
+    if (k->first != 0 || k->count != 2)
+        return vt_error_set(err, VTS_ERR_ARG, "reduce: a selection reads 2x2 texels");
+    if (stored && scratch_floats / 2 < row_floats)
+        return vt_error_set(err, VTS_ERR_ARG, "reduce: scratch of %zu floats is too small",
+                            scratch_floats);
+    uint32_t read0 = (uint32_t)(tap_pos(ax, ax->dst0, 0) - ax->src0);
+    uint32_t read1 = (uint32_t)(tap_pos(ax, ax->dst0 + rep_x - 1, 1) - ax->src0) + 1;
+    for (uint32_t y = 0; y < dst->height; y++) {
+        float *out = dst->px + (size_t)y * out_floats;
+        if (y >= rep_y) {
+            memcpy(out, out - out_floats, out_floats * sizeof(float));
+            continue;
+        }
+        int64_t ya = tap_pos(ay, ay->dst0 + y, 0), yb = tap_pos(ay, ay->dst0 + y, 1);
+        const float *top = select_row(src, stored, ya, read0, read1, scratch);
+        const float *bottom =
+            yb == ya ? top : select_row(src, stored, yb, read0, read1, scratch + row_floats);
+        select_out_row(k->kind, ax, ch, rep_x, top, bottom, out);
+    }
+    return 0;
+}
+
+/* ---- the reduction ---- */
+
 static int reduce(const struct vt_kernel *k, const struct vt_edges *edges,
                   const struct vt_fregion *src, const struct vt_stored_rows *stored,
                   struct vt_fregion *dst, float *scratch, size_t scratch_floats,
@@ -315,6 +454,15 @@ static int reduce(const struct vt_kernel *k, const struct vt_edges *edges,
                       edges->level_w, edges->wrap_x, k->first, k->count};
     struct axis ay = {dst->y0,        dst->height,   src->y0,  src->height,
                       edges->level_h, edges->wrap_y, k->first, k->count};
+    if (vt_filter_is_selection(k->kind)) {
+        int rc = check_reduce_args(k, edges, src, dst, &ax, &ay, scratch_floats, err);
+        if (rc == 0 && stored &&
+            (stored->mode->channels != src->channels || stored->sample < VTS_SAMPLE_U8 ||
+             stored->sample > VTS_SAMPLE_F32))
+            rc = vt_error_set(err, VTS_ERR_ARG, "reduce: stored rows of %u channels, region %u",
+                              stored->mode->channels, src->channels);
+        return rc ? rc : select_reduce(k, &ax, &ay, src, stored, dst, scratch, scratch_floats, err);
+    }
     size_t row_extra = stored ? (size_t)src->width * src->channels : 0;
     if (scratch_floats < row_extra)
         return vt_error_set(err, VTS_ERR_ARG, "reduce: scratch of %zu floats is too small",
@@ -396,5 +544,7 @@ size_t vt_filter_reduce_stored_scratch(const struct vt_kernel *k, const struct v
     size_t n = vt_filter_reduce_scratch(k, src, dst), row;
     if (!vt_size_mul(src->width, src->channels, &row) || n > SIZE_MAX - row)
         return SIZE_MAX;
+    if (vt_filter_is_selection(k->kind)) /* two converted rows (select_reduce) */
+        return row > SIZE_MAX / 2 ? SIZE_MAX : 2 * row;
     return n + row;
 }

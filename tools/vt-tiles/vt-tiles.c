@@ -22,6 +22,7 @@ struct options {
     const char *input, *output, *codec_name, *name, *temp_dir;
     uint32_t tile_size, border, quality, threads, colour, aniso, subsampling;
     bool border_set, colour_set, keep_content, wrap, best, tile_size_set;
+    bool filter_set, index; /* --filter given; --colour index (data kept by a selection) */
     const char *layout, *layer,
         *export_atlas; /* --layout build (tools/vt-tiles/vt_tiles_layout.c) */
     enum vt_filter_kind filter;
@@ -49,9 +50,12 @@ static void usage(FILE *f)
         "                           and the codec: bilinear 1, trilinear 2, anisoN N/2;\n"
         "                           at least 4 for bc1/bc3)\n"
         "      --filtering MODE     bilinear | trilinear | aniso2..aniso16 (default trilinear)\n"
-        "      --filter NAME        mip filter: box | triangle | lanczos3 | kaiser (default box)\n"
-        "      --colour SPACE       srgb | linear | normal | data (default: srgb for 8/16-bit\n"
-        "                           images, linear for float)\n"
+        "      --filter NAME        mip filter: box | triangle | lanczos3 | kaiser (default box),\n"
+        "                           or a selection for data (exact values, lossless codecs):\n"
+        "                           nearest | mode | min | max\n"
+        "      --colour SPACE       srgb | linear | normal | data | index (default: srgb for\n"
+        "                           8/16-bit images, linear for float; data with a selection;\n"
+        "                           index: categorical data, --filter mode (default) or nearest)\n"
         "      --wrap               tiling texture: borders and filters wrap around\n"
         "      --codec NAME         raw | png | jpeg | bc1 | bc3 | auto (default auto: jpeg for\n"
         "                           opaque 8-bit colour, png for alpha, 16-bit, normal or data,\n"
@@ -114,6 +118,33 @@ static int parse_colour(const char *s, uint32_t *out)
     return -1;
 }
 
+/* --colour index and the selections (nearest, mode, min, max): an index is reduced by mode
+ * (default) or nearest only; a selection applies to data (implied when --colour is not given)
+ * and to single images. Returns -1 to continue, or an exit status. */
+static int check_selection(struct options *o)
+{
+    bool selection = vt_filter_is_selection(o->filter);
+    if (o->index && o->filter_set && o->filter != VT_FILTER_MODE && o->filter != VT_FILTER_NEAREST)
+        return vt_usage_error("--colour index needs --filter mode or nearest (an index is never "
+                              "interpolated), not '%s'",
+                              vt_filter_name(o->filter));
+    if (o->index && !o->filter_set)
+        o->filter = VT_FILTER_MODE;
+    if (!selection && !o->index)
+        return -1;
+    if (o->layout)
+        return vt_usage_error("--filter %s does not apply to --layout (selections build single "
+                              "images)",
+                              vt_filter_name(o->filter));
+    if (o->colour_set && o->colour != VTS_COLOUR_DATA)
+        return vt_usage_error("--filter %s keeps exact values of data: use --colour data or "
+                              "index, not %s",
+                              vt_filter_name(o->filter), vts_colour_name(o->colour));
+    o->colour = VTS_COLOUR_DATA;
+    o->colour_set = true;
+    return -1;
+}
+
 /* Returns -1 to continue, or an exit status. */
 static int parse_options(int argc, char **argv, struct options *o)
 {
@@ -127,7 +158,7 @@ static int parse_options(int argc, char **argv, struct options *o)
                           .subsampling = 420,
                           .max_pixels = VT_INPUT_DEFAULT_MAX_PIXELS,
                           .max_store = VT_DEFAULT_MAX_STORE};
-    int c;
+    int c, status;
     uint32_t v;
     opterr = 0;
     while ((c = vt_getopt_long(argc, argv, ":o:j:qvh", long_options)) != -1) {
@@ -165,12 +196,18 @@ static int parse_options(int argc, char **argv, struct options *o)
             break;
         case 'f':
             if (vt_filter_parse(optarg, &o->filter))
-                return vt_usage_error("unknown --filter '%s' (box, triangle, lanczos3, kaiser)",
+                return vt_usage_error("unknown --filter '%s' (box, triangle, lanczos3, kaiser, "
+                                      "nearest, mode, min, max)",
                                       optarg);
+            o->filter_set = true;
             break;
         case 'c':
-            if (parse_colour(optarg, &o->colour))
-                return vt_usage_error("unknown --colour '%s' (srgb, linear, normal, data)", optarg);
+            o->index = strcmp(optarg, "index") == 0;
+            if (o->index)
+                o->colour = VTS_COLOUR_DATA; /* stored as data; the filter keeps the values */
+            else if (parse_colour(optarg, &o->colour))
+                return vt_usage_error("unknown --colour '%s' (srgb, linear, normal, data, index)",
+                                      optarg);
             o->colour_set = true;
             break;
         case 'w':
@@ -267,6 +304,8 @@ static int parse_options(int argc, char **argv, struct options *o)
     }
     if (!o->output && !(o->layout && o->export_atlas))
         return vt_usage_error("missing -o OUT.vts");
+    if ((status = check_selection(o)) >= 0)
+        return status;
     if (strcmp(o->filtering, "bilinear") == 0)
         o->aniso = 0;
     else if (strcmp(o->filtering, "trilinear") == 0)
@@ -308,6 +347,7 @@ static int run_image(const struct options *o)
                                         .subsampling = o->subsampling,
                                         .border_set = o->border_set,
                                         .colour_set = o->colour_set,
+                                        .index = o->index,
                                         .keep_content = o->keep_content,
                                         .wrap = o->wrap,
                                         .best = o->best,

@@ -108,6 +108,17 @@ static const struct vt_codec *choose_codec(const struct vt_tiles_image_options *
         *out_sample = VTS_SAMPLE_U16;
     else if (codec->fourcc != VTS_CODEC_RAW && codec->fourcc != VTS_CODEC_PNG)
         *out_sample = VTS_SAMPLE_U8;
+    if (vt_filter_is_selection(o->filter) &&
+        ((codec->fourcc != VTS_CODEC_RAW && codec->fourcc != VTS_CODEC_PNG) ||
+         *out_sample != in->sample)) {
+        /* a selection keeps the input's values: only a lossless codec of its sample keeps them */
+        vt_usage_error(
+            "'%s': --filter %s keeps exact values: codec %s would store %s samples "
+            "%s (use %s)",
+            o->input_name, vt_filter_name(o->filter), codec->name, vts_sample_name(in->sample),
+            *out_sample != in->sample ? "converted" : "lossily", is_float ? "raw" : "png or raw");
+        return NULL;
+    }
     if (*out_sample != in->sample)
         vt_log(VT_LOG_WARN, "'%s': %s samples stored as %s for codec %s", o->input_name,
                vts_sample_name(in->sample), vts_sample_name(*out_sample), codec->name);
@@ -140,7 +151,8 @@ static int set_metadata(struct vts_writer *w, const struct vt_tiles_image_option
         if (rc)
             return rc;
     }
-    return 0;
+    /* --colour index: the layer's colour is data; consumers sample it without interpolating */
+    return o->index ? vts_writer_set_meta(w, "colour", "index", err) : 0;
 }
 
 /* Border and tile geometry from the options; returns 0 or a usage exit status. */

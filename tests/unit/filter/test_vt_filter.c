@@ -662,7 +662,7 @@ static double now_s(void)
 static void bench_reduce(uint32_t ch)
 {
     const uint32_t out = 256;
-    for (int kind = 0; kind < 4; kind++) {
+    for (int kind = 0; kind <= VT_FILTER_MAX; kind++) {
         struct vt_kernel k;
         vt_kernel_init(&k, (enum vt_filter_kind)kind);
         uint32_t m = vt_kernel_margin(&k), fine = 2 * out + 2 * m;
