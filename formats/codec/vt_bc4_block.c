@@ -70,8 +70,8 @@ struct bc4_candidate {
     uint64_t error;
 };
 
-static uint64_t bc4_eval(const struct bc4_values *t, unsigned a0, unsigned a1,
-                              uint64_t bound, uint64_t *indices)
+static uint64_t bc4_eval(const struct bc4_values *t, unsigned a0, unsigned a1, uint64_t bound,
+                         uint64_t *indices)
 {
     int pal[8];
     vt_bc4_block_palette(a0, a1, pal);
@@ -127,7 +127,7 @@ static uint64_t bc4_eval(const struct bc4_values *t, unsigned a0, unsigned a1,
 
 /* (a0, a1) in the 6-value mode (six: a0 <= a1) or the 8-value mode (a0 > a1), ordered so. */
 static bool bc4_try(const struct bc4_values *t, unsigned a0, unsigned a1, bool six,
-                         struct bc4_candidate *cand)
+                    struct bc4_candidate *cand)
 {
     if (six ? a0 > a1 : a0 < a1) {
         unsigned s = a0;
@@ -142,8 +142,8 @@ static bool bc4_try(const struct bc4_values *t, unsigned a0, unsigned a1, bool s
     return true;
 }
 
-static bool bc4_solve(const struct bc4_values *t, const struct bc4_candidate *c,
-                           bool six, unsigned *a0, unsigned *a1)
+static bool bc4_solve(const struct bc4_values *t, const struct bc4_candidate *c, bool six,
+                      unsigned *a0, unsigned *a1)
 {
     const int64_t scale = six ? 5 : 7;
     int64_t aa = 0, ab = 0, bb = 0, ax = 0, bx = 0;
@@ -167,14 +167,13 @@ static bool bc4_solve(const struct bc4_values *t, const struct bc4_candidate *c,
 }
 
 static void bc4_refine(const struct bc4_values *t, unsigned a0, unsigned a1, bool six,
-                            struct bc4_candidate *best)
+                       struct bc4_candidate *best)
 {
     struct bc4_candidate chain = {0, 0, 0, UINT64_MAX};
     bc4_try(t, a0, a1, six, &chain);
     for (int r = 0; r < BC4_REFINE && chain.error > 0; r++) {
         unsigned n0, n1;
-        if (!bc4_solve(t, &chain, six, &n0, &n1) ||
-            !bc4_try(t, n0, n1, six, &chain))
+        if (!bc4_solve(t, &chain, six, &n0, &n1) || !bc4_try(t, n0, n1, six, &chain))
             break;
     }
     for (int pass = 0; pass < BC4_SEARCH && chain.error > 0; pass++) {

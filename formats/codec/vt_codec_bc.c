@@ -192,8 +192,7 @@ static int bc_encode_block(const struct bc_format *fmt, const unsigned char *rgb
         flags |= VT_BC_ENCODE_FOUR_COLOUR_ONLY;
         if (effort == VT_CODEC_BC_BEST)
             flags |= VT_BC_ENCODE_WEIGHT_BY_ALPHA;
-        vt_bc4_block_encode(rgba + 3, 4, effort == VT_CODEC_BC_BEST ? VT_BC4_BLOCK_BEST : 0,
-                            dst);
+        vt_bc4_block_encode(rgba + 3, 4, effort == VT_CODEC_BC_BEST ? VT_BC4_BLOCK_BEST : 0, dst);
         vt_bc_encode_colour_block(rgba, flags, dst + 8);
         return 0;
     }

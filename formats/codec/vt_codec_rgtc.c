@@ -202,8 +202,8 @@ static int rgtc_decode(const struct rgtc_format *fmt, const void *src, size_t sr
                 for (int i = 0; i < 16; i++)
                     texels[i][2] = rgtc_normal_z(texels[i][0], texels[i][1]);
             for (uint32_t y = 0; y < RGTC_BLOCK_PX; y++) {
-                unsigned char *row = (unsigned char *)dst->pixels +
-                                     (size_t)(y0 + y) * dst->stride + (size_t)x0 * ch;
+                unsigned char *row =
+                    (unsigned char *)dst->pixels + (size_t)(y0 + y) * dst->stride + (size_t)x0 * ch;
                 for (uint32_t x = 0; x < RGTC_BLOCK_PX; x++)
                     memcpy(row + (size_t)x * ch, texels[4 * y + x], ch);
             }
@@ -270,8 +270,9 @@ const struct vt_codec vt_codec_bc4 = {
 const struct vt_codec vt_codec_bc5 = {
     .name = "bc5",
     .fourcc = VTS_CODEC_BC5,
-    .summary = "BC5/RGTC2 blocks (8 bpp), two channels or a normal map (z rebuilt), 8-bit; effort 0 "
-               "fast, 1 best",
+    .summary =
+        "BC5/RGTC2 blocks (8 bpp), two channels or a normal map (z rebuilt), 8-bit; effort 0 "
+        "fast, 1 best",
     .lossless = false,
     .check = bc5_check,
     .encoded_bound = bc5_encoded_bound,

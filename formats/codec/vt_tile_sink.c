@@ -49,8 +49,8 @@ const char *vt_tile_sink_gpu_codec(uint32_t channels, bool alpha, uint32_t colou
     return alpha && channels == 4 ? "bc3" : "bc1";
 }
 
-const char *vt_tile_sink_layer_codec_name(const char *requested, uint32_t sample,
-                                          uint32_t channels, bool alpha, uint32_t colour)
+const char *vt_tile_sink_layer_codec_name(const char *requested, uint32_t sample, uint32_t channels,
+                                          bool alpha, uint32_t colour)
 {
     if (strcmp(requested, VT_TILE_SINK_GPU) == 0)
         return vt_tile_sink_gpu_codec(channels, alpha, colour);

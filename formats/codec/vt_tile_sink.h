@@ -45,8 +45,8 @@ const char *vt_tile_sink_gpu_codec(uint32_t channels, bool alpha, uint32_t colou
 
 /* vt_tile_sink_codec_name() that also resolves VT_TILE_SINK_GPU, for a layer of `channels`
  * channels (after alpha is dropped or kept). */
-const char *vt_tile_sink_layer_codec_name(const char *requested, uint32_t sample,
-                                          uint32_t channels, bool alpha, uint32_t colour);
+const char *vt_tile_sink_layer_codec_name(const char *requested, uint32_t sample, uint32_t channels,
+                                          bool alpha, uint32_t colour);
 
 /* How the tiles of one store layer are encoded. */
 struct vt_tile_sink_layer {

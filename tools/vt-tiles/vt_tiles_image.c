@@ -102,8 +102,8 @@ static const struct vt_codec *choose_codec(const struct vt_tiles_image_options *
     bool is_float = in->sample == VTS_SAMPLE_F16 || in->sample == VTS_SAMPLE_F32;
     const struct vt_codec *codec = vt_codec_find(name);
     if (!codec) {
-        vt_usage_error("codec '%s' is not available (raw, png, jpeg, bc1, bc3, bc4, bc5, auto, gpu)",
-                       name);
+        vt_usage_error(
+            "codec '%s' is not available (raw, png, jpeg, bc1, bc3, bc4, bc5, auto, gpu)", name);
         return NULL;
     }
     *out_sample = in->sample;

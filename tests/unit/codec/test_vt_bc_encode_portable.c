@@ -1,10 +1,10 @@
-/* Our BC encoders (formats/codec/vt_bc_encode.c, vt_bc4_block.c) built a second time here, against the library's
- * build (which picks its AVX2 error loop at run time when the CPU has AVX2, else SSE2): the same
- * bytes for every flag on photo-like, noisy, cut-out, alpha-weighted, two-colour and solid
- * blocks. Two executables from this file: test_vt_bc_encode_portable (VT_BC_ENCODE_PORTABLE: no
- * SIMD at all) and test_vt_bc_encode_sse2 (VT_BC_ENCODE_TEST_SSE2: SSE2 without AVX2). The SIMD
- * paths (set-up, error loops, least squares) only reorder integer sums, so any difference is a
- * bug in one of them. */
+/* Our BC encoders (formats/codec/vt_bc_encode.c, vt_bc4_block.c) built a second time here, against
+ * the library's build (which picks its AVX2 error loop at run time when the CPU has AVX2, else
+ * SSE2): the same bytes for every flag on photo-like, noisy, cut-out, alpha-weighted, two-colour
+ * and solid blocks. Two executables from this file: test_vt_bc_encode_portable
+ * (VT_BC_ENCODE_PORTABLE: no SIMD at all) and test_vt_bc_encode_sse2 (VT_BC_ENCODE_TEST_SSE2: SSE2
+ * without AVX2). The SIMD paths (set-up, error loops, least squares) only reorder integer sums, so
+ * any difference is a bug in one of them. */
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>

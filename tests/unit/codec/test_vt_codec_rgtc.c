@@ -107,10 +107,18 @@ static void bc4_encoder_against_the_exhaustive_optimum(void)
         for (int i = 0; i < 16; i++) {
             uint64_t q = rng_next();
             switch (kind) {
-            case 0: a[i] = lo; break;
-            case 1: a[i] = (q & 1) ? lo : lo + span - 1; break;
-            case 2: a[i] = lo + (span - 1) * ((i & 3) + (i >> 2)) / 6; break;
-            default: a[i] = lo + (int)(q % (unsigned)span); break;
+            case 0:
+                a[i] = lo;
+                break;
+            case 1:
+                a[i] = (q & 1) ? lo : lo + span - 1;
+                break;
+            case 2:
+                a[i] = lo + (span - 1) * ((i & 3) + (i >> 2)) / 6;
+                break;
+            default:
+                a[i] = lo + (int)(q % (unsigned)span);
+                break;
             }
             if (kind == 4 && i < 2)
                 a[i] = i ? 255 : 0;

@@ -103,12 +103,10 @@ static void gpu_rule_picks_bc5_for_normals_and_bc4_for_one_channel(void)
     }
     VT_CHECK_INT_EQ(wrong, 0);
     /* other names pass through to the auto rule */
-    VT_CHECK_STR_EQ(vt_tile_sink_layer_codec_name("auto", VTS_SAMPLE_U8, 3, false,
-                                                  VTS_COLOUR_NORMAL),
-                    "png");
-    VT_CHECK_STR_EQ(vt_tile_sink_layer_codec_name("bc1", VTS_SAMPLE_U8, 3, false,
-                                                  VTS_COLOUR_NORMAL),
-                    "bc1");
+    VT_CHECK_STR_EQ(
+        vt_tile_sink_layer_codec_name("auto", VTS_SAMPLE_U8, 3, false, VTS_COLOUR_NORMAL), "png");
+    VT_CHECK_STR_EQ(
+        vt_tile_sink_layer_codec_name("bc1", VTS_SAMPLE_U8, 3, false, VTS_COLOUR_NORMAL), "bc1");
 }
 
 static void best_effort_maps_per_codec(void)
