@@ -6,7 +6,8 @@
  * squares on the index weights while the error falls, then +-1 on each endpoint while it falls.
  * With VT_BC4_BLOCK_EXTEND, best also starts from endpoints past the values: the min (or the max)
  * on an endpoint and the other extreme on the inner entry j of the palette's steps (j = 1 ..
- * steps - 1), each refined the same way (a ramp of fewer levels than the palette becomes exact).
+ * steps - 1), the best of them refined the same way (a ramp of fewer levels than the palette
+ * becomes exact).
  * Error: the sum of squared differences to the decoded palette (integer). The index of a value
  * is the nearest palette entry, the lowest index on a tie (one minimum over distance << 3 | k).
  *
@@ -192,17 +193,21 @@ static void bc4_refine(const struct bc4_values *t, unsigned a0, unsigned a1, boo
         *best = chain;
 }
 
-/* The starts past the values: [lo, hi] spans j of the mode's steps (7 or 5) from either end. */
+/* The starts past the values: [lo, hi] spans j of the mode's steps (7 or 5) from either end;
+ * each evaluated, the best of them refined. */
 static void bc4_extend(const struct bc4_values *t, int lo, int hi, bool six,
                        struct bc4_candidate *best)
 {
     int steps = six ? 5 : 7;
-    for (int j = 1; j < steps && best->error > 0; j++) {
+    struct bc4_candidate start = {0, 0, 0, UINT64_MAX};
+    for (int j = 1; j < steps; j++) {
         int far = (hi - lo) * steps / j;
         int up = lo + far > 255 ? 255 : lo + far, down = hi - far < 0 ? 0 : hi - far;
-        bc4_refine(t, (unsigned)lo, (unsigned)up, six, best);
-        bc4_refine(t, (unsigned)down, (unsigned)hi, six, best);
+        bc4_try(t, (unsigned)lo, (unsigned)up, six, &start);
+        bc4_try(t, (unsigned)down, (unsigned)hi, six, &start);
     }
+    if (start.error < UINT64_MAX)
+        bc4_refine(t, start.a0, start.a1, six, best);
 }
 
 void vt_bc4_block_encode(const unsigned char *values, size_t step, unsigned flags,
