@@ -97,7 +97,8 @@ static struct rgb load_padded(const char *path, uint32_t *orig_w, uint32_t *orig
     struct rgb out = {w, h, xmalloc((size_t)w * h * 3)};
     for (uint32_t y = 0; y < h; y++)
         for (uint32_t x = 0; x < w; x++) {
-            uint32_t sx = x < img.width ? x : img.width - 1, sy = y < img.height ? y : img.height - 1;
+            uint32_t sx = x < img.width ? x : img.width - 1,
+                     sy = y < img.height ? y : img.height - 1;
             memcpy(out.px + ((size_t)y * w + x) * 3, vt_image_at(&img, sx, sy), 3);
         }
     *orig_w = img.width;
@@ -114,23 +115,30 @@ static uint32_t carry_channels(enum carry c)
 static void to_carrier(const struct rgb *n, enum carry c, struct vt_image *dst)
 {
     uint32_t ch = carry_channels(c);
-    *dst = (struct vt_image){n->w, n->h, ch, VTS_SAMPLE_U8, (size_t)n->w * ch,
-                             xmalloc((size_t)n->w * n->h * ch)};
+    *dst = (struct vt_image){
+        n->w, n->h, ch, VTS_SAMPLE_U8, (size_t)n->w * ch, xmalloc((size_t)n->w * n->h * ch)};
     unsigned char *d = dst->pixels;
     for (size_t i = 0; i < (size_t)n->w * n->h; i++, d += ch) {
         const uint8_t *s = n->px + i * 3;
         switch (c) {
-        case CARRY_XYZ3: memcpy(d, s, 3); break;
-        case CARRY_XYZ4: memcpy(d, s, 3), d[3] = 255; break;
-        case CARRY_DXT5NM: d[0] = 0, d[1] = s[1], d[2] = 0, d[3] = s[0]; break;
-        case CARRY_XY2: d[0] = s[0], d[1] = s[1]; break;
+        case CARRY_XYZ3:
+            memcpy(d, s, 3);
+            break;
+        case CARRY_XYZ4:
+            memcpy(d, s, 3), d[3] = 255;
+            break;
+        case CARRY_DXT5NM:
+            d[0] = 0, d[1] = s[1], d[2] = 0, d[3] = s[0];
+            break;
+        case CARRY_XY2:
+            d[0] = s[0], d[1] = s[1];
+            break;
         }
     }
 }
 
 /* The decoded carrier texel i as a normal (not made unit length) and its xyz as 8-bit values. */
-static void from_carrier(const struct vt_image *dec, enum carry c, size_t i, double n[3],
-                         int v[3])
+static void from_carrier(const struct vt_image *dec, enum carry c, size_t i, double n[3], int v[3])
 {
     const unsigned char *p = (const unsigned char *)dec->pixels + i * dec->channels;
     if (c == CARRY_XYZ3 || c == CARRY_XYZ4) {
@@ -148,11 +156,11 @@ static void from_carrier(const struct vt_image *dec, enum carry c, size_t i, dou
 }
 
 /* Encodes the carrier (best of runs), decodes it; returns the decoded image and the seconds. */
-static struct vt_image encode_decode(const struct variant *va, const struct vt_image *src,
-                                     int runs, double *seconds)
+static struct vt_image encode_decode(const struct variant *va, const struct vt_image *src, int runs,
+                                     double *seconds)
 {
-    struct vt_image dec = {src->width, src->height, src->channels, VTS_SAMPLE_U8, src->stride,
-                           xmalloc(src->stride * src->height)};
+    struct vt_image dec = {src->width,    src->height, src->channels,
+                           VTS_SAMPLE_U8, src->stride, xmalloc(src->stride * src->height)};
     *seconds = 0;
     if (!va->codec) {
         memcpy(dec.pixels, src->pixels, src->stride * src->height);
