@@ -57,10 +57,10 @@ static void usage(void)
         "  -o, --output FILE     the store to write (replaced only when complete); - for\n"
         "                        standard output (not a terminal; spooled in $TMPDIR, then\n"
         "                        copied)\n"
-        "      --codec NAME      raw | png | jpeg | bc1 | bc3 (required)\n"
+        "      --codec NAME      raw | png | jpeg | bc1 | bc3 | bc4 | bc5 (required)\n"
         "      --quality Q       jpeg quality, integer 1..100 (default 85)\n"
         "      --subsampling S   jpeg chroma subsampling, 420 | 444 (default 420)\n"
-        "      --mode fast|best  png compression or bc1/bc3 encoder (default fast)\n"
+        "      --mode fast|best  png compression or bc1..bc5 encoder (default fast)\n"
         "      --layer N         convert only layer N (integer, 0..layers-1) and copy the others\n"
         "                        byte for byte (default: convert every layer)\n"
         "      --max-store-size S  refuse to write more tile bytes than S (suffix K, M, G, T;\n"
@@ -71,9 +71,10 @@ static void usage(void)
         "  -h, --help            print this help and exit\n"
         "      --version         print the version and exit\n"
         "\n"
-        "Samples: u16 tiles become u8 for jpeg, bc1 and bc3 (rounded, with a warning); f16 and\n"
-        "f32 tiles convert to raw only. jpeg refuses alpha; bc1/bc3 need a tile payload that is\n"
-        "a multiple of 4. Re-encoding lossy tiles (jpeg, bc1, bc3) with a lossy codec warns.\n"
+        "Samples: u16 tiles become u8 for jpeg and bc1..bc5 (rounded, with a warning); f16 and\n"
+        "f32 tiles convert to raw only. jpeg refuses alpha; bc1..bc5 need a tile payload that\n"
+        "is a multiple of 4; bc4 takes 1 channel, bc5 2 or a 3-channel normal map (z rebuilt).\n"
+        "Re-encoding lossy tiles (jpeg, bc1..bc5) with a lossy codec warns.\n"
         "A store built with --filter nearest|mode|min|max (exact values) converts to png or\n"
         "raw only, keeping its sample type.\n"
         "The output is the same for every -j.\n"
@@ -151,9 +152,9 @@ static int validate_options(const struct options *o, const struct vt_codec **cod
     if (!o->out_path)
         return vt_usage_error("missing -o OUT.vts");
     if (!o->codec_name)
-        return vt_usage_error("missing --codec (raw, png, jpeg, bc1, bc3)");
+        return vt_usage_error("missing --codec (raw, png, jpeg, bc1, bc3, bc4, bc5)");
     if (!(*codec = vt_codec_find(o->codec_name)))
-        return vt_usage_error("codec '%s' is not available (raw, png, jpeg, bc1, bc3)",
+        return vt_usage_error("codec '%s' is not available (raw, png, jpeg, bc1, bc3, bc4, bc5)",
                               o->codec_name);
     uint32_t fourcc = (*codec)->fourcc;
     bool jpeg = fourcc == VTS_CODEC_JPEG;
@@ -161,8 +162,8 @@ static int validate_options(const struct options *o, const struct vt_codec **cod
         return vt_usage_error("%s applies to --codec jpeg only",
                               o->has_quality ? "--quality" : "--subsampling");
     if (o->has_mode && fourcc != VTS_CODEC_PNG && fourcc != VTS_CODEC_BC1 &&
-        fourcc != VTS_CODEC_BC3)
-        return vt_usage_error("--mode applies to --codec png, bc1 and bc3 only");
+        fourcc != VTS_CODEC_BC3 && fourcc != VTS_CODEC_BC4 && fourcc != VTS_CODEC_BC5)
+        return vt_usage_error("--mode applies to --codec png and bc1..bc5 only");
     return 0;
 }
 

@@ -1,4 +1,5 @@
-/* Our BC1/BC3 block encoder (the format: docs/codecs.md and vt_codec_bc.c's decoder formulas).
+/* Our BC1 colour block encoder, also BC3's colour half (the format: docs/codecs.md and
+ * vt_codec_bc.c's decoder formulas). BC3's alpha half is a BC4 block: vt_bc4_block.c.
  *
  * Colour (BC1, and BC3's colour half in the 4-colour mode only):
  *   1. A block whose opaque texels are all one colour takes the best endpoint pair per channel from
@@ -19,10 +20,6 @@
  * Error: the sum over texels of the squared RGB distance to the decoded palette colour (integer,
  * uniform weights as PSNR counts; times alpha + 1 with VT_BC_ENCODE_WEIGHT_BY_ALPHA). BC1
  * texels with alpha < 128 take index 3 of the 3-colour mode (transparent black) and count nothing.
- *
- * Alpha (BC3): the 8-value mode between max and min and the 6-value mode (explicit 0 and 255)
- * between the min and max of the other values, whichever has the smaller error; best refines
- * both (least squares, +-1 search).
  *
  * SIMD: the set-up, the error loops and the least-squares sums have SSE2 paths (x86-64's
  * baseline) and the colour error loop an AVX2 one picked at run time; VT_BC_ENCODE_NO_AVX2 and
@@ -56,8 +53,6 @@
 #define BC_POWER_BEST    8
 #define BC_REFINE_BEST   4 /* least-squares rounds per start (fast: 1) */
 #define BC_SEARCH_PASSES 8 /* +-1 endpoint search passes at most (best) */
-#define BC_ALPHA_REFINE  4
-#define BC_ALPHA_SEARCH  8
 
 /* ---- tables, built once ---- */
 
@@ -935,180 +930,4 @@ void vt_bc_encode_colour_block(const unsigned char *rgba, unsigned flags, unsign
         bc_colour_try(&t, n0, n1, three, &best))
         bc_colour_search(&t, &best);
     bc_put_colour(&best, dst);
-}
-
-/* ---- alpha ---- */
-
-struct bc_alpha_texels {
-    _Alignas(16) uint8_t byte[BC_TEXELS]; /* for the SSE2 error loop */
-    int value[BC_TEXELS];
-};
-
-struct bc_alpha_candidate {
-    unsigned a0, a1;
-    uint64_t indices; /* 3 bits per texel */
-    uint64_t error;
-};
-
-static uint64_t bc_alpha_eval(const struct bc_alpha_texels *alpha, unsigned a0, unsigned a1,
-                              uint64_t bound, uint64_t *indices)
-{
-    int pal[8] = {(int)a0, (int)a1};
-    if (a0 > a1) {
-        for (int i = 1; i <= 6; i++)
-            pal[1 + i] = ((7 - i) * (int)a0 + i * (int)a1) / 7;
-    } else {
-        for (int i = 1; i <= 4; i++)
-            pal[1 + i] = ((5 - i) * (int)a0 + i * (int)a1) / 5;
-        pal[6] = 0;
-        pal[7] = 255;
-    }
-#if defined(VT_BC_ENCODE_SSE2)
-    /* key = |alpha - pal[k]| << 3 | k in 16-bit lanes (< 2048), one minimum gives both */
-    const __m128i zero = _mm_setzero_si128();
-    __m128i x = _mm_load_si128((const __m128i *)alpha->byte);
-    __m128i m_lo = _mm_set1_epi16(INT16_MAX), m_hi = m_lo;
-    for (int k = 0; k < 8; k++) {
-        __m128i p = _mm_set1_epi8((char)pal[k]);
-        __m128i d = _mm_or_si128(_mm_subs_epu8(x, p), _mm_subs_epu8(p, x));
-        __m128i tag = _mm_set1_epi16((int16_t)k);
-        m_lo =
-            _mm_min_epi16(m_lo, _mm_or_si128(_mm_slli_epi16(_mm_unpacklo_epi8(d, zero), 3), tag));
-        m_hi =
-            _mm_min_epi16(m_hi, _mm_or_si128(_mm_slli_epi16(_mm_unpackhi_epi8(d, zero), 3), tag));
-    }
-    __m128i d_lo = _mm_srli_epi16(m_lo, 3), d_hi = _mm_srli_epi16(m_hi, 3);
-    __m128i sq = _mm_add_epi32(_mm_madd_epi16(d_lo, d_lo), _mm_madd_epi16(d_hi, d_hi));
-    sq = _mm_add_epi32(sq, _mm_shuffle_epi32(sq, _MM_SHUFFLE(1, 0, 3, 2)));
-    sq = _mm_add_epi32(sq, _mm_shuffle_epi32(sq, _MM_SHUFFLE(2, 3, 0, 1)));
-    uint64_t error = (uint32_t)_mm_cvtsi128_si32(sq);
-    if (error >= bound)
-        return UINT64_MAX;
-    /* the 16 indices of 3 bits: bytes, then pairs (6 bits), fours (12), eights (24) */
-    const __m128i seven = _mm_set1_epi16(7);
-    __m128i b = _mm_packus_epi16(_mm_and_si128(m_lo, seven), _mm_and_si128(m_hi, seven));
-    b = _mm_and_si128(_mm_or_si128(b, _mm_srli_epi16(b, 5)), _mm_set1_epi16(0x3f));
-    b = _mm_and_si128(_mm_or_si128(b, _mm_srli_epi32(b, 10)), _mm_set1_epi32(0xfff));
-    b = _mm_and_si128(_mm_or_si128(b, _mm_srli_epi64(b, 20)),
-                      _mm_set_epi32(0, 0xffffff, 0, 0xffffff));
-    _Alignas(16) uint64_t half[2];
-    _mm_store_si128((__m128i *)half, b);
-    *indices = half[0] | half[1] << 24;
-    return error;
-#else
-    uint64_t error = 0, idx = 0;
-    for (int i = 0; i < BC_TEXELS; i++) {
-        uint32_t m = UINT32_MAX; /* distance << 3 | index, branch-free minimum */
-        for (int k = 0; k < 8; k++) {
-            uint32_t key = (uint32_t)bc_abs(alpha->value[i] - pal[k]) << 3 | (uint32_t)k;
-            m = key < m ? key : m;
-        }
-        idx |= (uint64_t)(m & 7) << (3 * i);
-        error += (uint64_t)(m >> 3) * (m >> 3);
-        if (error >= bound)
-            return UINT64_MAX;
-    }
-    *indices = idx;
-    return error;
-#endif
-}
-
-/* (a0, a1) in the 6-value mode (six: a0 <= a1) or the 8-value mode (a0 > a1), ordered so. */
-static bool bc_alpha_try(const struct bc_alpha_texels *alpha, unsigned a0, unsigned a1, bool six,
-                         struct bc_alpha_candidate *cand)
-{
-    if (six ? a0 > a1 : a0 < a1) {
-        unsigned s = a0;
-        a0 = a1;
-        a1 = s;
-    }
-    uint64_t idx;
-    uint64_t error = bc_alpha_eval(alpha, a0, a1, cand->error, &idx);
-    if (error >= cand->error)
-        return false;
-    *cand = (struct bc_alpha_candidate){a0, a1, idx, error};
-    return true;
-}
-
-static bool bc_alpha_solve(const struct bc_alpha_texels *alpha, const struct bc_alpha_candidate *c,
-                           bool six, unsigned *a0, unsigned *a1)
-{
-    const int64_t scale = six ? 5 : 7;
-    int64_t aa = 0, ab = 0, bb = 0, ax = 0, bx = 0;
-    for (int i = 0; i < BC_TEXELS; i++) {
-        unsigned k = (unsigned)(c->indices >> (3 * i) & 7);
-        if (six && k >= 6)
-            continue; /* the explicit 0 and 255 */
-        int64_t a = k == 0 ? scale : k == 1 ? 0 : scale - (k - 1), b = scale - a;
-        aa += a * a;
-        ab += a * b;
-        bb += b * b;
-        ax += a * alpha->value[i];
-        bx += b * alpha->value[i];
-    }
-    int64_t det = aa * bb - ab * ab;
-    if (det == 0)
-        return false;
-    *a0 = (unsigned)bc_round_clamp((double)(scale * (bb * ax - ab * bx)) / (double)det);
-    *a1 = (unsigned)bc_round_clamp((double)(scale * (aa * bx - ab * ax)) / (double)det);
-    return true;
-}
-
-static void bc_alpha_refine(const struct bc_alpha_texels *alpha, unsigned a0, unsigned a1, bool six,
-                            struct bc_alpha_candidate *best)
-{
-    struct bc_alpha_candidate chain = {0, 0, 0, UINT64_MAX};
-    bc_alpha_try(alpha, a0, a1, six, &chain);
-    for (int r = 0; r < BC_ALPHA_REFINE && chain.error > 0; r++) {
-        unsigned n0, n1;
-        if (!bc_alpha_solve(alpha, &chain, six, &n0, &n1) ||
-            !bc_alpha_try(alpha, n0, n1, six, &chain))
-            break;
-    }
-    for (int pass = 0; pass < BC_ALPHA_SEARCH && chain.error > 0; pass++) {
-        bool improved = false;
-        for (int d = -1; d <= 1; d += 2) {
-            int v0 = (int)chain.a0 + d, v1 = (int)chain.a1 + d;
-            if (v0 >= 0 && v0 <= 255)
-                improved |= bc_alpha_try(alpha, (unsigned)v0, chain.a1, six, &chain);
-            if (v1 >= 0 && v1 <= 255)
-                improved |= bc_alpha_try(alpha, chain.a0, (unsigned)v1, six, &chain);
-        }
-        if (!improved)
-            break;
-    }
-    if (chain.error < best->error)
-        *best = chain;
-}
-
-void vt_bc_encode_alpha_block(const unsigned char *rgba, unsigned flags, unsigned char *dst)
-{
-    struct bc_alpha_texels alpha;
-    int lo = 255, hi = 0, lo6 = 255, hi6 = 0;
-    for (int i = 0; i < BC_TEXELS; i++) {
-        int a = alpha.value[i] = alpha.byte[i] = rgba[4 * i + 3];
-        lo = a < lo ? a : lo;
-        hi = a > hi ? a : hi;
-        if (a != 0 && a != 255) {
-            lo6 = a < lo6 ? a : lo6;
-            hi6 = a > hi6 ? a : hi6;
-        }
-    }
-    struct bc_alpha_candidate best = {(unsigned)lo, (unsigned)lo, 0, 0};
-    if (lo != hi) {
-        best.error = UINT64_MAX;
-        if (lo6 > hi6) /* only 0 and 255 */
-            lo6 = hi6 = 0;
-        if (flags & VT_BC_ENCODE_BEST) {
-            bc_alpha_refine(&alpha, (unsigned)hi, (unsigned)lo, false, &best);
-            bc_alpha_refine(&alpha, (unsigned)lo6, (unsigned)hi6, true, &best);
-        } else {
-            bc_alpha_try(&alpha, (unsigned)hi, (unsigned)lo, false, &best);
-            bc_alpha_try(&alpha, (unsigned)lo6, (unsigned)hi6, true, &best);
-        }
-    }
-    dst[0] = (unsigned char)best.a0;
-    dst[1] = (unsigned char)best.a1;
-    for (int b = 0; b < 6; b++)
-        dst[2 + b] = (unsigned char)(best.indices >> (8 * b));
 }

@@ -6,7 +6,8 @@
 
 /* Stable order (vt-info and --help list codecs in it). A new codec is one line here. */
 static const struct vt_codec *const vt_codecs[] = {
-    &vt_codec_raw, &vt_codec_png, &vt_codec_jpeg, &vt_codec_bc1, &vt_codec_bc3,
+    &vt_codec_raw, &vt_codec_png, &vt_codec_jpeg, &vt_codec_bc1,
+    &vt_codec_bc3, &vt_codec_bc4, &vt_codec_bc5,
 };
 
 #define VT_CODEC_COUNT (sizeof vt_codecs / sizeof vt_codecs[0])

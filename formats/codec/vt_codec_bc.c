@@ -36,6 +36,7 @@
 #define STB_DXT_IMPLEMENTATION
 #include <stb/stb_dxt.h>
 
+#include "internal/vt_bc4_block.h"
 #include "internal/vt_bc_encode.h"
 #include "internal/vt_codec_impl.h"
 #include "internal/vt_squish_shim.h"
@@ -191,7 +192,7 @@ static int bc_encode_block(const struct bc_format *fmt, const unsigned char *rgb
         flags |= VT_BC_ENCODE_FOUR_COLOUR_ONLY;
         if (effort == VT_CODEC_BC_BEST)
             flags |= VT_BC_ENCODE_WEIGHT_BY_ALPHA;
-        vt_bc_encode_alpha_block(rgba, flags, dst);
+        vt_bc4_block_encode(rgba + 3, 4, effort == VT_CODEC_BC_BEST ? VT_BC4_BLOCK_BEST : 0, dst);
         vt_bc_encode_colour_block(rgba, flags, dst + 8);
         return 0;
     }
@@ -269,27 +270,6 @@ static void bc_decode_colour_block(const unsigned char *block, bool four_colour_
         memcpy(texels[i], palette[(indices >> (2 * i)) & 3], 4);
 }
 
-/* Decodes BC3's 8-byte alpha block into the alpha of 16 texels. */
-static void bc_decode_alpha_block(const unsigned char *block, unsigned char texels[16][4])
-{
-    unsigned a0 = block[0], a1 = block[1];
-    unsigned char palette[8] = {(unsigned char)a0, (unsigned char)a1};
-    if (a0 > a1) {
-        for (unsigned i = 1; i <= 6; i++)
-            palette[1 + i] = (unsigned char)(((7 - i) * a0 + i * a1) / 7);
-    } else {
-        for (unsigned i = 1; i <= 4; i++)
-            palette[1 + i] = (unsigned char)(((5 - i) * a0 + i * a1) / 5);
-        palette[6] = 0;
-        palette[7] = 255;
-    }
-    uint64_t indices = 0;
-    for (int b = 0; b < 6; b++)
-        indices |= (uint64_t)block[2 + b] << (8 * b);
-    for (int i = 0; i < 16; i++)
-        texels[i][3] = palette[(indices >> (3 * i)) & 7];
-}
-
 /* Writes the 16 decoded texels of a block at texel (x0, y0) of dst (3 or 4 channels; RGB drops
  * alpha). Fixed-size copies: this loop is most of the decoder's time. */
 static void bc_scatter_block(unsigned char texels[16][4], struct vt_image *dst, uint32_t x0,
@@ -325,7 +305,7 @@ static int bc_decode(const struct bc_format *fmt, const void *src, size_t src_le
         for (uint32_t x0 = 0; x0 < dst->width; x0 += BC_BLOCK_PX, block += fmt->block_bytes) {
             if (fmt->has_alpha_block) {
                 bc_decode_colour_block(block + 8, true, texels);
-                bc_decode_alpha_block(block, texels);
+                vt_bc4_block_decode(block, &texels[0][3], 4);
             } else {
                 bc_decode_colour_block(block, false, texels);
             }

@@ -40,6 +40,23 @@ const char *vt_tile_sink_codec_name(const char *requested, uint32_t sample, bool
     return requested;
 }
 
+const char *vt_tile_sink_gpu_codec(uint32_t channels, bool alpha, uint32_t colour)
+{
+    if (channels == 1)
+        return "bc4";
+    if (channels == 2 || (channels == 3 && colour == VTS_COLOUR_NORMAL))
+        return "bc5";
+    return alpha && channels == 4 ? "bc3" : "bc1";
+}
+
+const char *vt_tile_sink_layer_codec_name(const char *requested, uint32_t sample, uint32_t channels,
+                                          bool alpha, uint32_t colour)
+{
+    if (strcmp(requested, VT_TILE_SINK_GPU) == 0)
+        return vt_tile_sink_gpu_codec(channels, alpha, colour);
+    return vt_tile_sink_codec_name(requested, sample, alpha, colour);
+}
+
 struct vt_tile_sink *vt_tile_sink_create(struct vts_writer *writer, uint32_t tile_payload_px,
                                          const struct vt_tile_sink_layer *layers,
                                          uint32_t layer_count, unsigned workers,

@@ -16,6 +16,7 @@
 #include "vts_writer.h"
 
 #define VT_TILE_SINK_AUTO "auto" /* the --codec name resolved by vt_tile_sink_codec_name() */
+#define VT_TILE_SINK_GPU  "gpu"  /* auto among the GPU block codecs: vt_tile_sink_gpu_codec() */
 
 /* Encoder effort of `--mode best` (best) or `--mode fast` for codec: fast is 0 (the codec's
  * default); best is 9 (zlib level 9) for png and 1 for every other codec (the best bc1/bc3
@@ -36,6 +37,16 @@ const char *vt_tile_sink_auto_codec(uint32_t sample, bool alpha, uint32_t colour
  * VT_TILE_SINK_AUTO, the value itself otherwise (look it up with vt_codec_find()). */
 const char *vt_tile_sink_codec_name(const char *requested, uint32_t sample, bool alpha,
                                     uint32_t colour);
+
+/* The GPU block codec `--codec gpu` picks for a layer of 8-bit tiles with this many channels:
+ * "bc5" for a 3-channel normal layer (x and y kept, z rebuilt) and for 2 channels, "bc4" for one
+ * channel, "bc3" for kept alpha (alpha true, 4 channels), "bc1" otherwise. */
+const char *vt_tile_sink_gpu_codec(uint32_t channels, bool alpha, uint32_t colour);
+
+/* vt_tile_sink_codec_name() that also resolves VT_TILE_SINK_GPU, for a layer of `channels`
+ * channels (after alpha is dropped or kept). */
+const char *vt_tile_sink_layer_codec_name(const char *requested, uint32_t sample, uint32_t channels,
+                                          bool alpha, uint32_t colour);
 
 /* How the tiles of one store layer are encoded. */
 struct vt_tile_sink_layer {

@@ -95,6 +95,8 @@ VTS_API const char *vts_status_name(int status);
 #define VTS_CODEC_JPEG VTS_FOURCC('J', 'P', 'E', 'G')
 #define VTS_CODEC_BC1  VTS_FOURCC('B', 'C', '1', ' ')
 #define VTS_CODEC_BC3  VTS_FOURCC('B', 'C', '3', ' ')
+#define VTS_CODEC_BC4  VTS_FOURCC('B', 'C', '4', ' ') /* RGTC1 unsigned, 1 channel */
+#define VTS_CODEC_BC5  VTS_FOURCC('B', 'C', '5', ' ') /* RGTC2 unsigned, RG (3 ch: normal xy) */
 
 /* Pinned on-disk values. */
 enum vts_sample {

@@ -1,7 +1,9 @@
 /* libFuzzer target for the tile payload decoders (formats/vt_codec_*.c, scripts/fuzz). The first
  * input byte picks the codec (raw, png, jpeg, bc1, bc3: byte % 5) and, among the tile shapes that
  * codec's check() accepts (edge 1, 4, 8, 16, 64 or 260; 1..4 channels; u8, u16, f16 or f32), the
- * shape number byte / 5 (modulo their count); the rest is the payload, copied into an exact-size
+ * shape number byte / 5 (modulo their count); bytes 232..255 pick bc4 (even) and bc5 (odd), shape
+ * (byte - 232) / 2 (the codecs added later: the bytes below 232 keep their meaning, and so do the
+ * kept findings); the rest is the payload, copied into an exact-size
  * allocation (ASan sees any read past it) and decoded into a vt_image of that shape.
  * Invariants, not only crashes: decode returns 0 or a negative status with a non-empty one-line
  * message; a payload that decodes is encoded again and that must decode too (lossless codecs: to
@@ -10,6 +12,7 @@
  *
  * Built with -DVT_FUZZ_NO_ENTRY, the file gives fuzz_codec_shape() and fuzz_codec_decode_one() to
  * the seed writer and to the regression test (tests/robust/test_fuzz_regressions.c). */
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,6 +29,7 @@ int fuzz_codec_shape(uint8_t selector, const struct vt_codec **codec, uint32_t *
 int fuzz_codec_decode_one(const uint8_t *data, size_t size, struct vts_error *err);
 
 static const char *const codec_names[FUZZ_CODEC_COUNT] = {"raw", "png", "jpeg", "bc1", "bc3"};
+#define FUZZ_RGTC_FIRST 232 /* selectors from here: bc4, bc5 */
 static const uint32_t edges[6] = {1, 4, 8, 16, 64, 260};
 
 /* Shape number i of the 96 (edge, channels, sample) combinations, in an order where the first 52
@@ -40,7 +44,9 @@ static void shape_of(unsigned i, uint32_t *edge, uint32_t *channels, uint32_t *s
 int fuzz_codec_shape(uint8_t selector, const struct vt_codec **codec, uint32_t *edge,
                      uint32_t *channels, uint32_t *sample)
 {
-    const struct vt_codec *c = vt_codec_find(codec_names[selector % FUZZ_CODEC_COUNT]);
+    bool rgtc = selector >= FUZZ_RGTC_FIRST;
+    const struct vt_codec *c = vt_codec_find(rgtc ? (selector % 2 ? "bc5" : "bc4")
+                                                  : codec_names[selector % FUZZ_CODEC_COUNT]);
     if (!c)
         return -1;
     unsigned accepted[96], n = 0;
@@ -54,7 +60,8 @@ int fuzz_codec_shape(uint8_t selector, const struct vt_codec **codec, uint32_t *
     if (n == 0)
         return -1;
     *codec = c;
-    shape_of(accepted[(selector / FUZZ_CODEC_COUNT) % n], edge, channels, sample);
+    unsigned pick = rgtc ? (selector - FUZZ_RGTC_FIRST) / 2u : selector / FUZZ_CODEC_COUNT;
+    shape_of(accepted[pick % n], edge, channels, sample);
     return 0;
 }
 

@@ -96,11 +96,14 @@ static const struct vt_codec *choose_codec(const struct vt_tiles_image_options *
                                            bool keep_alpha, uint32_t *out_sample)
 {
     /* auto: the input's own sample type decides (16-bit and float inputs keep their depth) */
-    const char *name = vt_tile_sink_codec_name(o->codec_name, in->sample, keep_alpha, colour);
+    uint32_t channels = in->channels - (in->has_alpha && !keep_alpha);
+    const char *name =
+        vt_tile_sink_layer_codec_name(o->codec_name, in->sample, channels, keep_alpha, colour);
     bool is_float = in->sample == VTS_SAMPLE_F16 || in->sample == VTS_SAMPLE_F32;
     const struct vt_codec *codec = vt_codec_find(name);
     if (!codec) {
-        vt_usage_error("codec '%s' is not available (raw, png, jpeg, bc1, bc3, auto)", name);
+        vt_usage_error(
+            "codec '%s' is not available (raw, png, jpeg, bc1, bc3, bc4, bc5, auto, gpu)", name);
         return NULL;
     }
     *out_sample = in->sample;
@@ -159,7 +162,8 @@ static int set_metadata(struct vts_writer *w, const struct vt_tiles_image_option
 static int make_geometry(struct vt_tiles_image_options *o, const struct vt_source_info *in,
                          const struct vt_codec *codec, struct vts_geometry *g)
 {
-    bool bc = codec->fourcc == VTS_CODEC_BC1 || codec->fourcc == VTS_CODEC_BC3;
+    bool bc = codec->fourcc == VTS_CODEC_BC1 || codec->fourcc == VTS_CODEC_BC3 ||
+              codec->fourcc == VTS_CODEC_BC4 || codec->fourcc == VTS_CODEC_BC5;
     if (!o->border_set) {
         o->border = o->aniso <= 1 ? o->aniso + 1 : o->aniso / 2;
         if (bc && o->border < 4)

@@ -99,11 +99,13 @@ static int pick_codec(struct layout_run *r, uint32_t slot, struct vts_layer *lay
     const struct vt_tiles_layout_options *o = r->o;
     struct vt_atlas_layer_format f;
     vt_atlas_build_format(r->build, slot, &f);
-    const char *name = vt_tile_sink_codec_name(o->codec_name ? o->codec_name : VT_TILE_SINK_AUTO,
-                                               VTS_SAMPLE_U8, f.alpha, f.colour);
+    const char *name =
+        vt_tile_sink_layer_codec_name(o->codec_name ? o->codec_name : VT_TILE_SINK_AUTO,
+                                      VTS_SAMPLE_U8, f.channels, f.alpha, f.colour);
     const struct vt_codec *codec = vt_codec_find(name);
     if (!codec)
-        return vt_usage_error("codec '%s' is not available (raw, png, jpeg, bc1, bc3, auto)", name);
+        return vt_usage_error(
+            "codec '%s' is not available (raw, png, jpeg, bc1, bc3, bc4, bc5, auto, gpu)", name);
     uint32_t pp = r->lay.tile_content + 2 * r->lay.border;
     int rc = codec->check(pp, f.channels, VTS_SAMPLE_U8, err);
     if (rc)

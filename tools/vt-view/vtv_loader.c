@@ -152,12 +152,19 @@ static int load_layer(struct vtv_loader *l, struct scratch *sc, uint32_t k, uint
 }
 
 /* What a layer stored empty shows when other layers of the tile are not: a flat normal, else
- * transparent black (BC blocks of zeros). */
+ * transparent black (BC blocks of zeros). A bc5 normal layer's flat normal: blocks of x = y = 128
+ * (two BC4 blocks of endpoints 128, indices 0; the shader rebuilds z). */
 static void fill_empty(const struct vtv_loader *l, uint32_t k, uint8_t *dst)
 {
     memset(dst, 0, l->stride);
-    if (l->layers[k].bc_bytes || l->layers[k].info.colour != VTS_COLOUR_NORMAL)
+    if (l->layers[k].info.colour != VTS_COLOUR_NORMAL)
         return;
+    if (l->layers[k].bc_bytes) {
+        for (size_t i = 0; l->layers[k].info.codec == VTS_CODEC_BC5 && i < l->layers[k].bc_bytes;
+             i += 8)
+            dst[i] = dst[i + 1] = 128;
+        return;
+    }
     for (size_t i = 0; i < l->stride; i += 4) {
         dst[i] = dst[i + 1] = 128;
         dst[i + 2] = dst[i + 3] = 255;
@@ -309,9 +316,9 @@ static int setup_layer(const struct vts_store *store, uint32_t index, bool compr
     ly->codec = codec;
     ly->info = *info;
     ly->bc_bytes = 0;
-    if (compressed && (info->codec == VTS_CODEC_BC1 || info->codec == VTS_CODEC_BC3))
-        ly->bc_bytes =
-            (size_t)(payload_px / 4) * (payload_px / 4) * (info->codec == VTS_CODEC_BC1 ? 8u : 16u);
+    bool eight = info->codec == VTS_CODEC_BC1 || info->codec == VTS_CODEC_BC4;
+    if (compressed && (eight || info->codec == VTS_CODEC_BC3 || info->codec == VTS_CODEC_BC5))
+        ly->bc_bytes = (size_t)(payload_px / 4) * (payload_px / 4) * (eight ? 8u : 16u);
     return 0;
 }
 

@@ -134,6 +134,8 @@ int vtv_render_init(struct vtv_render *r, uint32_t width, uint32_t height, uint3
     r->has_s3tc = epoxy_has_gl_extension("GL_EXT_texture_compression_s3tc");
     r->has_srgb_s3tc =
         r->has_s3tc && (epoxy_gl_version() >= 21 || epoxy_has_gl_extension("GL_EXT_texture_sRGB"));
+    r->has_rgtc =
+        epoxy_gl_version() >= 30 || epoxy_has_gl_extension("GL_ARB_texture_compression_rgtc");
     glGenVertexArrays(1, &r->vao);
     glGenBuffers(1, &r->vbo);
 
@@ -271,6 +273,15 @@ static GLuint make_phys(GLenum fmt, uint32_t pw, uint32_t ph)
     return t;
 }
 
+/* One- and two-channel RGTC layers sample as the CPU path expands them (vtv_loader's to_rgba8):
+ * grey (R, R, R, 1), or grey and alpha (R, R, R, G). */
+static void swizzle_grey(GLuint tex, bool alpha_in_g)
+{
+    const GLint swizzle[4] = {GL_RED, GL_RED, GL_RED, alpha_in_g ? GL_GREEN : GL_ONE};
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_RGBA, swizzle);
+}
+
 int vtv_render_set_cache(struct vtv_render *r, const struct vtv_cache *c,
                          const struct vts_geometry *g, const struct vtv_phys_layer *layers,
                          struct vts_error *err)
@@ -299,6 +310,7 @@ int vtv_render_set_cache(struct vtv_render *r, const struct vtv_cache *c,
         r->pt_row[l] = (int)c->pt_row[l];
     }
     r->phys_count = 0;
+    r->rebuild_z_mask = 0;
     for (int k = 0; k < VTV_MAP_COUNT; k++) {
         if (!layers[k].used)
             continue;
@@ -308,6 +320,10 @@ int vtv_render_set_cache(struct vtv_render *r, const struct vtv_cache *c,
         r->phys_format[k] = bc ? bc : layers[k].srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8;
         r->tex_phys[k] = make_phys(r->phys_format[k], r->phys_w, r->phys_h);
         r->phys_slice[k] = (int)r->phys_count++;
+        if (bc && layers[k].rebuild_z)
+            r->rebuild_z_mask |= 1 << k;
+        else if (bc == GL_COMPRESSED_RED_RGTC1 || bc == GL_COMPRESSED_RG_RGTC2)
+            swizzle_grey(r->tex_phys[k], bc == GL_COMPRESSED_RG_RGTC2);
         if (k == VTV_MAP_DIFFUSE) {
             r->srgb = layers[k].srgb;
             r->bc_format = bc;
@@ -324,7 +340,14 @@ int vtv_render_set_cache(struct vtv_render *r, const struct vtv_cache *c,
 GLenum vtv_render_bc_format(const struct vtv_render *r, uint32_t codec, bool srgb,
                             uint32_t payload_px)
 {
-    if (!r->has_s3tc || payload_px % 4 != 0 || (srgb && !r->has_srgb_s3tc))
+    if (payload_px % 4 != 0)
+        return 0;
+    if (codec == VTS_CODEC_BC4 || codec == VTS_CODEC_BC5) {
+        if (!r->has_rgtc || srgb) /* RGTC has no sRGB formats: decoded on the CPU */
+            return 0;
+        return codec == VTS_CODEC_BC4 ? GL_COMPRESSED_RED_RGTC1 : GL_COMPRESSED_RG_RGTC2;
+    }
+    if (!r->has_s3tc || (srgb && !r->has_srgb_s3tc))
         return 0;
     if (codec == VTS_CODEC_BC1)
         return srgb ? GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT1_EXT : GL_COMPRESSED_RGBA_S3TC_DXT1_EXT;
@@ -353,7 +376,8 @@ void vtv_render_upload_tile(struct vtv_render *r, const struct vtv_cache *c, uin
         glBindTexture(GL_TEXTURE_2D, r->tex_phys[k]);
         if (is_compressed(r->phys_format[k])) {
             size_t block = r->phys_format[k] == GL_COMPRESSED_RGBA_S3TC_DXT1_EXT ||
-                                   r->phys_format[k] == GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT1_EXT
+                                   r->phys_format[k] == GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT1_EXT ||
+                                   r->phys_format[k] == GL_COMPRESSED_RED_RGTC1
                                ? 8
                                : 16;
             size_t n = (size_t)(r->payload_px / 4) * (r->payload_px / 4) * block;
@@ -403,6 +427,7 @@ static void common_uniforms(const struct vtv_render *r, GLuint p, const struct v
     glUniform2f(glGetUniformLocation(p, "u_phys_size"), (float)r->phys_w, (float)r->phys_h);
     glUniform1f(glGetUniformLocation(p, "u_border"), r->border);
     glUniform1f(glGetUniformLocation(p, "u_payload"), r->payload);
+    glUniform1i(glGetUniformLocation(p, "u_rebuild_z"), r->rebuild_z_mask);
     for (int k = 0; k < VTV_MAP_COUNT; k++)
         glUniform1i(glGetUniformLocation(p, phys[k]), 1 + k);
 }

@@ -30,7 +30,8 @@ struct vtv_phys_layer {
     bool used;
     bool srgb; /* sRGB layer: GL_SRGB8_ALPHA8 (decoded to linear when sampled) */
     uint32_t
-        bc_codec; /* VTS_CODEC_BC1/BC3 blocks uploaded as stored (vtv_render_bc_format), or 0 */
+        bc_codec;   /* VTS_CODEC_BC1..BC5 blocks uploaded as stored (vtv_render_bc_format), or 0 */
+    bool rebuild_z; /* bc5 blocks of a 3-channel normal layer: the shader rebuilds z from xy */
 };
 
 /* The light (docs/cli/vt-view.md: --light, --light-colour, --ambient); linear values. */
@@ -69,6 +70,8 @@ struct vtv_render {
     uint8_t *fallback_pixels; /* width * height */
     bool has_s3tc;
     bool has_srgb_s3tc;
+    bool has_rgtc;      /* RGTC (BC4/BC5): GL 3.0 or ARB_texture_compression_rgtc */
+    int rebuild_z_mask; /* bit k: map kind k's physical texture holds normal xy only (bc5) */
     bool srgb;        /* the frame is sRGB-encoded (the diffuse layer is sRGB): shading in linear */
     GLenum bc_format; /* the diffuse physical texture's compressed format, or 0 */
     struct vtv_light light;
@@ -113,8 +116,9 @@ void vtv_render_material_uniforms(const struct vtv_render *r, GLuint p,
 int vtv_render_set_cache(struct vtv_render *r, const struct vtv_cache *c,
                          const struct vts_geometry *g, const struct vtv_phys_layer *layers,
                          struct vts_error *err);
-/* The GL format for BC payloads of codec (VTS_CODEC_BC1/BC3) when this GL can take them as they
- * are (S3TC, and sRGB S3TC for an sRGB layer, payload edge a multiple of 4); 0 otherwise. */
+/* The GL format for BC payloads of codec (VTS_CODEC_BC1/BC3: S3TC, and sRGB S3TC for an sRGB
+ * layer; VTS_CODEC_BC4/BC5: RGTC, not for an sRGB layer) when this GL can take them as they are
+ * (payload edge a multiple of 4); 0 otherwise. */
 GLenum vtv_render_bc_format(const struct vtv_render *r, uint32_t codec, bool srgb,
                             uint32_t payload_px);
 /* data: one loaded tile (vtv_loader: a slice of payload_px^2 * 4 bytes per physical texture,

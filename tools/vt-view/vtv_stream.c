@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "tool_common.h"
+#include "vt_codec.h"
 #include "vt_error.h"
 
 /* Uploads a decoded payload of tile index into a slot. Returns false when no slot could be
@@ -154,6 +155,10 @@ int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, const u
         phys[k].srgb = info->colour == VTS_COLOUR_SRGB;
         if (bc_upload && vtv_render_bc_format(render, info->codec, phys[k].srgb, pp)) {
             phys[k].bc_codec = info->codec;
+            phys[k].rebuild_z = info->codec == VTS_CODEC_BC5 && info->channels == 3;
+            vt_log(VT_LOG_INFO, "layer '%s': %s blocks uploaded compressed%s", info->name,
+                   vt_codec_by_fourcc(info->codec)->name,
+                   phys[k].rebuild_z ? " (normal xy, z rebuilt in the shader)" : "");
             compressed |= 1u << n;
         }
         order[n++] = layers[k];

@@ -1,4 +1,5 @@
-/* Private to formats/codec: our BC1/BC3 block encoder (vt_bc_encode.c), used by vt_codec_bc.c.
+/* Private to formats/codec: our BC1 colour block encoder (vt_bc_encode.c), used by vt_codec_bc.c
+ * (BC1, and BC3's colour half; BC3's alpha half is a BC4 block, internal/vt_bc4_block.h).
  * One 4x4 block per call, no allocation, no global state written after the first call's one-time
  * table set-up (pthread_once): thread-safe. The bytes depend only on the texels and the flags
  * (integer error metric, float math in a fixed order built without FMA contraction). */
@@ -15,9 +16,5 @@ enum vt_bc_encode_flags {
  * Without VT_BC_ENCODE_FOUR_COLOUR_ONLY a texel with alpha < 128 is stored as the transparent
  * black of the 3-colour mode, and the 3-colour mode is also tried for opaque blocks. */
 void vt_bc_encode_colour_block(const unsigned char *rgba, unsigned flags, unsigned char *dst);
-
-/* Encodes the alpha of 16 RGBA texels into BC3's 8-byte alpha block (the 8-value mode, and with
- * VT_BC_ENCODE_BEST also the 6-value mode with 0 and 255, whichever has the smaller error). */
-void vt_bc_encode_alpha_block(const unsigned char *rgba, unsigned flags, unsigned char *dst);
 
 #endif

@@ -1,10 +1,10 @@
-/* Our BC encoder (formats/codec/vt_bc_encode.c) built a second time here, against the library's
- * build (which picks its AVX2 error loop at run time when the CPU has AVX2, else SSE2): the same
- * bytes for every flag on photo-like, noisy, cut-out, alpha-weighted, two-colour and solid
- * blocks. Two executables from this file: test_vt_bc_encode_portable (VT_BC_ENCODE_PORTABLE: no
- * SIMD at all) and test_vt_bc_encode_sse2 (VT_BC_ENCODE_TEST_SSE2: SSE2 without AVX2). The SIMD
- * paths (set-up, error loops, least squares) only reorder integer sums, so any difference is a
- * bug in one of them. */
+/* Our BC encoders (formats/codec/vt_bc_encode.c, vt_bc4_block.c) built a second time here, against
+ * the library's build (which picks its AVX2 error loop at run time when the CPU has AVX2, else
+ * SSE2): the same bytes for every flag on photo-like, noisy, cut-out, alpha-weighted, two-colour
+ * and solid blocks. Two executables from this file: test_vt_bc_encode_portable
+ * (VT_BC_ENCODE_PORTABLE: no SIMD at all) and test_vt_bc_encode_sse2 (VT_BC_ENCODE_TEST_SSE2: SSE2
+ * without AVX2). The SIMD paths (set-up, error loops, least squares) only reorder integer sums, so
+ * any difference is a bug in one of them. */
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -16,10 +16,15 @@
 #define VT_BC_ENCODE_PORTABLE 1
 #endif
 #define vt_bc_encode_colour_block portable_colour_block
-#define vt_bc_encode_alpha_block  portable_alpha_block
+#define vt_bc4_block_encode       portable_bc4_encode
+#define vt_bc4_block_decode       portable_bc4_decode
+#define vt_bc4_block_palette      portable_bc4_palette
+#include "vt_bc4_block.c"
 #include "vt_bc_encode.c"
 #undef vt_bc_encode_colour_block
-#undef vt_bc_encode_alpha_block
+#undef vt_bc4_block_encode
+#undef vt_bc4_block_decode
+#undef vt_bc4_block_palette
 
 #include "bc_test_util.h"
 #include "vt_synth_photo.h"
@@ -27,7 +32,8 @@
 
 /* the library's build (internal/vt_bc_encode.h was read above under the portable names) */
 void vt_bc_encode_colour_block(const unsigned char *rgba, unsigned flags, unsigned char *dst);
-void vt_bc_encode_alpha_block(const unsigned char *rgba, unsigned flags, unsigned char *dst);
+void vt_bc4_block_encode(const unsigned char *values, size_t step, unsigned flags,
+                         unsigned char *dst);
 
 /* Counts the blocks whose bytes differ between the two builds, over every flag combination. */
 static int mismatches(const unsigned char rgba[64])
@@ -38,8 +44,11 @@ static int mismatches(const unsigned char rgba[64])
         vt_bc_encode_colour_block(rgba, flags, a);
         portable_colour_block(rgba, flags, b);
         bad += memcmp(a, b, 8) != 0;
-        vt_bc_encode_alpha_block(rgba, flags, a);
-        portable_alpha_block(rgba, flags, b);
+        /* the BC4 block (BC3's alpha; BC4/BC5 best adds the starts past the values) */
+        static const unsigned bc4_flags[4] = {0, VT_BC4_BLOCK_BEST, 0,
+                                              VT_BC4_BLOCK_BEST | VT_BC4_BLOCK_EXTEND};
+        vt_bc4_block_encode(rgba + 3, 4, bc4_flags[flags & 3], a);
+        portable_bc4_encode(rgba + 3, 4, bc4_flags[flags & 3], b);
         bad += memcmp(a, b, 8) != 0;
     }
     return bad;

@@ -76,6 +76,39 @@ static void codec_name_resolves_auto_only(void)
                     "nope") == 0);
 }
 
+static void gpu_rule_picks_bc5_for_normals_and_bc4_for_one_channel(void)
+{
+    static const struct {
+        uint32_t channels;
+        bool alpha;
+        uint32_t colour;
+        const char *codec;
+    } rows[] = {
+        {3, false, VTS_COLOUR_NORMAL, "bc5"}, {2, false, VTS_COLOUR_DATA, "bc5"},
+        {2, true, VTS_COLOUR_SRGB, "bc5"},    {1, false, VTS_COLOUR_DATA, "bc4"},
+        {1, false, VTS_COLOUR_SRGB, "bc4"},   {3, false, VTS_COLOUR_SRGB, "bc1"},
+        {3, false, VTS_COLOUR_DATA, "bc1"},   {4, true, VTS_COLOUR_SRGB, "bc3"},
+        {4, true, VTS_COLOUR_NORMAL, "bc3"},
+    };
+    int wrong = 0;
+    for (size_t i = 0; i < sizeof rows / sizeof rows[0]; i++) {
+        const char *got = vt_tile_sink_layer_codec_name("gpu", VTS_SAMPLE_U8, rows[i].channels,
+                                                        rows[i].alpha, rows[i].colour);
+        if (strcmp(got, rows[i].codec) != 0)
+            fprintf(stderr, "  row %zu: %s, not %s\n", i, got, rows[i].codec);
+        wrong += strcmp(got, rows[i].codec) != 0;
+        /* the codec picked stores that layer */
+        const struct vt_codec *c = vt_codec_find(got);
+        VT_CHECK(c && c->check(256, rows[i].channels, VTS_SAMPLE_U8, NULL) == 0);
+    }
+    VT_CHECK_INT_EQ(wrong, 0);
+    /* other names pass through to the auto rule */
+    VT_CHECK_STR_EQ(
+        vt_tile_sink_layer_codec_name("auto", VTS_SAMPLE_U8, 3, false, VTS_COLOUR_NORMAL), "png");
+    VT_CHECK_STR_EQ(
+        vt_tile_sink_layer_codec_name("bc1", VTS_SAMPLE_U8, 3, false, VTS_COLOUR_NORMAL), "bc1");
+}
+
 static void best_effort_maps_per_codec(void)
 {
     static const struct {
@@ -199,6 +232,7 @@ int main(void)
     }
     VT_RUN(auto_rule_follows_the_table);
     VT_RUN(codec_name_resolves_auto_only);
+    VT_RUN(gpu_rule_picks_bc5_for_normals_and_bc4_for_one_channel);
     VT_RUN(best_effort_maps_per_codec);
     VT_RUN(put_round_trips_through_a_store);
     VT_RUN(put_names_the_tile_an_encoder_refuses);
