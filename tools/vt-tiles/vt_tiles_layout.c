@@ -91,8 +91,9 @@ static int pick_layers(struct layout_run *r)
     return 0;
 }
 
-/* Codec of one layer (auto: the single-image rule for 8-bit texels, png for alpha, normals and
- * data, else jpeg; textures of other depths are converted to 8 bits first). */
+/* Codec of one layer (auto: the single-image rule for the layer's sample type: raw for float,
+ * png for u16, alpha, normals and data, else jpeg). A codec that cannot store the layer's sample
+ * type (jpeg or bc for u16, png for float) is refused, naming the layer. */
 static int pick_codec(struct layout_run *r, uint32_t slot, struct vts_layer *layer,
                       struct vts_error *err)
 {
@@ -100,29 +101,34 @@ static int pick_codec(struct layout_run *r, uint32_t slot, struct vts_layer *lay
     struct vt_atlas_layer_format f;
     vt_atlas_build_format(r->build, slot, &f);
     const char *name = vt_tile_sink_codec_name(o->codec_name ? o->codec_name : VT_TILE_SINK_AUTO,
-                                               VTS_SAMPLE_U8, f.alpha, f.colour);
+                                               f.sample, f.alpha, f.colour);
     const struct vt_codec *codec = vt_codec_find(name);
     if (!codec)
         return vt_usage_error("codec '%s' is not available (raw, png, jpeg, bc1, bc3, auto)", name);
     uint32_t pp = r->lay.tile_content + 2 * r->lay.border;
-    int rc = codec->check(pp, f.channels, VTS_SAMPLE_U8, err);
-    if (rc)
-        return VT_EXIT_BAD_INPUT;
     const struct vt_layout_layer *ll = &r->lay.layers[r->layers[slot]];
+    int rc = codec->check(pp, f.channels, f.sample, err);
+    if (rc) {
+        char why[sizeof err->message];
+        snprintf(why, sizeof why, "%s", err->message);
+        vt_error_set(err, rc, "layer '%s' of '%s' holds %s samples: %s", ll->name, o->layout,
+                     vts_sample_name(f.sample), why);
+        return VT_EXIT_BAD_INPUT;
+    }
     *layer = (struct vts_layer){
-        codec->fourcc, (uint8_t)f.channels, VTS_SAMPLE_U8, (uint8_t)f.colour, 0, 0, {0}};
+        codec->fourcc, (uint8_t)f.channels, (uint8_t)f.sample, (uint8_t)f.colour, 0, 0, {0}};
     layer->codec_param = codec->fourcc == VTS_CODEC_JPEG ? o->quality : 0;
     snprintf(layer->name, sizeof layer->name, "%s", ll->name);
     r->sink_layers[slot] = (struct vt_tile_sink_layer){
         codec,
         {(int)o->quality, vt_tile_sink_effort(codec, o->best), (int)o->subsampling},
         f.channels,
-        VTS_SAMPLE_U8};
-    if (f.converted)
-        vt_log(VT_LOG_WARN, "layer '%s': %u textures are not 8-bit; stored as 8-bit", ll->name,
-               f.converted);
-    vt_log(VT_LOG_INFO, "layer '%s': %u channels (%s), codec %s", ll->name, f.channels,
-           vts_colour_name(f.colour), codec->name);
+        f.sample};
+    vt_log(
+        VT_LOG_INFO,
+        "layer '%s': %u channels (%s), %s samples (textures: %u u8, %u u16, %u f16, %u f32; the widest decides, f32 for u16 with f16), codec %s",
+        ll->name, f.channels, vts_colour_name(f.colour), vts_sample_name(f.sample), f.textures[0],
+        f.textures[1], f.textures[2], f.textures[3], codec->name);
     return 0;
 }
 
