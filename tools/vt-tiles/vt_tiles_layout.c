@@ -255,14 +255,27 @@ static int export_atlas(struct layout_run *r, struct vts_error *err)
     struct vt_png_file_writer *png = NULL;
     struct vt_tiff_file_writer *tiff = NULL;
     struct vt_image band = {0};
+    /* the layer's own samples: 8 or 16 bits in either format, f32 in TIFF */
+    if (f.sample == VTS_SAMPLE_F16 || (is_png && f.sample == VTS_SAMPLE_F32))
+        return vt_error_set(
+            err, VTS_ERR_ARG,
+            "cannot export '%s': layer '%s' holds %s samples (PNG takes u8 and u16, TIFF u8, u16 and f32)",
+            path, r->lay.layers[r->layers[0]].name, vts_sample_name(f.sample));
     int rc = vt_image_alloc(&band, w, h < EXPORT_BAND_ROWS ? h : EXPORT_BAND_ROWS, f.channels,
-                            VTS_SAMPLE_U8, err);
+                            f.sample, err);
     if (rc)
         return rc;
     if (is_png)
-        rc = (png = vt_png_file_writer_create(path, w, h, f.channels, 8, err)) ? 0 : err->status;
-    else
+        rc = (png = vt_png_file_writer_create(path, w, h, f.channels,
+                                              f.sample == VTS_SAMPLE_U16 ? 16 : 8, err))
+                 ? 0
+                 : err->status;
+    else if (f.sample == VTS_SAMPLE_U8)
         rc = (tiff = vt_tiff_file_writer_create(path, w, h, f.channels, err)) ? 0 : err->status;
+    else
+        rc = (tiff = vt_tiff_file_writer_create_sample(path, w, h, f.channels, f.sample, err))
+                 ? 0
+                 : err->status;
     for (uint32_t y = 0; rc == 0 && y < h; y += band.height) {
         struct vt_image v = band;
         v.height = h - y < band.height ? h - y : band.height;

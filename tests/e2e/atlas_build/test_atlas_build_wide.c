@@ -15,6 +15,7 @@
 
 #include "atlas_build_fixture.h"
 #include "vt_layout.h"
+#include "vt_png_file.h"
 #include "vt_synth_images.h"
 #include "vt_test.h"
 #include "vts.h"
@@ -313,6 +314,40 @@ static void test_codec_refused(void)
     VT_CHECK_STR_CONTAINS(abuild_stderr, "holds f32 samples");
 }
 
+/* --export-atlas keeps 16 bits (PNG), refuses f16 naming the layer. */
+static void test_export(void)
+{
+    char args[2400], png[700], out[700];
+    snprintf(png, sizeof png, "%s/diffuse16.png", abuild_dir);
+    snprintf(out, sizeof out, "%s/export.vts", abuild_dir);
+    snprintf(args, sizeof args, "-q --layer diffuse --export-atlas %s --layout %s -o %s", png,
+             layout_path, out);
+    VT_CHECK_INT_EQ(abuild_run(args), 0);
+    struct vt_image img = {0};
+    struct vts_error err;
+    VT_CHECK_INT_EQ(vt_png_file_read(png, &img, &err), 0);
+    VT_CHECK_INT_EQ(img.sample, VTS_SAMPLE_U16);
+    uint64_t bad = 0, bad_wrong = 0;
+    for (uint32_t y = 0; img.pixels && y < SIZE; y++)
+        for (uint32_t x = 0; x < 2 * SIZE; x++)
+            for (uint32_t c = 0; c < 3; c++) {
+                double want, wrong, wk;
+                level0(0, layer_tex[0][x / SIZE], x % SIZE, y, c, false, &want, &wk);
+                level0(0, layer_tex[0][x / SIZE], x % SIZE, y, c, true, &wrong, &wk);
+                double got = sample_at(vt_image_at(&img, x, y), VTS_SAMPLE_U16, c);
+                bad += got != want;
+                bad_wrong += got != wrong;
+            }
+    VT_CHECK_INT_EQ(bad, 0);
+    VT_CHECK(bad_wrong > 0);
+    vt_image_release(&img);
+    snprintf(png, sizeof png, "%s/emission.tif", abuild_dir);
+    snprintf(args, sizeof args, "-q --layer emission --export-atlas %s --layout %s -o %s", png,
+             layout_path, out);
+    VT_CHECK_INT_EQ(abuild_run(args), 1);
+    VT_CHECK_STR_CONTAINS(abuild_stderr, "layer 'emission' holds f16 samples");
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 3) {
@@ -330,6 +365,7 @@ int main(int argc, char **argv)
     VT_RUN(test_texels);
     VT_RUN(test_threads_same_bytes);
     VT_RUN(test_codec_refused);
+    VT_RUN(test_export);
     for (uint32_t i = 0; i < T_COUNT; i++)
         vt_image_release(&texs[i].img);
     return vt_test_main_result();
