@@ -314,6 +314,51 @@ aniso)
     grep -q "expected bilinear, trilinear or anisoN" bad.err || fail "--filtering $bad: message"
   done
   ;;
+float_range)
+  # 16-bit and float layers (stores made by vt-tiles from generated TIFF/PNG files): uploaded in
+  # their own format (GL_R32F, GL_R16), shown through --range and a ramp; the 1:1 frame equals a
+  # CPU reference of range + ramp over the source files' values (vtv_check ramp), and a reference
+  # made for a slightly different range, or another ramp, fails the same threshold.
+  "$synth_image" f.tif --format tiff --size 256x256 --channels 1 --sample f32
+  "$vt_tiles" f.tif -o f.vts --tile-size 64 --border 4 -q
+  vt f.vts --camera one.cam --frames 16 --sync --range 0.25:2.5 --ramp dusk --screenshot f.png \
+    --stats f.json
+  grep -q '"physical_format": "f32"' f.json || fail "f32 not uploaded as float"
+  grep -q '"features": \["diffuse_map", "range", "ramp"\]' f.json || fail "no range+ramp variant"
+  "$check" stat f.json fallback_pixels == 0 || fail "fallback"
+  "$check" ramp f.tif 0.25 2.5 dusk f_ref.png
+  "$check" psnr f.png f_ref.png --min 45 || fail "f32 range+ramp against the CPU reference"
+  "$check" ramp f.tif 0.25 2.6 dusk f_wrong.png
+  "$check" psnr f.png f_wrong.png --max 40 || fail "a wrong range passes"
+  "$check" ramp f.tif 0.25 2.5 heat f_heat.png
+  "$check" psnr f.png f_heat.png --max 30 || fail "a wrong ramp passes"
+  # --ramp none: range only, grey; the default range is the coarsest level's (logged)
+  vt f.vts --camera one.cam --frames 16 --sync --range 0.25:2.5 --ramp none --screenshot g.png \
+    --stats g.json
+  grep -q '"features": \["diffuse_map", "range"\]' g.json || fail "--ramp none kept the ramp"
+  "$check" ramp f.tif 0.25 2.5 grey g_ref.png
+  "$check" psnr g.png g_ref.png --min 45 || fail "f32 grey against the CPU reference"
+  vt f.vts --camera one.cam --frames 2 --sync -v 2>log.txt >/dev/null
+  grep -q "range .* (of the coarsest level), ramp dusk" log.txt || fail "no estimated range"
+  # a one-channel u16 data layer: GL_R16, normalised values, the dusk ramp by default
+  "$synth_image" u.png --format png --size 256x256 --channels 1 --sample u16
+  "$vt_tiles" u.png -o u.vts --tile-size 64 --border 4 --colour data -q
+  vt u.vts --camera one.cam --frames 16 --sync --screenshot u.png2 --stats u.json
+  grep -q '"physical_format": "u16"' u.json || fail "u16 not uploaded as 16-bit"
+  grep -q '"features": \["diffuse_map", "ramp"\]' u.json || fail "u16: no ramp variant"
+  "$check" ramp u.png 0 1 dusk u_ref.png
+  "$check" psnr u.png2 u_ref.png --min 45 || fail "u16 ramp against the CPU reference"
+  # an 8-bit store gets neither (only what the scene calls for); --reference refuses float
+  "$synth_image" c.png --format png --size 256x256 --channels 3 --photo
+  "$vt_tiles" c.png -o c.vts --tile-size 64 --border 4 -q
+  vt c.vts --camera one.cam --frames 2 --sync --screenshot c.png2 --stats c.json
+  grep -q '"features": \["diffuse_map"\]' c.json || fail "8-bit store: range or ramp in its variant"
+  if vt f.vts --camera one.cam --frames 1 --reference --screenshot r.png 2>err.txt; then
+    fail "--reference accepted a float layer"
+  fi
+  grep -q "reference draws 8-bit layers; layer 'diffuse' of f.vts holds f32 samples" err.txt ||
+    fail "--reference refusal: $(cat err.txt)"
+  ;;
 vt_tiles_store)
   # A store made by the real pipeline: vt-tiles (box mips in linear light, sRGB layer) from a
   # generated photo-like PNG; sRGB textures on both sides.
