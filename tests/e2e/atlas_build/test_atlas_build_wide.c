@@ -1,5 +1,7 @@
-/* vt-tiles --layout with 16-bit and float textures: a layout of two entries and three layers,
- * each layer mixing an 8-bit texture with a wider one (a 16-bit PNG, a float EXR, a half EXR).
+/* vt-tiles --layout with 16-bit and float textures: a layout of three entries and three layers,
+ * each layer mixing an 8-bit texture with wider ones (a 16-bit PNG, a float EXR, a half EXR; the
+ * third entry two copies side by side of a half-width wide texture, built from the whole decoded
+ * texture instead of the row stream).
  * The layers come out u16 (sRGB), f32 (data, one channel) and f16 (the layout's sRGB made
  * linear); level-0 texels equal the sources' values (8-bit ones as v * 257 in u16, v / 255 in
  * f32, decoded to linear light in f16); levels 1 and 2 equal a reference 2x2 box reduction
@@ -20,12 +22,13 @@
 #include "vt_test.h"
 #include "vts.h"
 
-#define SIZE    64 /* every texture and entry: SIZE x SIZE */
+#define SIZE    64 /* every entry: SIZE x SIZE (the third: 2 copies of SIZE/2 x SIZE) */
+#define ENTRIES 3
 #define CONTENT 32
 #define BORDER  2
-#define LEVELS  3 /* 128x64, 64x32, 32x16 */
+#define LEVELS  4 /* 192x64, 96x32, 48x16, 24x8 */
 
-enum { T_U16, T_U8A, T_F32, T_U8G, T_F16, T_U8B, T_COUNT };
+enum { T_U16, T_U8A, T_F32, T_U8G, T_F16, T_U8B, T_U16C, T_F32C, T_F16C, T_COUNT };
 struct tex {
     const char *name;
     uint32_t format, channels, sample;
@@ -38,12 +41,16 @@ struct tex {
         .name = n, .format = f, .channels = c, .sample = s                                         \
     }
 static struct tex texs[T_COUNT] = {
-    TEX("u16", VT_SYNTH_PNG, 3, VTS_SAMPLE_U16), TEX("u8a", VT_SYNTH_PNG, 3, VTS_SAMPLE_U8),
-    TEX("f32", VT_SYNTH_EXR, 1, VTS_SAMPLE_F32), TEX("u8g", VT_SYNTH_PNG, 1, VTS_SAMPLE_U8),
-    TEX("f16", VT_SYNTH_EXR, 3, VTS_SAMPLE_F16), TEX("u8b", VT_SYNTH_PNG, 3, VTS_SAMPLE_U8),
+    TEX("u16", VT_SYNTH_PNG, 3, VTS_SAMPLE_U16),  TEX("u8a", VT_SYNTH_PNG, 3, VTS_SAMPLE_U8),
+    TEX("f32", VT_SYNTH_EXR, 1, VTS_SAMPLE_F32),  TEX("u8g", VT_SYNTH_PNG, 1, VTS_SAMPLE_U8),
+    TEX("f16", VT_SYNTH_EXR, 3, VTS_SAMPLE_F16),  TEX("u8b", VT_SYNTH_PNG, 3, VTS_SAMPLE_U8),
+    TEX("u16c", VT_SYNTH_PNG, 3, VTS_SAMPLE_U16), TEX("f32c", VT_SYNTH_EXR, 1, VTS_SAMPLE_F32),
+    TEX("f16c", VT_SYNTH_EXR, 3, VTS_SAMPLE_F16),
 };
 /* layer -> the textures of entries 0 and 1 */
-static const uint32_t layer_tex[3][2] = {{T_U16, T_U8A}, {T_F32, T_U8G}, {T_F16, T_U8B}};
+static const uint32_t layer_tex[3][ENTRIES] = {
+    {T_U16, T_U8A, T_U16C}, {T_F32, T_U8G, T_F32C}, {T_F16, T_U8B, T_F16C}};
+#define COPIES_W (SIZE / 2) /* the copied textures' width */
 static const char *layer_name[3] = {"diffuse", "height", "emission"};
 static const uint32_t layer_colour[3] = {VTS_COLOUR_SRGB, VTS_COLOUR_DATA, VTS_COLOUR_SRGB};
 
@@ -53,7 +60,8 @@ static void make_textures(void)
         struct tex *t = &texs[i];
         vt_synth_image_defaults(&t->o);
         t->o.format = t->format;
-        t->o.width = t->o.height = SIZE;
+        t->o.width = i >= T_U16C ? COPIES_W : SIZE;
+        t->o.height = SIZE;
         t->o.channels = t->channels;
         t->o.sample = t->sample;
         t->o.seed = 40 + i;
@@ -62,7 +70,7 @@ static void make_textures(void)
                  t->format == VT_SYNTH_EXR ? "exr" : "png");
         struct vts_error err;
         VT_CHECK_INT_EQ(vt_synth_image_write(t->path, &t->o, &err), 0);
-        VT_CHECK_INT_EQ(vt_image_alloc(&t->img, SIZE, SIZE, t->channels, t->sample, &err), 0);
+        VT_CHECK_INT_EQ(vt_image_alloc(&t->img, t->o.width, SIZE, t->channels, t->sample, &err), 0);
         vt_synth_image_expected(&t->o, 0, 0, &t->img);
     }
 }
@@ -71,20 +79,21 @@ static void write_layout(const char *path)
 {
     struct vt_layout l;
     struct vts_error err;
-    VT_CHECK_INT_EQ(vt_layout_alloc(&l, 3, 2, &err), 0);
-    l.width = 2 * SIZE, l.height = SIZE, l.tile_content = CONTENT, l.border = BORDER;
+    VT_CHECK_INT_EQ(vt_layout_alloc(&l, 3, ENTRIES, &err), 0);
+    l.width = ENTRIES * SIZE, l.height = SIZE, l.tile_content = CONTENT, l.border = BORDER;
     for (uint32_t k = 0; k < 3; k++)
         l.layers[k] = (struct vt_layout_layer){abuild_strdup(layer_name[k]),
                                                abuild_strdup("map_Kd"), layer_colour[k]};
-    for (uint32_t e = 0; e < 2; e++) {
+    static const char *const names[ENTRIES] = {"left", "middle", "copies"};
+    for (uint32_t e = 0; e < ENTRIES; e++) {
         struct vt_layout_entry *en = &l.entries[e];
-        en->name = abuild_strdup(e ? "right" : "left");
-        en->x = e * SIZE, en->y = 0, en->width = en->height = SIZE;
-        en->repeat_u = en->repeat_v = 1;
+        en->name = abuild_strdup(names[e]);
+        en->x = e * SIZE, en->y = 0, en->width = e == 2 ? COPIES_W : SIZE, en->height = SIZE;
+        en->repeat_u = e == 2 ? 2 : 1, en->repeat_v = 1;
         en->cell_width = en->cell_height = SIZE, en->alignment = SIZE;
         for (uint32_t k = 0; k < 3; k++) {
             en->textures[k].path = abuild_strdup(texs[layer_tex[k][e]].path);
-            en->textures[k].width = en->textures[k].height = SIZE;
+            en->textures[k].width = en->width, en->textures[k].height = SIZE;
         }
     }
     VT_CHECK_INT_EQ(vt_layout_write(path, &l, &err), 0);
@@ -136,15 +145,16 @@ static double sample_at(const void *px, uint32_t sample, size_t i)
     }
 }
 
-/* What level 0 of layer k must hold for texture t, per channel, as the layer's stored value
+/* What level 0 of layer k must hold at texel (x, y) of entry e (the third entry: x modulo the
+ * copies' width), per channel, as the layer's stored value
  * (codes for u16), and the working value (linear light, 0..1 for u16) the reduction averages.
  * wrong: a deliberately wrong rule (8-bit as v * 256 or v / 256, float data halved, no sRGB
  * decoding). */
-static void level0(uint32_t k, uint32_t t, uint32_t x, uint32_t y, uint32_t c, bool wrong,
+static void level0(uint32_t k, uint32_t e, uint32_t x, uint32_t y, uint32_t c, bool wrong,
                    double *stored, double *working)
 {
-    const struct tex *tx = &texs[t];
-    double v = sample_at(vt_image_at(&tx->img, x, y), tx->sample, c);
+    const struct tex *tx = &texs[layer_tex[k][e]];
+    double v = sample_at(vt_image_at(&tx->img, x % tx->img.width, y), tx->sample, c);
     if (k == 0) { /* u16 sRGB */
         double code = tx->sample == VTS_SAMPLE_U8 ? v * (wrong ? 256 : 257) : v;
         *stored = code;
@@ -172,7 +182,7 @@ static double *expected_level(uint32_t k, uint32_t e, uint32_t L, uint32_t ch, b
         for (uint32_t x = 0; x < n; x++)
             for (uint32_t c = 0; c < ch; c++) {
                 size_t i = ((size_t)y * n + x) * ch + c;
-                level0(k, layer_tex[k][e], x, y, c, wrong, &out[i], &w[i]);
+                level0(k, e, x, y, c, wrong, &out[i], &w[i]);
                 if (k == 0 && wrong && L > 0)
                     w[i] = out[i] / 65535.0; /* averaged without linearising */
             }
@@ -238,7 +248,7 @@ static void test_layer_formats(void)
     VT_CHECK_STR_CONTAINS(abuild_stderr, "layer 'diffuse': 3 channels (srgb), u16 samples");
     VT_CHECK_STR_CONTAINS(abuild_stderr, "layer 'height': 1 channels (data), f32 samples");
     VT_CHECK_STR_CONTAINS(abuild_stderr, "layer 'emission': 3 channels (linear), f16 samples");
-    VT_CHECK_STR_CONTAINS(abuild_stderr, "textures: 1 u8, 1 u16, 0 f16, 0 f32");
+    VT_CHECK_STR_CONTAINS(abuild_stderr, "textures: 1 u8, 2 u16, 0 f16, 0 f32");
     VT_CHECK(strstr(abuild_stderr, "not 8-bit") == NULL);
     struct vts_error err;
     struct vts_store *s = vts_open(store_path, &err);
@@ -267,7 +277,7 @@ static void test_texels(void)
     for (uint32_t k = 0; k < 3; k++) {
         struct abuild_reader r;
         VT_CHECK(abuild_reader_open(&r, store_path, k));
-        for (uint32_t e = 0; e < 2; e++)
+        for (uint32_t e = 0; e < ENTRIES; e++)
             for (uint32_t L = 0; L < LEVELS; L++) {
                 VT_CHECK_INT_EQ(mismatches(&r, k, e, L, false, false), 0);
                 /* the comparison catches a wrong rule: every wider texture at level 0 and every
@@ -329,11 +339,11 @@ static void test_export(void)
     VT_CHECK_INT_EQ(img.sample, VTS_SAMPLE_U16);
     uint64_t bad = 0, bad_wrong = 0;
     for (uint32_t y = 0; img.pixels && y < SIZE; y++)
-        for (uint32_t x = 0; x < 2 * SIZE; x++)
+        for (uint32_t x = 0; x < ENTRIES * SIZE; x++)
             for (uint32_t c = 0; c < 3; c++) {
                 double want, wrong, wk;
-                level0(0, layer_tex[0][x / SIZE], x % SIZE, y, c, false, &want, &wk);
-                level0(0, layer_tex[0][x / SIZE], x % SIZE, y, c, true, &wrong, &wk);
+                level0(0, x / SIZE, x % SIZE, y, c, false, &want, &wk);
+                level0(0, x / SIZE, x % SIZE, y, c, true, &wrong, &wk);
                 double got = sample_at(vt_image_at(&img, x, y), VTS_SAMPLE_U16, c);
                 bad += got != want;
                 bad_wrong += got != wrong;
