@@ -105,8 +105,8 @@ out:
     return rc;
 }
 
-/* Converts rows of another sample type into a wider layer (u16 or float): through floats, one
- * row at a time (see vt_mip_chain_convert). */
+/* Converts rows of another sample type into the layer's: through floats, one row at a time (see
+ * vt_mip_chain_convert). */
 static int to_layer_wide(const struct vt_mip_chain_spec *s, const struct vt_source_info *in,
                          const struct vt_image *raw, struct vt_image *out, struct vts_error *err)
 {
@@ -185,48 +185,16 @@ static int to_layer_same(const struct vt_mip_chain_spec *s, const struct vt_sour
     return 0;
 }
 
-/* Converts the source's texels (any channels and sample) into the layer's 8-bit layout. */
+/* Copies 8-bit rows into an 8-bit layer, picking the layer's channels (grey -> RGB, alpha added
+ * as 255 or dropped). */
 static int to_layer_u8(const struct vt_mip_chain_spec *s, const struct vt_source_info *in,
                        const struct vt_image *raw, struct vt_image *out, struct vts_error *err)
 {
     uint32_t och = s->colour_channels + (s->alpha ? 1u : 0u);
+    assert(raw->sample == VTS_SAMPLE_U8);
     int rc = vt_image_alloc(out, raw->width, raw->height, och, VTS_SAMPLE_U8, err);
     if (rc)
         return rc;
-    uint8_t *row8 = NULL;
-    float *rowf = NULL;
-    if (raw->sample != VTS_SAMPLE_U8) {
-        /* values as stored (no linearisation, no premultiplication); float data is linear light,
-         * so it is sRGB-encoded for an sRGB layer */
-        bool is_float = raw->sample == VTS_SAMPLE_F16 || raw->sample == VTS_SAMPLE_F32;
-        struct vt_pixel_mode plain = {raw->channels, VTS_COLOUR_DATA, false};
-        struct vt_pixel_mode enc = {
-            raw->channels,
-            is_float && s->colour == VTS_COLOUR_SRGB ? VTS_COLOUR_SRGB : VTS_COLOUR_DATA, false};
-        if (in->has_alpha && enc.colour == VTS_COLOUR_SRGB)
-            enc.alpha = false; /* alpha stays linear: SRGB mode encodes colour channels only */
-        rowf = malloc((size_t)raw->width * raw->channels * sizeof(float));
-        row8 = malloc((size_t)raw->width * raw->channels);
-        if (!rowf || !row8) {
-            rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory converting a texture");
-            goto out;
-        }
-        for (uint32_t y = 0; y < raw->height; y++) {
-            vt_filter_to_working(&plain, raw->sample, vt_image_at(raw, 0, y), rowf, raw->width);
-            vt_filter_from_working(&enc, VTS_SAMPLE_U8, rowf, row8, raw->width);
-            uint8_t *dst = vt_image_at(out, 0, y);
-            for (uint32_t x = 0; x < raw->width; x++) {
-                const uint8_t *p = row8 + (size_t)x * raw->channels;
-                uint8_t *o = dst + (size_t)x * och;
-                bool grey = raw->channels <= 2;
-                for (uint32_t c = 0; c < s->colour_channels; c++)
-                    o[c] = p[grey ? 0 : c];
-                if (s->alpha)
-                    o[och - 1] = in->has_alpha ? p[raw->channels - 1] : 255;
-            }
-        }
-        goto out;
-    }
     for (uint32_t y = 0; y < raw->height; y++) {
         const uint8_t *src = vt_image_at(raw, 0, y);
         uint8_t *dst = vt_image_at(out, 0, y);
@@ -244,12 +212,7 @@ static int to_layer_u8(const struct vt_mip_chain_spec *s, const struct vt_source
                 o[och - 1] = in->has_alpha ? p[raw->channels - 1] : 255;
         }
     }
-out:
-    free(rowf);
-    free(row8);
-    if (rc)
-        vt_image_release(out);
-    return rc;
+    return 0;
 }
 
 /* The texel of a texture n texels wide that texel x of its nearest-neighbour resampling to
@@ -428,7 +391,7 @@ int vt_mip_chain_convert(const struct vt_mip_chain_spec *s, const struct vt_sour
                          const struct vt_image *raw, struct vt_image *out, struct vts_error *err)
 {
     uint32_t sample = vt_mip_chain_sample(s);
-    if (sample == VTS_SAMPLE_U8)
+    if (sample == VTS_SAMPLE_U8 && raw->sample == VTS_SAMPLE_U8)
         return to_layer_u8(s, in, raw, out, err);
     if (raw->sample == sample)
         return to_layer_same(s, in, raw, out, err);

@@ -59,8 +59,9 @@ int vt_mip_chain_from_image(struct vt_mip_chain *c, const struct vt_mip_chain_sp
                             struct vts_error *err);
 
 /* Step 1 alone: rows of the source (raw, any height) converted to the layer's channels and sample
- * type; out is allocated (free with vt_image_release). Into a u8 layer: 16-bit and float sources
- * become 8-bit (float as linear light, sRGB-encoded for an sRGB layer). Into a u16 layer: 8-bit
+ * type; out is allocated (free with vt_image_release). The atlas build never narrows (a layer's
+ * sample type is its widest texture's); a narrower layer would get the sources' normalised values,
+ * rounded (no sRGB encoding of float values). Into a u16 layer: 8-bit
  * values v become v * 257 (exact). Into a float layer (whose colour is never sRGB: float data is
  * linear): integer sources of an sRGB texture are decoded to linear light (alpha stays as it is),
  * others become their normalised value; f16 into f32 is exact. */
