@@ -74,6 +74,10 @@ struct vt_atlas_layer_format {
     uint32_t colour;      /* enum vts_colour: the layout layer's (linear for its sRGB in floats) */
     uint32_t sample;      /* enum vts_sample */
     uint32_t textures[4]; /* texture files of the layer by sample type (index sample - 1) */
+    bool has_range;       /* f16/f32 layers and u16 layers not sRGB: range holds */
+    float range[2];       /* the smallest and largest finite colour value (alpha excluded) of
+                             the layer's level 0 over its entries (u16: normalised), empty space
+                             excluded */
 };
 
 struct vt_atlas_build;

@@ -160,6 +160,25 @@ static int set_metadata(struct layout_run *r, struct vts_error *err)
         if (rc)
             return rc;
     }
+    /* the value range of 16-bit and float layers, per layer ("-": none), for viewers' --range */
+    char ranges[VT_LAYOUT_MAX_LAYERS * 40] = "";
+    bool any_range = false;
+    for (uint32_t s = 0; s < r->nslots; s++) {
+        struct vt_atlas_layer_format f;
+        vt_atlas_build_format(r->build, s, &f);
+        size_t n = strlen(ranges);
+        if (f.has_range)
+            snprintf(ranges + n, sizeof ranges - n, "%s%.9g:%.9g", s ? "," : "", (double)f.range[0],
+                     (double)f.range[1]);
+        else
+            snprintf(ranges + n, sizeof ranges - n, "%s-", s ? "," : "");
+        any_range |= f.has_range;
+    }
+    if (any_range) {
+        int rc = vts_writer_set_meta(r->writer, "range", ranges, err);
+        if (rc)
+            return rc;
+    }
     /* what each material needs (atlas.json's materials: layers, constants, alpha mode), for
      * renderers that group faces by features (docs/atlas-format.md, "Materials") */
     if (r->lay.material_count) {

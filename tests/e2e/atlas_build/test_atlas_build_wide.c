@@ -272,6 +272,48 @@ static void test_layer_formats(void)
     vts_close(s);
 }
 
+/* The smallest and largest colour value of level 0 of layer k over every entry (by level0()). */
+static void level0_range(uint32_t k, uint32_t ch, bool wrong, double out[2])
+{
+    out[0] = INFINITY, out[1] = -INFINITY;
+    for (uint32_t e = 0; e < ENTRIES; e++)
+        for (uint32_t y = 0; y < SIZE; y++)
+            for (uint32_t x = 0; x < SIZE; x++)
+                for (uint32_t c = 0; c < ch; c++) {
+                    double v, w;
+                    level0(k, e, x, y, c, wrong, &v, &w);
+                    out[0] = v < out[0] ? v : out[0];
+                    out[1] = v > out[1] ? v : out[1];
+                }
+}
+
+/* The "range" metadata: per layer "-" (u16 sRGB) or MIN:MAX of level 0's values. */
+static void test_range_metadata(void)
+{
+    struct vts_error err;
+    struct vts_store *s = vts_open(store_path, &err);
+    VT_CHECK(s != NULL);
+    if (!s)
+        return;
+    const char *m = vts_store_meta_find(s, "range");
+    VT_CHECK(m != NULL);
+    VT_CHECK(m && strncmp(m, "-,", 2) == 0); /* the sRGB u16 layer has none */
+    const char *p = m ? strchr(m, ',') : NULL;
+    for (uint32_t k = 1; p && k < 3; k++) {
+        double got[2], want[2], wrong[2];
+        VT_CHECK_INT_EQ(sscanf(p + 1, "%lf:%lf", &got[0], &got[1]), 2);
+        level0_range(k, vts_store_layer(s, k)->channels, false, want);
+        level0_range(k, vts_store_layer(s, k)->channels, true, wrong);
+        for (int i = 0; i < 2; i++) {
+            VT_CHECK(fabs(got[i] - want[i]) <= 1e-6 * (1 + fabs(want[i])));
+            if (k == 1) /* the f32 layer: halved floats give another range */
+                VT_CHECK(fabs(got[i] - wrong[i]) > 1e-3);
+        }
+        p = strchr(p + 1, ',');
+    }
+    vts_close(s);
+}
+
 static void test_texels(void)
 {
     for (uint32_t k = 0; k < 3; k++) {
@@ -373,6 +415,7 @@ int main(int argc, char **argv)
     write_layout(layout_path);
     VT_RUN(test_layer_formats);
     VT_RUN(test_texels);
+    VT_RUN(test_range_metadata);
     VT_RUN(test_threads_same_bytes);
     VT_RUN(test_codec_refused);
     VT_RUN(test_export);

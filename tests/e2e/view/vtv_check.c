@@ -17,7 +17,8 @@
  *                                                     --ramp RAMP over a one-channel image
  *                                                     (u8/u16 normalised, floats as they are):
  *                                                     an RGB PNG of vtv_ramp_at((v - MIN) /
- *                                                     (MAX - MIN)), rounded
+ *                                                     (MAX - MIN)), rounded; prints the
+ *                                                     image's smallest and largest value
  * Exit 0 when the check holds, 1 when it does not, 2 on bad use or unreadable files. */
 #include <jansson.h>
 #include <math.h>
@@ -296,10 +297,13 @@ static int ramp(int argc, char **argv)
          vt_image_alloc(&out, src.info.width, src.info.height, 3, VTS_SAMPLE_U8, &err)))
         rc = 2;
     struct vt_pixel_mode plain = {1, VTS_COLOUR_DATA, false};
+    float vmin = INFINITY, vmax = -INFINITY;
     for (uint32_t y = 0; rc == 0 && y < img.height; y++)
         for (uint32_t x = 0; x < img.width; x++) {
             float v, rgb[3];
             vt_filter_to_working(&plain, img.sample, vt_image_at(&img, x, y), &v, 1);
+            vmin = v < vmin ? v : vmin;
+            vmax = v > vmax ? v : vmax;
             vtv_ramp_at(k, (float)((v - lo) / (hi - lo)), rgb);
             uint8_t *o = vt_image_at(&out, x, y);
             for (int c = 0; c < 3; c++)
@@ -311,6 +315,8 @@ static int ramp(int argc, char **argv)
         rc = 2;
     if (rc)
         fprintf(stderr, "vtv_check: %s\n", err.message);
+    else
+        printf("min %.9g max %.9g\n", (double)vmin, (double)vmax);
     vt_png_file_writer_destroy(w);
     vt_source_close(&src);
     vt_image_release(&img);
