@@ -366,6 +366,13 @@ EOF
   grep -q '"features": \["diffuse_map", "ramp"\]' u.json || fail "u16: no ramp variant"
   "$check" ramp u.png 0 1 dusk u_ref.png >/dev/null
   "$check" psnr u.png2 u_ref.png --min 45 || fail "u16 ramp against the CPU reference"
+  # the same values as an sRGB u16 layer: decoded to linear f32 for GL (no 16-bit sRGB format),
+  # filtered in linear light, encoded by the sRGB frame: grey with --ramp none, as stored
+  "$vt_tiles" u.png -o us.vts --tile-size 64 --border 4 -q
+  vt us.vts --camera one.cam --frames 16 --sync --ramp none --screenshot us.png --stats us.json
+  grep -q '"physical_format": "f32"' us.json || fail "sRGB u16 not uploaded as linear floats"
+  "$check" ramp u.png 0 1 grey us_ref.png >/dev/null
+  "$check" psnr us.png us_ref.png --min 45 || fail "sRGB u16 against the CPU reference"
   # an 8-bit store gets neither (only what the scene calls for); --reference refuses float
   "$synth_image" c.png --format png --size 256x256 --channels 3 --photo
   "$vt_tiles" c.png -o c.vts --tile-size 64 --border 4 -q
