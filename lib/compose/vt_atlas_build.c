@@ -136,7 +136,7 @@ int vt_atlas_build_tiles(struct vt_atlas_build *b, vt_atlas_emit_fn emit, void *
 int vt_atlas_build_render(struct vt_atlas_build *b, uint32_t s, uint32_t L, uint32_t x, uint32_t y,
                           struct vt_image *dst, struct vts_error *err)
 {
-    if (s >= b->t.nslots || L >= b->level_count || dst->sample != VTS_SAMPLE_U8 ||
+    if (s >= b->t.nslots || L >= b->level_count || dst->sample != b->t.slots[s].fmt.sample ||
         dst->channels != b->t.slots[s].fmt.channels || (uint64_t)x + dst->width > b->t.lw[L] ||
         (uint64_t)y + dst->height > b->t.lh[L])
         return vt_error_set(err, VTS_ERR_ARG, "render: bad region or image");
@@ -151,7 +151,7 @@ int vt_atlas_build_render(struct vt_atlas_build *b, uint32_t s, uint32_t L, uint
             end = end < dst->width ? end : dst->width;
             for (; i < end && rc == 0; i++)
                 rc = vt_atlas_tile_texel(&b->t, w, s, L, x + i, y + j, k,
-                                         o + (size_t)i * dst->channels, err);
+                                         o + (size_t)i * b->t.slots[s].texel_bytes, err);
         }
     }
     vt_atlas_tile_unpin(&b->t, w);
@@ -206,7 +206,7 @@ static int alloc_payloads(struct vt_atlas_build *b, struct vts_error *err)
     for (unsigned t = 0; t < b->o.threads; t++)
         for (uint32_t s = 0; s < b->t.nslots; s++) {
             int rc = vt_image_alloc(&b->workers[t].payload[s], b->t.payload, b->t.payload,
-                                    b->t.slots[s].fmt.channels, VTS_SAMPLE_U8, err);
+                                    b->t.slots[s].fmt.channels, b->t.slots[s].fmt.sample, err);
             if (rc)
                 return rc;
         }

@@ -13,7 +13,8 @@
  * of its copies. A texel whose footprint touches no cell is empty. Any other texel (coarse levels
  * above an entry's alignment) is "mixed": the coverage-weighted average, in the working space, of
  * its four children one level down. A tile whose content texels are all empty is emitted as empty.
- * Output is 8-bit; the bytes do not depend on the number of threads or on the cache size. Details
+ * Output has the layer's sample type (8-bit unless a texture is wider: vt_atlas_layer_format);
+ * the bytes do not depend on the number of threads or on the cache size. Details
  * in docs/atlas-build.md. */
 #ifndef VT_ATLAS_BUILD_H
 #define VT_ATLAS_BUILD_H
@@ -60,14 +61,23 @@ struct vt_atlas_build_options {
     void *progress_user;
 };
 
-/* Output format of one built layer: 8-bit samples, colour_channels (1 when every texture of the
- * layer is grey, else 3) plus alpha when some texture of the layer is not opaque. */
+/* Output format of one built layer: colour_channels (1 when every texture of the layer is grey,
+ * else 3) plus alpha when some texture of the layer is not opaque. The sample type is the widest
+ * its textures need: u8 when every texture is 8-bit; u16 when some is 16-bit and none is float;
+ * with a float texture, f16 when every float texture is f16 and none is 16-bit, else f32 (a
+ * 16-bit texture does not fit in f16's 11 bits). A float layer holds linear values: the layout's
+ * sRGB colour becomes linear (8- and 16-bit sRGB textures are decoded into it). */
 struct vt_atlas_layer_format {
     uint32_t channels;
     uint32_t colour_channels;
     bool alpha;
-    uint32_t colour;    /* enum vts_colour, the layout layer's */
-    uint32_t converted; /* textures that are not 8-bit (converted) */
+    uint32_t colour;      /* enum vts_colour: the layout layer's (linear for its sRGB in floats) */
+    uint32_t sample;      /* enum vts_sample */
+    uint32_t textures[4]; /* texture files of the layer by sample type (index sample - 1) */
+    bool has_range;       /* f16/f32 layers and u16 layers not sRGB: range holds */
+    float range[2];       /* the smallest and largest finite colour value (alpha excluded) of
+                             the layer's level 0 over its entries (u16: normalised), empty space
+                             excluded */
 };
 
 struct vt_atlas_build;
@@ -90,9 +100,9 @@ uint64_t vt_atlas_build_tile_count(const struct vt_atlas_build *b);
 int vt_atlas_build_tiles(struct vt_atlas_build *b, vt_atlas_emit_fn emit, void *user,
                          struct vts_error *err);
 
-/* Texels [x, x + dst->width) x [y, y + dst->height) of level `level` of slot into dst (8-bit, the
- * slot's channels), as the tiles' content holds them (empty space: zero, a flat normal for normal
- * layers). Single-threaded; for --export-atlas. */
+/* Texels [x, x + dst->width) x [y, y + dst->height) of level `level` of slot into dst (the slot's
+ * sample type and channels), as the tiles' content holds them (empty space: zero, a flat normal for
+ * normal layers). Single-threaded; for --export-atlas. */
 int vt_atlas_build_render(struct vt_atlas_build *b, uint32_t slot, uint32_t level, uint32_t x,
                           uint32_t y, struct vt_image *dst, struct vts_error *err);
 

@@ -1,6 +1,7 @@
 /* The texture pass of the atlas build (see internal/vt_atlas_build_impl.h and
  * docs/atlas-build.md): every texture file decoded once, its chains streamed into blocks. */
 #include <assert.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -35,7 +36,9 @@ struct chains_run {
     struct group *groups;
     uint32_t ngroups, *order;        /* groups by decreasing size */
     uint64_t (*alt)[VTS_MAX_LEVELS]; /* per key of a file with alpha: ids of its chain without */
-    int phase;                       /* 0 scan, 1 files with alpha, 2 the others */
+    float (*range)[2]; /* per key: smallest and largest colour value of its level 0 (wide
+                          layers; each key's chain is built by one worker) */
+    int phase;         /* 0 scan, 1 files with alpha, 2 the others */
     uint64_t next, done, total, decodes;
 };
 
@@ -109,8 +112,29 @@ static int plan_blocks(struct chains_run *r, struct vts_error *err)
 struct key_sink {
     struct vt_atlas_tile *t;
     const uint64_t *base; /* block ids of its levels */
-    uint32_t key, channels;
+    uint32_t key;
+    size_t texel_bytes;
+    float *range; /* the key's range to widen with its level 0, or NULL */
 };
+
+/* Widens ks->range with the colour channels of n texels of its chain (alpha, NaN and infinities
+ * skipped). */
+static void widen_range(const struct key_sink *ks, const uint8_t *px, size_t n)
+{
+    const struct vt_atlas_layer_format *f = &ks->t->slots[ks->key % ks->t->nslots].fmt;
+    uint32_t ch = (uint32_t)(ks->texel_bytes / vts_sample_bytes(f->sample));
+    struct vt_pixel_mode plain = {ch, VTS_COLOUR_DATA, false};
+    float *range = ks->range;
+    for (size_t i = 0; i < n; i++) {
+        float v[4];
+        vt_filter_to_working(&plain, f->sample, px + i * ks->texel_bytes, v, 1);
+        for (uint32_t c = 0; c < f->colour_channels; c++)
+            if (isfinite(v[c])) {
+                range[0] = v[c] < range[0] ? v[c] : range[0];
+                range[1] = v[c] > range[1] ? v[c] : range[1];
+            }
+    }
+}
 
 static int put_block(void *user, uint32_t level, uint32_t bx, uint32_t by, const uint8_t *px,
                      uint32_t w, uint32_t h, struct vts_error *err)
@@ -119,13 +143,15 @@ static int put_block(void *user, uint32_t level, uint32_t bx, uint32_t by, const
     const struct vt_atlas_chain_info *ci = &ks->t->chains[ks->key];
     uint32_t lw = ci->fill ? 1 : ceil_shift(ci->w0, level);
     uint64_t id = ks->base[level] + (uint64_t)by * ceil_shift(lw, VT_BLOCK_CACHE_SHIFT) + bx;
-    return vt_block_cache_put(ks->t->blocks, id, px, (size_t)w * h * ks->channels, err);
+    if (ks->range && level == 0)
+        widen_range(ks, px, (size_t)w * h);
+    return vt_block_cache_put(ks->t->blocks, id, px, (size_t)w * h * ks->texel_bytes, err);
 }
 
 /* Cuts a whole chain into its blocks. */
 static int put_chain(struct key_sink *ks, const struct vt_mip_chain *c, struct vts_error *err)
 {
-    uint8_t *block = malloc((size_t)VT_BLOCK_CACHE_EDGE * VT_BLOCK_CACHE_EDGE * 4);
+    uint8_t *block = malloc((size_t)VT_BLOCK_CACHE_EDGE * VT_BLOCK_CACHE_EDGE * 16);
     if (!block)
         return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for a texture block");
     int rc = 0;
@@ -168,6 +194,8 @@ static void key_spec(const struct chains_run *r, uint32_t key, bool alpha,
                                        .colour_channels = f->colour_channels,
                                        .alpha = alpha,
                                        .colour = f->colour,
+                                       .sample = f->sample,
+                                       .srgb_source = t->slots[key % t->nslots].srgb_source,
                                        .filter = r->o->filter,
                                        .max_pixels = r->o->max_pixels};
 }
@@ -187,12 +215,12 @@ struct file_job {
 };
 
 /* Bytes the job's buffers hold outside the cache: the decoded rows, one key's converted band
- * (at most 4 channels) and every stream's buffers, plus `more` expected. */
+ * (at most 4 channels of 4 bytes) and every stream's buffers, plus `more` expected. */
 static uint64_t job_bytes(const struct file_job *j, uint32_t rows, uint64_t more)
 {
     const struct vt_source_info *in = &j->src.info;
     uint64_t b = (uint64_t)in->width * rows * in->channels * vts_sample_bytes(in->sample);
-    b += (uint64_t)in->width * BAND_ROWS * 4 + more;
+    b += (uint64_t)in->width * BAND_ROWS * 16 + more;
     for (uint32_t i = 0; i < j->n; i++)
         b += j->cs[i] ? vt_chain_stream_bytes(j->cs[i]) : 0;
     return b;
@@ -210,18 +238,19 @@ static int job_reserve(struct file_job *j, uint64_t bytes, struct vts_error *err
 }
 
 /* What the job's first bands will add: per stream, a few float bands of the texture's width
- * (conversion, output, filter scratch, kept rows); a whole decode, its chains (8-bit levels,
- * 4/3 of each crop at most 4 channels). */
+ * (conversion, output, filter scratch, kept rows); a whole decode, its chains (levels of the
+ * layer's sample type, 4/3 of each crop at most 4 channels). */
 static uint64_t job_expected(const struct file_job *j)
 {
     uint64_t more = 0;
     for (uint32_t i = 0; i < j->n; i++) {
         const struct vt_mip_chain_spec *s = &j->spec[i];
         uint64_t ch = s->colour_channels + (s->alpha ? 1u : 0u);
+        uint64_t tb = ch * vts_sample_bytes(vt_mip_chain_sample(s));
         if (j->cs[i])
             more += 4ull * BAND_ROWS * j->src.info.width * ch * sizeof(float);
         else
-            more += (uint64_t)s->crop_width * s->crop_height * ch * 4 / 3;
+            more += (uint64_t)s->crop_width * s->crop_height * tb * 4 / 3;
     }
     return more;
 }
@@ -318,8 +347,11 @@ static int build_group(struct chains_run *r, const struct group *g, struct vts_e
         uint32_t k = j.n++, pre;
         j.keys[k] = key;
         key_spec(r, key, alpha, &j.spec[k]);
-        j.sink[k] = (struct key_sink){t, i % 2 ? r->alt[key] : t->chains[key].base, key,
-                                      t->slots[key % t->nslots].fmt.colour_channels + alpha};
+        j.sink[k] =
+            (struct key_sink){t, i % 2 ? r->alt[key] : t->chains[key].base, key,
+                              (t->slots[key % t->nslots].fmt.colour_channels + alpha) *
+                                  vts_sample_bytes(t->slots[key % t->nslots].fmt.sample),
+                              t->slots[key % t->nslots].fmt.has_range ? r->range[key] : NULL};
         if ((rc = check_limit(&j.spec[k], path, err)) != 0)
             break;
         if (vt_chain_stream_fits(&j.spec[k], j.src.info.width, j.src.info.height, &pre))
@@ -436,24 +468,53 @@ static void decide_formats(struct chains_run *r, bool final)
     for (uint32_t s = 0; s < t->nslots; s++) {
         struct vt_atlas_tile_slot *sl = &t->slots[s];
         bool grey = true, alpha = false;
-        uint32_t converted = 0;
         for (uint32_t e = 0; e < t->lay->entry_count; e++) {
             const struct tex_info *ti = &r->tex[(size_t)e * t->nslots + s];
             grey &= ti->channels <= 2;
             alpha |= !ti->opaque || (!final && ti->has_alpha);
-            converted += ti->sample != VTS_SAMPLE_U8;
         }
-        sl->fmt.colour = t->lay->layers[sl->layer].colour;
+        /* texture files by sample type: each file once (a group is one file) */
+        memset(sl->fmt.textures, 0, sizeof sl->fmt.textures);
+        for (uint32_t g = 0; g < r->ngroups; g++) {
+            const struct group *gr = &r->groups[g];
+            for (uint32_t i = 0; i < gr->count; i++) {
+                uint32_t key = r->keys[gr->first + i];
+                if (key % t->nslots != s)
+                    continue;
+                uint8_t sample = r->tex[key].sample;
+                if (sample >= VTS_SAMPLE_U8 && sample <= VTS_SAMPLE_F32)
+                    sl->fmt.textures[sample - 1]++;
+                break;
+            }
+        }
+        const uint32_t *n = sl->fmt.textures;
+        uint32_t sample = VTS_SAMPLE_U8;
+        if (n[VTS_SAMPLE_F32 - 1] || (n[VTS_SAMPLE_F16 - 1] && n[VTS_SAMPLE_U16 - 1]))
+            sample = VTS_SAMPLE_F32;
+        else if (n[VTS_SAMPLE_F16 - 1])
+            sample = VTS_SAMPLE_F16;
+        else if (n[VTS_SAMPLE_U16 - 1])
+            sample = VTS_SAMPLE_U16;
+        bool is_float = sample == VTS_SAMPLE_F16 || sample == VTS_SAMPLE_F32;
+        uint32_t colour = t->lay->layers[sl->layer].colour;
+        sl->srgb_source = is_float && colour == VTS_COLOUR_SRGB;
+        sl->fmt.colour = sl->srgb_source ? VTS_COLOUR_LINEAR : colour;
+        sl->fmt.sample = sample;
+        /* the range of the values a viewer maps (docs/atlas-build.md): float and linear u16 */
+        sl->fmt.has_range = is_float || (sample == VTS_SAMPLE_U16 && colour != VTS_COLOUR_SRGB);
         sl->fmt.colour_channels = grey && sl->fmt.colour != VTS_COLOUR_NORMAL ? 1 : 3;
         sl->fmt.alpha = alpha;
         sl->fmt.channels = sl->fmt.colour_channels + (alpha ? 1u : 0u);
-        sl->fmt.converted = converted;
+        sl->texel_bytes = (size_t)sl->fmt.channels * vts_sample_bytes(sample);
         sl->mode = (struct vt_pixel_mode){sl->fmt.channels, sl->fmt.colour,
                                           alpha && sl->fmt.colour != VTS_COLOUR_DATA};
         memset(sl->empty_px, 0, sizeof sl->empty_px);
-        if (sl->fmt.colour == VTS_COLOUR_NORMAL) { /* a flat normal, not (-1,-1,-1) */
-            sl->empty_px[0] = sl->empty_px[1] = 128;
+        if (sl->fmt.colour == VTS_COLOUR_NORMAL && sample == VTS_SAMPLE_U8) {
+            sl->empty_px[0] = sl->empty_px[1] = 128; /* a flat normal, not (-1,-1,-1) */
             sl->empty_px[2] = 255;
+        } else if (sl->fmt.colour == VTS_COLOUR_NORMAL) { /* (0, 0, 1), alpha 0 */
+            const float flat[4] = {0.0f, 0.0f, 1.0f, 0.0f};
+            vt_filter_from_working(&sl->mode, sample, flat, sl->empty_px, 1);
         }
     }
 }
@@ -562,7 +623,8 @@ static int build_fills(struct chains_run *r, struct vts_error *err)
         key_spec(r, (uint32_t)k, t->slots[k % t->nslots].fmt.alpha, &spec);
         rc = vt_mip_chain_from_fill(&c, &spec, key_texture(t, (uint32_t)k)->fill, err);
         struct key_sink ks = {t, t->chains[k].base, (uint32_t)k,
-                              t->slots[k % t->nslots].fmt.channels};
+                              t->slots[k % t->nslots].texel_bytes,
+                              t->slots[k % t->nslots].fmt.has_range ? r->range[k] : NULL};
         if (rc == 0)
             rc = put_chain(&ks, &c, err);
         vt_mip_chain_release(&c);
@@ -576,7 +638,12 @@ int vt_atlas_chains_build(struct vt_atlas_tile *t, const struct vt_atlas_build_o
     struct chains_run r = {.t = t, .o = o, .level_count = level_count};
     size_t nkeys = (size_t)t->lay->entry_count * t->nslots;
     r.tex = calloc(nkeys ? nkeys : 1, sizeof *r.tex);
-    int rc = r.tex ? 0 : vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the atlas tables");
+    r.range = malloc((nkeys ? nkeys : 1) * sizeof *r.range);
+    int rc = r.tex && r.range
+                 ? 0
+                 : vt_error_set(err, VTS_ERR_NOMEM, "out of memory for the atlas tables");
+    for (size_t k = 0; rc == 0 && k < nkeys; k++)
+        r.range[k][0] = INFINITY, r.range[k][1] = -INFINITY;
     if (rc == 0)
         rc = plan_chains(&r, err);
     if (rc == 0)
@@ -605,9 +672,19 @@ int vt_atlas_chains_build(struct vt_atlas_tile *t, const struct vt_atlas_build_o
     }
     if (rc == 0)
         rc = build_fills(&r, err);
+    for (uint32_t s = 0; rc == 0 && s < t->nslots; s++) {
+        struct vt_atlas_layer_format *f = &t->slots[s].fmt;
+        f->range[0] = INFINITY, f->range[1] = -INFINITY;
+        for (size_t k = s; f->has_range && k < nkeys; k += t->nslots) {
+            f->range[0] = r.range[k][0] < f->range[0] ? r.range[k][0] : f->range[0];
+            f->range[1] = r.range[k][1] > f->range[1] ? r.range[k][1] : f->range[1];
+        }
+        f->has_range = f->has_range && f->range[0] <= f->range[1];
+    }
     *decodes = r.decodes;
     free(r.tex);
     free(r.alt);
+    free(r.range);
     free(r.keys);
     free(r.groups);
     free(r.order);

@@ -143,7 +143,7 @@ static int owned_run(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, ui
     }
     int64_t x0 = i & ~(int64_t)m;
     uint32_t bw = lw - x0 < VT_BLOCK_CACHE_EDGE ? (uint32_t)(lw - x0) : VT_BLOCK_CACHE_EDGE;
-    *out = w->last_px + ((size_t)(j & m) * bw + (size_t)(i & m)) * t->slots[s].fmt.channels;
+    *out = w->last_px + ((size_t)(j & m) * bw + (size_t)(i & m)) * t->slots[s].texel_bytes;
     /* texels X + 1 ... read the next ones of the block's row until its end (the chain's) */
     *run = clamped ? 1 : bw - (uint32_t)(i & m);
     return 0;
@@ -188,7 +188,7 @@ static int mixed_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, 
             const uint8_t *p;
             rc = owned_texel(t, w, s, (uint32_t)k, L - 1, cx, cy, &p, err);
             if (rc == 0)
-                vt_filter_to_working(&sl->mode, VTS_SAMPLE_U8, p, v, 1);
+                vt_filter_to_working(&sl->mode, sl->fmt.sample, p, v, 1);
         } else {
             rc = mixed_texel(t, w, s, L - 1, cx, cy, v, &cw, err);
         }
@@ -214,12 +214,12 @@ int vt_atlas_tile_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w,
                         struct vts_error *err)
 {
     const struct vt_atlas_tile_slot *sl = &t->slots[s];
-    uint32_t ch = sl->fmt.channels;
+    size_t tb = sl->texel_bytes;
     if (k >= 0) {
         const uint8_t *p;
         int rc = owned_texel(t, w, s, (uint32_t)k, L, X, Y, &p, err);
         if (rc == 0)
-            memcpy(o, p, ch);
+            memcpy(o, p, tb);
         return rc;
     }
     if (k == VT_ATLAS_TILE_MIXED) {
@@ -228,11 +228,11 @@ int vt_atlas_tile_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w,
         if (rc)
             return rc;
         if (cov > 0.0f) {
-            vt_filter_from_working(&sl->mode, VTS_SAMPLE_U8, v, o, 1);
+            vt_filter_from_working(&sl->mode, sl->fmt.sample, v, o, 1);
             return 0;
         }
     }
-    memcpy(o, sl->empty_px, ch);
+    memcpy(o, sl->empty_px, tb);
     return 0;
 }
 
@@ -274,7 +274,8 @@ int vt_atlas_tile_fill_payload(struct vt_atlas_tile *t, struct vt_atlas_tile_wor
                                struct vts_error *err)
 {
     struct vt_image *p = &w->payload[s];
-    uint32_t ch = t->slots[s].fmt.channels, bd = t->border;
+    size_t tb = t->slots[s].texel_bytes;
+    uint32_t bd = t->border;
     int64_t lw = t->lw[L], lh = t->lh[L];
     for (uint32_t j = 0; j < t->payload; j++) {
         int64_t Y = (int64_t)cy0 - bd + j;
@@ -282,7 +283,7 @@ int vt_atlas_tile_fill_payload(struct vt_atlas_tile *t, struct vt_atlas_tile_wor
         int64_t Yc = Yn < cy0 ? cy0 : Yn >= cy0 + chh ? cy0 + chh - 1 : Yn;
         uint8_t *o = vt_image_at(p, 0, j);
         const int32_t *cls = w->cls + (size_t)(Yc - cy0) * t->content;
-        for (uint32_t i = 0; i < t->payload; i++, o += ch) {
+        for (uint32_t i = 0; i < t->payload; i++, o += tb) {
             int64_t X = (int64_t)cx0 - bd + i;
             if (Y == Yc && X >= cx0 && X < (int64_t)cx0 + cw && cls[X - cx0] >= 0) {
                 /* content texels of one owner: runs of a block's row (no group, no clamp) */
@@ -294,9 +295,9 @@ int vt_atlas_tile_fill_payload(struct vt_atlas_tile *t, struct vt_atlas_tile_wor
                 uint32_t m = 1;
                 while (m < n && c + m < cw && cls[c + m] == cls[c])
                     m++;
-                memcpy(o, src, (size_t)m * ch);
+                memcpy(o, src, (size_t)m * tb);
                 i += m - 1;
-                o += (size_t)(m - 1) * ch;
+                o += (size_t)(m - 1) * tb;
                 continue;
             }
             int64_t Xn = X < 0 ? 0 : X >= lw ? lw - 1 : X;
@@ -310,7 +311,7 @@ int vt_atlas_tile_fill_payload(struct vt_atlas_tile *t, struct vt_atlas_tile_wor
                 bool wrap = t->lay->entries[k].wrap;
                 rc = owned_texel(t, w, s, (uint32_t)k, L, wrap ? X : Xn, wrap ? Y : Yn, &src, err);
                 if (rc == 0)
-                    memcpy(o, src, ch);
+                    memcpy(o, src, tb);
             } else {
                 uint32_t run;
                 if (Xn != Xc || Yn != Yc)

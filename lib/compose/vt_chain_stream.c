@@ -48,13 +48,15 @@ struct vt_chain_stream {
     struct vt_pixel_mode mode;
     struct vt_kernel kern;
     uint32_t ch, pre, nstages, nlevels;
+    uint32_t sample; /* the layer's (enum vts_sample) */
+    size_t tb;       /* bytes of a stored texel */
     struct stage st[MAX_STAGES];
     struct level_acc acc[VTS_MAX_LEVELS];
     float *out, *scratch, *conv; /* a band of coarser rows, the filter's scratch, converted rows */
     size_t out_n, scratch_n, conv_n;
     float *gather; /* the finer rows of a wrapped band, gathered in order */
     size_t gather_n;
-    uint8_t *u8, *block; /* a band of 8-bit rows; one block */
+    uint8_t *u8, *block; /* a band of stored rows (the layer's sample type); one block */
     size_t u8_n;
     size_t bytes; /* of every buffer above */
     vt_chain_stream_emit_fn emit;
@@ -98,8 +100,6 @@ static int reserve(void **p, size_t *cap, size_t n, size_t elem, size_t *total,
     return 0;
 }
 
-/* The next n rows of a level (8-bit, tight, w wide) into its accumulator; full rows of blocks
- * are emitted. */
 /* Reduces src into dst (dst.px unset: its rows go to cs->out, grown as needed, with the scratch
  * the reduction needs), renormalising normals. */
 static int reduce_out(struct vt_chain_stream *cs, const struct vt_kernel *k,
@@ -122,11 +122,13 @@ static int reduce_out(struct vt_chain_stream *cs, const struct vt_kernel *k,
     return 0;
 }
 
+/* The next n rows of a level (stored texels, tight, w wide) into its accumulator; full rows of
+ * blocks are emitted. */
 static int level_rows(struct vt_chain_stream *cs, uint32_t l, const uint8_t *px, uint32_t n,
                       size_t stride, struct vts_error *err)
 {
     struct level_acc *a = &cs->acc[l];
-    size_t rb = (size_t)a->w * cs->ch;
+    size_t rb = (size_t)a->w * cs->tb;
     const uint32_t E = VT_CHAIN_STREAM_EDGE;
     for (uint32_t r = 0; r < n; r++) {
         assert(a->y < a->h);
@@ -142,8 +144,8 @@ static int level_rows(struct vt_chain_stream *cs, uint32_t l, const uint8_t *px,
             uint32_t x0 = bx * E;
             uint32_t bw = a->w - x0 < E ? a->w - x0 : E;
             for (uint32_t j = 0; j < bh; j++)
-                memcpy(cs->block + (size_t)j * bw * cs->ch, band + j * rb + (size_t)x0 * cs->ch,
-                       (size_t)bw * cs->ch);
+                memcpy(cs->block + (size_t)j * bw * cs->tb, band + j * rb + (size_t)x0 * cs->tb,
+                       (size_t)bw * cs->tb);
             int rc = cs->emit(cs->user, l, bx, by, cs->block, bw, bh, err);
             if (rc)
                 return rc;
@@ -304,24 +306,24 @@ static int stage_output(struct vt_chain_stream *cs, uint32_t i, uint32_t n, stru
 {
     struct stage *s = &cs->st[i];
     size_t nt = (size_t)s->dw * n;
-    int rc = reserve((void **)&cs->u8, &cs->u8_n, nt * cs->ch, 1, &cs->bytes, err);
+    int rc = reserve((void **)&cs->u8, &cs->u8_n, nt * cs->tb, 1, &cs->bytes, err);
     if (rc)
         return rc;
     bool last_pre = s->level < 0 && i + 1 == cs->pre;
     if (s->level >= 0 || last_pre) {
-        vt_filter_from_working(&cs->mode, VTS_SAMPLE_U8, cs->out, cs->u8, nt);
+        vt_filter_from_working(&cs->mode, cs->sample, cs->out, cs->u8, nt);
         rc = level_rows(cs, s->level >= 0 ? (uint32_t)s->level : 0, cs->u8, n,
-                        (size_t)s->dw * cs->ch, err);
+                        (size_t)s->dw * cs->tb, err);
     }
     if (rc || i + 1 >= cs->nstages)
         return rc;
     if (!last_pre) /* the next reduction reads these floats as they are (build_levels) */
         return stage_feed(cs, i + 1, cs->out, n, err);
-    /* level 0 from the texture's own mip level: reduced again from its 8-bit texels */
+    /* level 0 from the texture's own mip level: reduced again from its stored texels */
     if ((rc = reserve((void **)&cs->conv, &cs->conv_n, nt * cs->ch, sizeof(float), &cs->bytes,
                       err)) != 0)
         return rc;
-    vt_filter_to_working(&cs->mode, VTS_SAMPLE_U8, cs->u8, cs->conv, nt);
+    vt_filter_to_working(&cs->mode, cs->sample, cs->u8, cs->conv, nt);
     return stage_feed(cs, i + 1, cs->conv, n, err);
 }
 
@@ -387,7 +389,7 @@ static int stage_feed(struct vt_chain_stream *cs, uint32_t i, const float *rows,
 int vt_chain_stream_push(struct vt_chain_stream *cs, const struct vt_image *rows,
                          struct vts_error *err)
 {
-    assert(rows->sample == VTS_SAMPLE_U8 && rows->channels == cs->ch);
+    assert(rows->sample == cs->sample && rows->channels == cs->ch);
     int rc = 0;
     if (cs->pre == 0)
         rc = level_rows(cs, 0, rows->pixels, rows->height, rows->stride, err);
@@ -398,7 +400,7 @@ int vt_chain_stream_push(struct vt_chain_stream *cs, const struct vt_image *rows
                       err)) != 0)
         return rc;
     for (uint32_t y = 0; y < rows->height; y++)
-        vt_filter_to_working(&cs->mode, VTS_SAMPLE_U8, vt_image_at(rows, 0, y),
+        vt_filter_to_working(&cs->mode, cs->sample, vt_image_at(rows, 0, y),
                              cs->conv + (size_t)y * rows->width * cs->ch, rows->width);
     /* stage 0 copies the rows before it runs, so conv may be reused below it */
     float *conv = cs->conv;
@@ -430,6 +432,8 @@ struct vt_chain_stream *vt_chain_stream_create(const struct vt_mip_chain_spec *s
     vt_mip_chain_mode(s, &cs->mode);
     vt_kernel_init(&cs->kern, s->filter);
     cs->ch = cs->mode.channels;
+    cs->sample = vt_mip_chain_sample(s);
+    cs->tb = (size_t)cs->ch * vts_sample_bytes(cs->sample);
     cs->pre = pre;
     cs->nlevels = s->level_count;
     cs->nstages = pre + s->level_count - 1;
@@ -458,14 +462,14 @@ struct vt_chain_stream *vt_chain_stream_create(const struct vt_mip_chain_spec *s
         w = st->dw;
         h = st->dh;
     }
-    ok = ok && (cs->block = malloc((size_t)VT_CHAIN_STREAM_EDGE * VT_CHAIN_STREAM_EDGE * cs->ch));
-    cs->bytes += (size_t)VT_CHAIN_STREAM_EDGE * VT_CHAIN_STREAM_EDGE * cs->ch;
+    ok = ok && (cs->block = malloc((size_t)VT_CHAIN_STREAM_EDGE * VT_CHAIN_STREAM_EDGE * cs->tb));
+    cs->bytes += (size_t)VT_CHAIN_STREAM_EDGE * VT_CHAIN_STREAM_EDGE * cs->tb;
     for (uint32_t l = 0; ok && l < cs->nlevels && l < VTS_MAX_LEVELS; l++) {
         struct level_acc *a = &cs->acc[l];
         a->w = ceil_shift(s->width, l);
         a->h = ceil_shift(s->height, l);
         a->rot %= a->h;
-        size_t band = (size_t)a->w * cs->ch * VT_CHAIN_STREAM_EDGE;
+        size_t band = (size_t)a->w * cs->tb * VT_CHAIN_STREAM_EDGE;
         ok = (a->rows = malloc(band));
         if (ok && a->rot % VT_CHAIN_STREAM_EDGE)
             ok = (a->split = malloc(band));

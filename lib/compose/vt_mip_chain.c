@@ -7,6 +7,7 @@
 
 #include "vt_checked.h"
 #include "vt_error.h"
+#include "vts.h"
 
 static uint32_t ceil_shift(uint32_t v, uint32_t k)
 {
@@ -17,6 +18,11 @@ void vt_mip_chain_mode(const struct vt_mip_chain_spec *s, struct vt_pixel_mode *
 {
     *out = (struct vt_pixel_mode){s->colour_channels + (s->alpha ? 1u : 0u), s->colour,
                                   s->alpha && s->colour != VTS_COLOUR_DATA};
+}
+
+uint32_t vt_mip_chain_sample(const struct vt_mip_chain_spec *s)
+{
+    return s->sample ? s->sample : VTS_SAMPLE_U8;
 }
 
 void vt_mip_chain_release(struct vt_mip_chain *c)
@@ -99,48 +105,96 @@ out:
     return rc;
 }
 
-/* Converts the source's texels (any channels and sample) into the layer's 8-bit layout. */
+/* Converts rows of another sample type into the layer's: through floats, one row at a time (see
+ * vt_mip_chain_convert). */
+static int to_layer_wide(const struct vt_mip_chain_spec *s, const struct vt_source_info *in,
+                         const struct vt_image *raw, struct vt_image *out, struct vts_error *err)
+{
+    uint32_t och = s->colour_channels + (s->alpha ? 1u : 0u), ich = raw->channels;
+    uint32_t sample = vt_mip_chain_sample(s);
+    bool is_int = raw->sample == VTS_SAMPLE_U8 || raw->sample == VTS_SAMPLE_U16;
+    bool linearise = s->srgb_source && is_int;
+    struct vt_pixel_mode plain = {ich, VTS_COLOUR_DATA, false};
+    struct vt_pixel_mode srgb = {ich, VTS_COLOUR_SRGB, false};
+    struct vt_pixel_mode outm = {och, VTS_COLOUR_DATA, false};
+    float *rowf = malloc((size_t)raw->width * ich * sizeof(float));
+    float *rowl = malloc((size_t)raw->width * ich * sizeof(float));
+    float *rowo = malloc((size_t)raw->width * och * sizeof(float));
+    int rc = rowf && rowl && rowo
+                 ? vt_image_alloc(out, raw->width, raw->height, och, sample, err)
+                 : vt_error_set(err, VTS_ERR_NOMEM, "out of memory converting a texture");
+    bool grey = ich <= 2;
+    for (uint32_t y = 0; rc == 0 && y < raw->height; y++) {
+        const void *src = vt_image_at(raw, 0, y);
+        vt_filter_to_working(&plain, raw->sample, src, rowf, raw->width);
+        if (linearise) /* every channel decoded; alpha is taken from rowf */
+            vt_filter_to_working(&srgb, raw->sample, src, rowl, raw->width);
+        const float *colour = linearise ? rowl : rowf;
+        for (uint32_t x = 0; x < raw->width; x++) {
+            const float *p = colour + (size_t)x * ich;
+            float *o = rowo + (size_t)x * och;
+            for (uint32_t c = 0; c < s->colour_channels; c++)
+                o[c] = p[grey ? 0 : c];
+            if (s->alpha)
+                o[och - 1] = in->has_alpha ? rowf[(size_t)x * ich + ich - 1] : 1.0f;
+        }
+        vt_filter_from_working(&outm, sample, rowo, vt_image_at(out, 0, y), raw->width);
+    }
+    free(rowf);
+    free(rowl);
+    free(rowo);
+    if (rc)
+        vt_image_release(out);
+    return rc;
+}
+
+/* Copies rows of the layer's own sample type, picking the layer's channels. */
+static int to_layer_same(const struct vt_mip_chain_spec *s, const struct vt_source_info *in,
+                         const struct vt_image *raw, struct vt_image *out, struct vts_error *err)
+{
+    uint32_t och = s->colour_channels + (s->alpha ? 1u : 0u);
+    size_t sb = vts_sample_bytes(raw->sample);
+    int rc = vt_image_alloc(out, raw->width, raw->height, och, raw->sample, err);
+    if (rc)
+        return rc;
+    /* an opaque alpha: the sample type's one */
+    uint8_t one[4];
+    if (raw->sample == VTS_SAMPLE_U16)
+        memcpy(one, &(uint16_t){65535}, 2);
+    else if (raw->sample == VTS_SAMPLE_F16)
+        memcpy(one, &(uint16_t){0x3c00}, 2);
+    else
+        memcpy(one, &(float){1.0f}, 4);
+    for (uint32_t y = 0; y < raw->height; y++) {
+        const uint8_t *src = vt_image_at(raw, 0, y);
+        uint8_t *dst = vt_image_at(out, 0, y);
+        if (raw->channels == och) {
+            memcpy(dst, src, (size_t)raw->width * och * sb);
+            continue;
+        }
+        bool grey = raw->channels <= 2;
+        for (uint32_t x = 0; x < raw->width; x++) {
+            const uint8_t *p = src + (size_t)x * raw->channels * sb;
+            uint8_t *o = dst + (size_t)x * och * sb;
+            for (uint32_t c = 0; c < s->colour_channels; c++)
+                memcpy(o + c * sb, p + (grey ? 0 : c) * sb, sb);
+            if (s->alpha)
+                memcpy(o + (och - 1) * sb, in->has_alpha ? p + (raw->channels - 1) * sb : one, sb);
+        }
+    }
+    return 0;
+}
+
+/* Copies 8-bit rows into an 8-bit layer, picking the layer's channels (grey -> RGB, alpha added
+ * as 255 or dropped). */
 static int to_layer_u8(const struct vt_mip_chain_spec *s, const struct vt_source_info *in,
                        const struct vt_image *raw, struct vt_image *out, struct vts_error *err)
 {
     uint32_t och = s->colour_channels + (s->alpha ? 1u : 0u);
+    assert(raw->sample == VTS_SAMPLE_U8);
     int rc = vt_image_alloc(out, raw->width, raw->height, och, VTS_SAMPLE_U8, err);
     if (rc)
         return rc;
-    uint8_t *row8 = NULL;
-    float *rowf = NULL;
-    if (raw->sample != VTS_SAMPLE_U8) {
-        /* values as stored (no linearisation, no premultiplication); float data is linear light,
-         * so it is sRGB-encoded for an sRGB layer */
-        bool is_float = raw->sample == VTS_SAMPLE_F16 || raw->sample == VTS_SAMPLE_F32;
-        struct vt_pixel_mode plain = {raw->channels, VTS_COLOUR_DATA, false};
-        struct vt_pixel_mode enc = {
-            raw->channels,
-            is_float && s->colour == VTS_COLOUR_SRGB ? VTS_COLOUR_SRGB : VTS_COLOUR_DATA, false};
-        if (in->has_alpha && enc.colour == VTS_COLOUR_SRGB)
-            enc.alpha = false; /* alpha stays linear: SRGB mode encodes colour channels only */
-        rowf = malloc((size_t)raw->width * raw->channels * sizeof(float));
-        row8 = malloc((size_t)raw->width * raw->channels);
-        if (!rowf || !row8) {
-            rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory converting a texture");
-            goto out;
-        }
-        for (uint32_t y = 0; y < raw->height; y++) {
-            vt_filter_to_working(&plain, raw->sample, vt_image_at(raw, 0, y), rowf, raw->width);
-            vt_filter_from_working(&enc, VTS_SAMPLE_U8, rowf, row8, raw->width);
-            uint8_t *dst = vt_image_at(out, 0, y);
-            for (uint32_t x = 0; x < raw->width; x++) {
-                const uint8_t *p = row8 + (size_t)x * raw->channels;
-                uint8_t *o = dst + (size_t)x * och;
-                bool grey = raw->channels <= 2;
-                for (uint32_t c = 0; c < s->colour_channels; c++)
-                    o[c] = p[grey ? 0 : c];
-                if (s->alpha)
-                    o[och - 1] = in->has_alpha ? p[raw->channels - 1] : 255;
-            }
-        }
-        goto out;
-    }
     for (uint32_t y = 0; y < raw->height; y++) {
         const uint8_t *src = vt_image_at(raw, 0, y);
         uint8_t *dst = vt_image_at(out, 0, y);
@@ -158,12 +212,7 @@ static int to_layer_u8(const struct vt_mip_chain_spec *s, const struct vt_source
                 o[och - 1] = in->has_alpha ? p[raw->channels - 1] : 255;
         }
     }
-out:
-    free(rowf);
-    free(row8);
-    if (rc)
-        vt_image_release(out);
-    return rc;
+    return 0;
 }
 
 /* The texel of a texture n texels wide that texel x of its nearest-neighbour resampling to
@@ -173,9 +222,9 @@ static uint32_t nearest_texel(uint32_t x, uint32_t n, uint32_t n_out)
     return (uint32_t)(((2 * (uint64_t)x + 1) * n) / (2 * (uint64_t)n_out));
 }
 
-/* Reduces an 8-bit image k times in the working space (the texture's own mip level k). */
-static int reduce_u8(const struct vt_mip_chain_spec *s, const struct vt_image *src, uint32_t k,
-                     struct vt_image *dst, struct vts_error *err)
+/* Reduces a layer-format image k times in the working space (the texture's own mip level k). */
+static int reduce_stored(const struct vt_mip_chain_spec *s, const struct vt_image *src, uint32_t k,
+                         struct vt_image *dst, struct vts_error *err)
 {
     struct vt_pixel_mode m;
     vt_mip_chain_mode(s, &m);
@@ -187,7 +236,7 @@ static int reduce_u8(const struct vt_mip_chain_spec *s, const struct vt_image *s
     if (rc)
         return rc;
     for (uint32_t y = 0; y < h; y++)
-        vt_filter_to_working(&m, VTS_SAMPLE_U8, vt_image_at(src, 0, y),
+        vt_filter_to_working(&m, src->sample, vt_image_at(src, 0, y),
                              cur + (size_t)y * w * m.channels, w);
     for (uint32_t i = 0; i < k && rc == 0; i++) {
         float *next = NULL;
@@ -198,9 +247,9 @@ static int reduce_u8(const struct vt_mip_chain_spec *s, const struct vt_image *s
         h = ceil_shift(h, 1);
     }
     if (rc == 0)
-        rc = vt_image_alloc(dst, w, h, m.channels, VTS_SAMPLE_U8, err);
+        rc = vt_image_alloc(dst, w, h, m.channels, src->sample, err);
     for (uint32_t y = 0; rc == 0 && y < h; y++)
-        vt_filter_from_working(&m, VTS_SAMPLE_U8, cur + (size_t)y * w * m.channels,
+        vt_filter_from_working(&m, src->sample, cur + (size_t)y * w * m.channels,
                                vt_image_at(dst, 0, y), w);
     free(cur);
     return rc;
@@ -225,7 +274,7 @@ static int resample(const struct vt_mip_chain_spec *s, struct vt_image *img, boo
         return 0;
     }
     struct vt_image out = {0};
-    int rc = reduce_u8(s, img, k, &out, err);
+    int rc = reduce_stored(s, img, k, &out, err);
     if (rc)
         return rc;
     vt_image_release(img);
@@ -244,7 +293,7 @@ static int crop_copies(const struct vt_mip_chain_spec *s, struct vt_image *img, 
     if (!nearest && s->crop_x == 0 && s->crop_y == 0 && s->crop_width == W && s->crop_height == H)
         return 0; /* one whole copy: img is level 0 */
     struct vt_image out;
-    int rc = vt_image_alloc(&out, s->crop_width, s->crop_height, img->channels, VTS_SAMPLE_U8, err);
+    int rc = vt_image_alloc(&out, s->crop_width, s->crop_height, img->channels, img->sample, err);
     if (rc)
         return rc;
     size_t tb = vt_image_texel_bytes(img);
@@ -280,8 +329,9 @@ static int build_levels(struct vt_mip_chain *c, const struct vt_mip_chain_spec *
     struct vt_kernel kern;
     vt_kernel_init(&kern, s->filter);
     const struct vt_image *l0 = &c->levels[0];
-    uint32_t w = l0->width, h = l0->height;
-    c->bytes = (size_t)w * h * m.channels;
+    uint32_t w = l0->width, h = l0->height, sample = l0->sample;
+    size_t tb = vt_image_texel_bytes(l0);
+    c->bytes = (size_t)w * h * tb;
     c->level_count = 1;
     if (s->level_count <= 1)
         return 0;
@@ -290,8 +340,8 @@ static int build_levels(struct vt_mip_chain *c, const struct vt_mip_chain_spec *
     if (rc)
         return rc;
     for (uint32_t y = 0; y < h; y++)
-        vt_filter_to_working(&m, VTS_SAMPLE_U8, vt_image_at(l0, 0, y),
-                             cur + (size_t)y * w * m.channels, w);
+        vt_filter_to_working(&m, sample, vt_image_at(l0, 0, y), cur + (size_t)y * w * m.channels,
+                             w);
     for (uint32_t l = 1; l < s->level_count && rc == 0; l++) {
         float *next = NULL;
         if ((rc = reduce_once(&kern, &m, cur, w, h, s->wrap, &next, err)) != 0)
@@ -301,12 +351,12 @@ static int build_levels(struct vt_mip_chain *c, const struct vt_mip_chain_spec *
         w = ceil_shift(w, 1);
         h = ceil_shift(h, 1);
         struct vt_image *lv = &c->levels[l];
-        if ((rc = vt_image_alloc(lv, w, h, m.channels, VTS_SAMPLE_U8, err)) != 0)
+        if ((rc = vt_image_alloc(lv, w, h, m.channels, sample, err)) != 0)
             break;
         for (uint32_t y = 0; y < h; y++)
-            vt_filter_from_working(&m, VTS_SAMPLE_U8, cur + (size_t)y * w * m.channels,
+            vt_filter_from_working(&m, sample, cur + (size_t)y * w * m.channels,
                                    vt_image_at(lv, 0, y), w);
-        c->bytes += (size_t)w * h * m.channels;
+        c->bytes += (size_t)w * h * tb;
         c->level_count = l + 1;
     }
     free(cur);
@@ -340,7 +390,12 @@ int vt_mip_chain_from_source(struct vt_mip_chain *c, const struct vt_mip_chain_s
 int vt_mip_chain_convert(const struct vt_mip_chain_spec *s, const struct vt_source_info *in,
                          const struct vt_image *raw, struct vt_image *out, struct vts_error *err)
 {
-    return to_layer_u8(s, in, raw, out, err);
+    uint32_t sample = vt_mip_chain_sample(s);
+    if (sample == VTS_SAMPLE_U8 && raw->sample == VTS_SAMPLE_U8)
+        return to_layer_u8(s, in, raw, out, err);
+    if (raw->sample == sample)
+        return to_layer_same(s, in, raw, out, err);
+    return to_layer_wide(s, in, raw, out, err);
 }
 
 int vt_mip_chain_from_image(struct vt_mip_chain *c, const struct vt_mip_chain_spec *s,
@@ -348,7 +403,7 @@ int vt_mip_chain_from_image(struct vt_mip_chain *c, const struct vt_mip_chain_sp
                             struct vts_error *err)
 {
     memset(c, 0, sizeof *c);
-    int rc = to_layer_u8(s, in, raw, &c->levels[0], err);
+    int rc = vt_mip_chain_convert(s, in, raw, &c->levels[0], err);
     bool nearest = false;
     if (rc == 0)
         rc = resample(s, &c->levels[0], &nearest, err);
@@ -365,25 +420,39 @@ int vt_mip_chain_from_fill(struct vt_mip_chain *c, const struct vt_mip_chain_spe
                            const double fill[4], struct vts_error *err)
 {
     memset(c, 0, sizeof *c);
-    uint32_t ch = s->colour_channels + (s->alpha ? 1u : 0u);
-    uint8_t px[4];
-    for (uint32_t i = 0; i < s->colour_channels; i++) {
-        double v = fill[i] < 0 ? 0 : fill[i] > 1 ? 1 : fill[i];
-        px[i] = (uint8_t)(v * 255.0 + 0.5);
+    uint32_t ch = s->colour_channels + (s->alpha ? 1u : 0u), sample = vt_mip_chain_sample(s);
+    double d[4];
+    float v[4];
+    for (uint32_t i = 0; i < s->colour_channels; i++)
+        d[i] = fill[i] < 0 ? 0 : fill[i] > 1 ? 1 : fill[i];
+    if (s->alpha)
+        d[ch - 1] = fill[3] < 0 ? 0 : fill[3] > 1 ? 1 : fill[3];
+    for (uint32_t i = 0; i < ch; i++)
+        v[i] = (float)d[i];
+    uint8_t px[16];
+    if (sample == VTS_SAMPLE_U8) {
+        for (uint32_t i = 0; i < ch; i++)
+            px[i] = (uint8_t)(d[i] * 255.0 + 0.5);
+    } else {
+        if (s->srgb_source) { /* stored (sRGB) values into a float layer: linear light */
+            struct vt_pixel_mode srgb = {s->colour_channels, VTS_COLOUR_SRGB, false};
+            float lin[4];
+            vt_filter_to_working(&srgb, VTS_SAMPLE_F32, v, lin, 1);
+            memcpy(v, lin, s->colour_channels * sizeof(float));
+        }
+        struct vt_pixel_mode plain = {ch, VTS_COLOUR_DATA, false};
+        vt_filter_from_working(&plain, sample, v, px, 1);
     }
-    if (s->alpha) {
-        double a = fill[3] < 0 ? 0 : fill[3] > 1 ? 1 : fill[3];
-        px[ch - 1] = (uint8_t)(a * 255.0 + 0.5);
-    }
+    size_t tb = ch * vts_sample_bytes(sample);
     uint32_t n = s->level_count ? s->level_count : 1;
     for (uint32_t l = 0; l < n; l++) {
-        int rc = vt_image_alloc(&c->levels[l], 1, 1, ch, VTS_SAMPLE_U8, err);
+        int rc = vt_image_alloc(&c->levels[l], 1, 1, ch, sample, err);
         if (rc) {
             vt_mip_chain_release(c);
             return rc;
         }
-        memcpy(c->levels[l].pixels, px, ch);
-        c->bytes += ch;
+        memcpy(c->levels[l].pixels, px, tb);
+        c->bytes += tb;
     }
     c->level_count = n;
     return 0;

@@ -91,8 +91,9 @@ static int pick_layers(struct layout_run *r)
     return 0;
 }
 
-/* Codec of one layer (auto: the single-image rule for 8-bit texels, png for alpha, normals and
- * data, else jpeg; textures of other depths are converted to 8 bits first). */
+/* Codec of one layer (auto: the single-image rule for the layer's sample type: raw for float,
+ * png for u16, alpha, normals and data, else jpeg). A codec that cannot store the layer's sample
+ * type (jpeg or bc for u16, png for float) is refused, naming the layer. */
 static int pick_codec(struct layout_run *r, uint32_t slot, struct vts_layer *layer,
                       struct vts_error *err)
 {
@@ -100,31 +101,36 @@ static int pick_codec(struct layout_run *r, uint32_t slot, struct vts_layer *lay
     struct vt_atlas_layer_format f;
     vt_atlas_build_format(r->build, slot, &f);
     const char *name =
-        vt_tile_sink_layer_codec_name(o->codec_name ? o->codec_name : VT_TILE_SINK_AUTO,
-                                      VTS_SAMPLE_U8, f.channels, f.alpha, f.colour);
+        vt_tile_sink_layer_codec_name(o->codec_name ? o->codec_name : VT_TILE_SINK_AUTO, f.sample,
+                                      f.channels, f.alpha, f.colour);
     const struct vt_codec *codec = vt_codec_find(name);
     if (!codec)
         return vt_usage_error(
             "codec '%s' is not available (raw, png, jpeg, bc1, bc3, bc4, bc5, auto, gpu)", name);
     uint32_t pp = r->lay.tile_content + 2 * r->lay.border;
-    int rc = codec->check(pp, f.channels, VTS_SAMPLE_U8, err);
-    if (rc)
-        return VT_EXIT_BAD_INPUT;
     const struct vt_layout_layer *ll = &r->lay.layers[r->layers[slot]];
+    int rc = codec->check(pp, f.channels, f.sample, err);
+    if (rc) {
+        char why[sizeof err->message];
+        snprintf(why, sizeof why, "%s", err->message);
+        vt_error_set(err, rc, "layer '%s' of '%s' holds %s samples: %s", ll->name, o->layout,
+                     vts_sample_name(f.sample), why);
+        return VT_EXIT_BAD_INPUT;
+    }
     *layer = (struct vts_layer){
-        codec->fourcc, (uint8_t)f.channels, VTS_SAMPLE_U8, (uint8_t)f.colour, 0, 0, {0}};
+        codec->fourcc, (uint8_t)f.channels, (uint8_t)f.sample, (uint8_t)f.colour, 0, 0, {0}};
     layer->codec_param = codec->fourcc == VTS_CODEC_JPEG ? o->quality : 0;
     snprintf(layer->name, sizeof layer->name, "%s", ll->name);
     r->sink_layers[slot] = (struct vt_tile_sink_layer){
         codec,
         {(int)o->quality, vt_tile_sink_effort(codec, o->best), (int)o->subsampling},
         f.channels,
-        VTS_SAMPLE_U8};
-    if (f.converted)
-        vt_log(VT_LOG_WARN, "layer '%s': %u textures are not 8-bit; stored as 8-bit", ll->name,
-               f.converted);
-    vt_log(VT_LOG_INFO, "layer '%s': %u channels (%s), codec %s", ll->name, f.channels,
-           vts_colour_name(f.colour), codec->name);
+        f.sample};
+    vt_log(
+        VT_LOG_INFO,
+        "layer '%s': %u channels (%s), %s samples (textures: %u u8, %u u16, %u f16, %u f32; the widest decides, f32 for u16 with f16), codec %s",
+        ll->name, f.channels, vts_colour_name(f.colour), vts_sample_name(f.sample), f.textures[0],
+        f.textures[1], f.textures[2], f.textures[3], codec->name);
     return 0;
 }
 
@@ -153,6 +159,25 @@ static int set_metadata(struct layout_run *r, struct vts_error *err)
                               {"wrap", "no"}};
     for (size_t i = 0; i < sizeof pairs / sizeof pairs[0]; i++) {
         int rc = vts_writer_set_meta(r->writer, pairs[i][0], pairs[i][1], err);
+        if (rc)
+            return rc;
+    }
+    /* the value range of 16-bit and float layers, per layer ("-": none), for viewers' --range */
+    char ranges[VT_LAYOUT_MAX_LAYERS * 40] = "";
+    bool any_range = false;
+    for (uint32_t s = 0; s < r->nslots; s++) {
+        struct vt_atlas_layer_format f;
+        vt_atlas_build_format(r->build, s, &f);
+        size_t n = strlen(ranges);
+        if (f.has_range)
+            snprintf(ranges + n, sizeof ranges - n, "%s%.9g:%.9g", s ? "," : "", (double)f.range[0],
+                     (double)f.range[1]);
+        else
+            snprintf(ranges + n, sizeof ranges - n, "%s-", s ? "," : "");
+        any_range |= f.has_range;
+    }
+    if (any_range) {
+        int rc = vts_writer_set_meta(r->writer, "range", ranges, err);
         if (rc)
             return rc;
     }
@@ -251,14 +276,27 @@ static int export_atlas(struct layout_run *r, struct vts_error *err)
     struct vt_png_file_writer *png = NULL;
     struct vt_tiff_file_writer *tiff = NULL;
     struct vt_image band = {0};
+    /* the layer's own samples: 8 or 16 bits in either format, f32 in TIFF */
+    if (f.sample == VTS_SAMPLE_F16 || (is_png && f.sample == VTS_SAMPLE_F32))
+        return vt_error_set(
+            err, VTS_ERR_ARG,
+            "cannot export '%s': layer '%s' holds %s samples (PNG takes u8 and u16, TIFF u8, u16 and f32)",
+            path, r->lay.layers[r->layers[0]].name, vts_sample_name(f.sample));
     int rc = vt_image_alloc(&band, w, h < EXPORT_BAND_ROWS ? h : EXPORT_BAND_ROWS, f.channels,
-                            VTS_SAMPLE_U8, err);
+                            f.sample, err);
     if (rc)
         return rc;
     if (is_png)
-        rc = (png = vt_png_file_writer_create(path, w, h, f.channels, 8, err)) ? 0 : err->status;
-    else
+        rc = (png = vt_png_file_writer_create(path, w, h, f.channels,
+                                              f.sample == VTS_SAMPLE_U16 ? 16 : 8, err))
+                 ? 0
+                 : err->status;
+    else if (f.sample == VTS_SAMPLE_U8)
         rc = (tiff = vt_tiff_file_writer_create(path, w, h, f.channels, err)) ? 0 : err->status;
+    else
+        rc = (tiff = vt_tiff_file_writer_create_sample(path, w, h, f.channels, f.sample, err))
+                 ? 0
+                 : err->status;
     for (uint32_t y = 0; rc == 0 && y < h; y += band.height) {
         struct vt_image v = band;
         v.height = h - y < band.height ? h - y : band.height;

@@ -12,6 +12,7 @@
 #include "vt_error.h"
 #include "vtv_camera.h"
 #include "vtv_context.h"
+#include "vtv_display.h"
 #include "vtv_mesh.h"
 #include "vtv_output.h"
 #include "vtv_reference.h"
@@ -31,6 +32,7 @@ void vtv_options_default(struct vtv_options *o)
     o->ram_tiles = UINT32_MAX; /* as many as the physical cache */
     o->prefetch = true;
     o->auto_lod = true;
+    o->ramp = -1;
     const float dir[3] = {0.3f, 0.8f, 0.5f}, colour[3] = {0.85f, 0.85f, 0.85f},
                 ambient[3] = {0.15f, 0.15f, 0.15f};
     memcpy(o->light_dir, dir, sizeof(dir));
@@ -275,6 +277,11 @@ static int setup(struct app *a, struct vts_error *err)
     if (st != 0)
         return st;
     set_light(&a->render, o);
+    st = vtv_display_choose(
+        a->store, a->layers[VTV_MAP_DIFFUSE] != UINT32_MAX ? a->layers[VTV_MAP_DIFFUSE] : layer,
+        o->has_range ? o->range : NULL, o->ramp, &a->render.display, err);
+    if (st != 0)
+        return st;
     if (!o->reference_scene) {
         st = vtv_render_set_mesh(&a->render, &a->mesh,
                                  o->reference ? 1u << VTV_PROG_REFERENCE
@@ -423,8 +430,12 @@ static int loop(struct app *a, struct vts_error *err)
             .variant_count = a->render.variant_count,
             .physical_format = o->reference               ? "none"
                                : a->render.bc_format != 0 ? "bc"
-                               : a->render.srgb           ? "srgb8_alpha8"
-                                                          : "rgba8",
+                               : a->render.phys_upload[VTV_MAP_DIFFUSE][1] == GL_UNSIGNED_SHORT
+                                   ? "u16"
+                               : a->render.phys_upload[VTV_MAP_DIFFUSE][1] == GL_HALF_FLOAT ? "f16"
+                               : a->render.phys_upload[VTV_MAP_DIFFUSE][1] == GL_FLOAT      ? "f32"
+                               : a->render.srgb ? "srgb8_alpha8"
+                                                : "rgba8",
         };
         size_t count = n < o->frames ? n : o->frames;
         int s = vtv_write_stats(o->stats, &info, a->stats, count, err);

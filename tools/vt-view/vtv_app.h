@@ -18,6 +18,9 @@ struct vtv_options {
     float light_dir[3], light_colour[3], ambient[3]; /* --light, --light-colour, --ambient */
     bool auto_lod;                                   /* --lod-bias auto (default) */
     float lod_bias;                                  /* --lod-bias N */
+    bool has_range;                                  /* --range MIN:MAX given */
+    float range[2];                                  /* its MIN, MAX (MIN < MAX) */
+    int ramp; /* --ramp: enum vtv_ramp_kind, or -1 (default: a ramp for one-channel wide layers) */
 };
 
 void vtv_options_default(struct vtv_options *o);

@@ -1,4 +1,5 @@
-/* vt-view tile loader: read + decode + convert to RGBA8, synchronously or on threads. */
+/* vt-view tile loader: read + decode + convert to RGBA8 (16-bit and float layers: their own
+ * format, vtv_wide.h), synchronously or on threads. */
 #include "vtv_loader.h"
 
 #include <assert.h>
@@ -10,6 +11,7 @@
 #include "vt_codec.h"
 #include "vt_error.h"
 #include "vt_image.h"
+#include "vtv_wide.h"
 
 #define VTV_QUEUE_MAX 1024u
 #define VTV_POOL_MAX  256u
@@ -27,7 +29,8 @@ struct loader_layer {
     uint32_t index;
     const struct vt_codec *codec;
     struct vts_layer info;
-    size_t bc_bytes; /* > 0: hand over BC blocks of this size instead of decoding */
+    size_t bc_bytes;             /* > 0: hand over BC blocks of this size instead of decoding */
+    struct vtv_texel_format fmt; /* what a tile holds for it (RGBA8 unless 16-bit or float) */
 };
 
 struct vtv_loader {
@@ -36,7 +39,7 @@ struct vtv_loader {
     uint32_t layer_count;
     uint32_t payload_px;
     uint32_t max_payload;
-    size_t stride; /* bytes of one layer in a result: payload_px^2 * 4 */
+    size_t stride; /* bytes of one layer in a result: payload_px^2 * the widest texel (>= 4) */
     /* threads */
     pthread_t *threads;
     uint32_t thread_count;
@@ -147,7 +150,10 @@ static int load_layer(struct vtv_loader *l, struct scratch *sc, uint32_t k, uint
     if (st != 0) /* the codec's message does not say which tile */
         return vt_error_set(err, st, "'%s': tile %u,%u of level %u: %s", vts_store_name(l->store),
                             x, y, level, e.message);
-    to_rgba8(&sc->img[k], dst);
+    if (ly->fmt.sample == VTS_SAMPLE_U8)
+        to_rgba8(&sc->img[k], dst);
+    else
+        vtv_wide_convert(&sc->img[k], &ly->info, dst);
     return 0;
 }
 
@@ -157,7 +163,7 @@ static int load_layer(struct vtv_loader *l, struct scratch *sc, uint32_t k, uint
 static void fill_empty(const struct vtv_loader *l, uint32_t k, uint8_t *dst)
 {
     memset(dst, 0, l->stride);
-    if (l->layers[k].info.colour != VTS_COLOUR_NORMAL)
+    if (l->layers[k].info.colour != VTS_COLOUR_NORMAL || l->layers[k].fmt.sample != VTS_SAMPLE_U8)
         return;
     if (l->layers[k].bc_bytes) {
         for (size_t i = 0; l->layers[k].info.codec == VTS_CODEC_BC5 && i < l->layers[k].bc_bytes;
@@ -308,11 +314,8 @@ static int setup_layer(const struct vts_store *store, uint32_t index, bool compr
         return vt_error_set(err, VTS_ERR_UNSUPPORTED, "%s: codec '%s' is not built into vt-view",
                             vts_store_name(store), name);
     }
-    if (info->sample != VTS_SAMPLE_U8 && info->sample != VTS_SAMPLE_U16)
-        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
-                            "%s: layer '%s' has %s samples; vt-view shows u8 and u16",
-                            vts_store_name(store), info->name, vts_sample_name(info->sample));
     ly->index = index;
+    vtv_wide_format(info, &ly->fmt);
     ly->codec = codec;
     ly->info = *info;
     ly->bc_bytes = 0;
@@ -344,12 +347,16 @@ struct vtv_loader *vtv_loader_create_layers(const struct vts_store *store, const
     l->payload_px = g->tile_payload_px;
     l->stride = (size_t)l->payload_px * l->payload_px * 4;
     l->max_payload = vts_store_max_payload(store);
-    for (uint32_t k = 0; k < layer_count; k++)
+    for (uint32_t k = 0; k < layer_count; k++) {
         if (setup_layer(store, layers[k], (compressed_mask >> k) & 1u, l->payload_px, &l->layers[k],
                         err) != 0) {
             free(l);
             return NULL;
         }
+        size_t tb = vtv_wide_texel_bytes(&l->layers[k].fmt);
+        size_t slice = (size_t)l->payload_px * l->payload_px * tb;
+        l->stride = slice > l->stride ? slice : l->stride;
+    }
     l->layer_count = layer_count;
     pthread_mutex_init(&l->mu, NULL);
     pthread_cond_init(&l->wake, NULL);
@@ -445,4 +452,9 @@ void vtv_loader_wait_idle(struct vtv_loader *l)
     while (l->thread_count > 0 && (l->busy > 0 || l->queue_len > 0))
         pthread_cond_wait(&l->idle, &l->mu);
     pthread_mutex_unlock(&l->mu);
+}
+
+size_t vtv_loader_slice_bytes(const struct vtv_loader *l)
+{
+    return l->stride;
 }

@@ -1,5 +1,6 @@
 /* vt-view tile loader: reads a tile through libvts, decodes it with the layer's codec and converts
- * it to RGBA8 payload texels (content + borders), either on the calling thread (--sync, the
+ * it to RGBA8 payload texels (content + borders; 16-bit and float layers in their own format,
+ * vtv_wide.h), either on the calling thread (--sync, the
  * reference image, the benchmark) or on background threads that take a prioritised queue. */
 #ifndef VTV_LOADER_H
 #define VTV_LOADER_H
@@ -16,10 +17,11 @@ struct vtv_load {
     bool empty;      /* stored with length 0 */
     int status;      /* 0 or a negative vt_status (message in error) */
     char error[512]; /* when status != 0 */
-    uint8_t *rgba;   /* per layer of the loader, in its order, payload_px^2 * 4 bytes: RGBA8
-                        texels (a compressed BC1/BC3 layer: its blocks as stored, first); NULL
-                        when empty (every layer stored empty) or failed */
-    size_t bytes;    /* bytes in rgba: layers * payload_px^2 * 4 */
+    uint8_t *rgba;   /* per layer of the loader, in its order, vtv_loader_slice_bytes() each:
+                        RGBA8 texels (a compressed BC1/BC3 layer: its blocks as stored, first; a
+                        16-bit or float layer: its vtv_wide_format, first); NULL when empty
+                        (every layer stored empty) or failed */
+    size_t bytes;    /* bytes in rgba: layers * vtv_loader_slice_bytes() */
     size_t bytes_read;
     struct vtv_load *next;
 };
@@ -35,8 +37,7 @@ enum vtv_loader_flags {
 
 /* Decodes tiles of `layer` of store; threads = 0 gives a loader without threads (only
  * vtv_loader_load_now); flags: enum vtv_loader_flags (ignored unless the layer is BC1/BC3).
- * Returns NULL and fills err on failure (bad layer, codec not built in, sample type other than
- * u8/u16). */
+ * Returns NULL and fills err on failure (bad layer, codec not built in). */
 struct vtv_loader *vtv_loader_create(const struct vts_store *store, uint32_t layer,
                                      uint32_t threads, unsigned flags, struct vts_error *err);
 /* Reads the same tile position of each of layer_count layers (1..VTV_LOADER_MAX_LAYERS) into one
@@ -48,6 +49,10 @@ struct vtv_loader *vtv_loader_create_layers(const struct vts_store *store, const
                                             uint32_t layer_count, uint32_t threads,
                                             unsigned compressed_mask, struct vts_error *err);
 void vtv_loader_destroy(struct vtv_loader *l);
+
+/* Bytes of one layer's slice in a result: payload_px^2 times the widest texel of its layers, at
+ * least 4 (RGBA8). */
+size_t vtv_loader_slice_bytes(const struct vtv_loader *l);
 
 /* Reads and decodes one tile on the calling thread (one such thread at a time: it uses the
  * loader's own buffers). Returns a result to give back with vtv_loader_release() (or free with

@@ -11,6 +11,7 @@
 #include "vt_atomic_file.h"
 #include "vt_output_path.h"
 #include "vtv_app.h"
+#include "vtv_ramp.h"
 
 static const char usage_text[] =
     "usage: vt-view STORE.vts [SCENE.vt.obj] [options]\n"
@@ -49,6 +50,11 @@ static const char usage_text[] =
     "  --light X,Y,Z         direction towards the directional light (default 0.3,0.8,0.5)\n"
     "  --light-colour R,G,B  its colour, linear (default 0.85,0.85,0.85)\n"
     "  --ambient R,G,B       ambient light, linear (default 0.15,0.15,0.15)\n"
+    "  --range MIN:MAX       show the layer's values MIN..MAX as 0..1 (default: the store's\n"
+    "                        range metadata, else 0..1 for u8 and u16 layers and the range of\n"
+    "                        the coarsest level for float layers)\n"
+    "  --ramp NAME|none      one-channel layers through a colour ramp: dusk, heat, grey, or none\n"
+    "                        (default: dusk for one-channel u16/f16/f32 layers, else none)\n"
     "  --bc-upload auto|off  BC1..BC5 tiles: upload the blocks compressed when the GL has S3TC\n"
     "                        or RGTC (auto, default) or decode them on the CPU (off)\n"
     "  -q, --quiet           errors only\n"
@@ -82,6 +88,8 @@ enum {
     OPT_LIGHT_COLOUR,
     OPT_AMBIENT,
     OPT_LOD_BIAS,
+    OPT_RANGE,
+    OPT_RAMP,
     OPT_VERSION,
 };
 
@@ -149,6 +157,8 @@ int main(int argc, char **argv)
         {"light-colour", required_argument, NULL, OPT_LIGHT_COLOUR},
         {"ambient", required_argument, NULL, OPT_AMBIENT},
         {"lod-bias", required_argument, NULL, OPT_LOD_BIAS},
+        {"range", required_argument, NULL, OPT_RANGE},
+        {"ramp", required_argument, NULL, OPT_RAMP},
         {"quiet", no_argument, NULL, 'q'},
         {"verbose", no_argument, NULL, 'v'},
         {"help", no_argument, NULL, 'h'},
@@ -284,6 +294,29 @@ int main(int argc, char **argv)
             if (!o.auto_lod && (end == optarg || *end || !(b >= 0 && b <= 16)))
                 return vt_usage_error("--lod-bias '%s': expected auto or 0..16", optarg);
             o.lod_bias = o.auto_lod ? 0.0f : (float)b;
+            break;
+        }
+        case OPT_RANGE: {
+            char *end, *mid;
+            double lo = strtod(optarg, &mid), hi = 0;
+            bool ok = mid != optarg && *mid == ':';
+            if (ok)
+                hi = strtod(mid + 1, &end);
+            ok = ok && end != mid + 1 && *end == '\0' && isfinite(lo) && isfinite(hi) && lo < hi &&
+                 fabs(lo) <= 3e38 && fabs(hi) <= 3e38 && (float)lo < (float)hi;
+            if (!ok)
+                return vt_usage_error("--range '%s': expected MIN:MAX, finite numbers, MIN < MAX",
+                                      optarg);
+            o.has_range = true;
+            o.range[0] = (float)lo;
+            o.range[1] = (float)hi;
+            break;
+        }
+        case OPT_RAMP: {
+            enum vtv_ramp_kind k;
+            if (!vtv_ramp_parse(optarg, &k))
+                return vt_usage_error("--ramp '%s': expected dusk, heat, grey or none", optarg);
+            o.ramp = (int)k;
             break;
         }
         case 'q':

@@ -4,12 +4,12 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char *const feature_names[VTV_F_COUNT] = {"diffuse_map",  "alpha_test", "alpha_blend",
-                                                       "alpha_map",    "lit",        "normal_map",
-                                                       "specular_map", "specular",   "emissive"};
+static const char *const feature_names[VTV_F_COUNT] = {
+    "diffuse_map",  "alpha_test", "alpha_blend", "alpha_map", "lit", "normal_map",
+    "specular_map", "specular",   "emissive",    "range",     "ramp"};
 static const char *const feature_defines[VTV_F_COUNT] = {
-    "F_DIFFUSE_MAP", "F_ALPHA_TEST",   "F_ALPHA_BLEND", "F_ALPHA_MAP", "F_LIT",
-    "F_NORMAL_MAP",  "F_SPECULAR_MAP", "F_SPECULAR",    "F_EMISSIVE"};
+    "F_DIFFUSE_MAP",  "F_ALPHA_TEST", "F_ALPHA_BLEND", "F_ALPHA_MAP", "F_LIT", "F_NORMAL_MAP",
+    "F_SPECULAR_MAP", "F_SPECULAR",   "F_EMISSIVE",    "F_RANGE",     "F_RAMP"};
 
 static void copy3(float *dst, const double *src)
 {

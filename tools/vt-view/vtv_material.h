@@ -35,7 +35,9 @@ enum vtv_feature {
     VTV_F_SPECULAR_MAP = 1u << 6, /* Blinn-Phong from map_Ks (illum >= 2) */
     VTV_F_SPECULAR = 1u << 7,     /* Blinn-Phong from the constant Ks (illum >= 2, Ks not 0) */
     VTV_F_EMISSIVE = 1u << 8,     /* Ke added */
-    VTV_F_COUNT = 9
+    VTV_F_RANGE = 1u << 9,        /* map_Kd's values mapped from --range to [0,1] (the view's) */
+    VTV_F_RAMP = 1u << 10,        /* map_Kd's first channel through a colour ramp (the view's) */
+    VTV_F_COUNT = 11
 };
 
 /* Alpha below this is cut out (a renderer's usual alpha test; vt-atlas's cut-out rule counts

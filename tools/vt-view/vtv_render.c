@@ -1,5 +1,6 @@
 /* vt-view renderer: programs, framebuffers, textures and passes. */
 #include "vtv_render.h"
+#include "vtv_ramp.h"
 
 #include <assert.h>
 #include <math.h>
@@ -88,6 +89,7 @@ struct vtv_variant *vtv_render_variant(struct vtv_render *r, unsigned features, 
                                        struct vts_error *err)
 {
     struct vtv_variant *v = NULL;
+    features |= r->display.features; /* range and ramp: only when the view uses them */
     for (uint32_t i = 0; i < r->variant_count && !v; i++)
         if (r->variants[i].features == features)
             v = &r->variants[i];
@@ -258,6 +260,40 @@ void vtv_render_material_uniforms(const struct vtv_render *r, GLuint p,
     glUniform3fv(glGetUniformLocation(p, "u_light_colour"), 1, r->light.colour);
     glUniform3fv(glGetUniformLocation(p, "u_ambient"), 1, r->light.ambient);
     glUniform3fv(glGetUniformLocation(p, "u_eye"), 1, v->eye);
+    const struct vtv_display *d = &r->display;
+    if (d->features & VTV_F_RANGE) {
+        float span = d->max - d->min;
+        glUniform2f(glGetUniformLocation(p, "u_range"), d->min, span != 0.0f ? 1.0f / span : 0.0f);
+    }
+    const float(*tab)[3] = vtv_ramp_table((enum vtv_ramp_kind)d->ramp);
+    if ((d->features & VTV_F_RAMP) && tab) {
+        float ramp[VTV_RAMP_POINTS][3]; /* sRGB-encoded colours: linear when the frame encodes */
+        for (int i = 0; i < VTV_RAMP_POINTS; i++)
+            for (int c = 0; c < 3; c++)
+                ramp[i][c] = r->srgb ? to_linear(tab[i][c]) : tab[i][c];
+        glUniform3fv(glGetUniformLocation(p, "u_ramp"), VTV_RAMP_POINTS, &ramp[0][0]);
+    }
+}
+
+/* The GL formats of a 16-bit or float layer's texels (vtv_wide.h): internal, format, type. */
+static void wide_formats(const struct vtv_texel_format *f, GLenum out[3])
+{
+    static const GLenum formats[4] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
+    static const GLenum u16[4] = {GL_R16, GL_RG16, GL_RGB16, GL_RGBA16};
+    static const GLenum f16[4] = {GL_R16F, GL_RG16F, GL_RGB16F, GL_RGBA16F};
+    static const GLenum f32[4] = {GL_R32F, GL_RG32F, GL_RGB32F, GL_RGBA32F};
+    uint32_t c = f->channels - 1;
+    out[1] = formats[c];
+    if (f->sample == VTS_SAMPLE_U16) {
+        out[0] = u16[c];
+        out[2] = GL_UNSIGNED_SHORT;
+    } else if (f->sample == VTS_SAMPLE_F16) {
+        out[0] = f16[c];
+        out[2] = GL_HALF_FLOAT;
+    } else {
+        out[0] = f32[c];
+        out[2] = GL_FLOAT;
+    }
 }
 
 static GLuint make_phys(GLenum fmt, uint32_t pw, uint32_t ph)
@@ -266,6 +302,15 @@ static GLuint make_phys(GLenum fmt, uint32_t pw, uint32_t ph)
     glGenTextures(1, &t);
     glBindTexture(GL_TEXTURE_2D, t);
     glTexStorage2D(GL_TEXTURE_2D, 1, fmt, (GLsizei)pw, (GLsizei)ph);
+    /* one or two channels read as grey (and alpha), as RGBA8 tiles show them */
+    if (fmt == GL_R16 || fmt == GL_R16F || fmt == GL_R32F) {
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_G, GL_RED);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_B, GL_RED);
+    } else if (fmt == GL_RG16 || fmt == GL_RG16F || fmt == GL_RG32F) {
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_G, GL_RED);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_B, GL_RED);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_A, GL_GREEN);
+    }
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -318,6 +363,16 @@ int vtv_render_set_cache(struct vtv_render *r, const struct vtv_cache *c,
                                                               g->tile_payload_px)
                                        : 0;
         r->phys_format[k] = bc ? bc : layers[k].srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8;
+        r->phys_upload[k][0] = GL_RGBA;
+        r->phys_upload[k][1] = bc ? 0 : GL_UNSIGNED_BYTE;
+        uint32_t sample = layers[k].texels.sample;
+        if (!bc && sample && sample != VTS_SAMPLE_U8) {
+            GLenum f[3];
+            wide_formats(&layers[k].texels, f);
+            r->phys_format[k] = f[0];
+            r->phys_upload[k][0] = f[1];
+            r->phys_upload[k][1] = f[2];
+        }
         r->tex_phys[k] = make_phys(r->phys_format[k], r->phys_w, r->phys_h);
         r->phys_slice[k] = (int)r->phys_count++;
         if (bc && layers[k].rebuild_z)
@@ -356,17 +411,12 @@ GLenum vtv_render_bc_format(const struct vtv_render *r, uint32_t codec, bool srg
     return 0;
 }
 
-static bool is_compressed(GLenum fmt)
-{
-    return fmt != GL_RGBA8 && fmt != GL_SRGB8_ALPHA8;
-}
-
 void vtv_render_upload_tile(struct vtv_render *r, const struct vtv_cache *c, uint32_t slot,
                             const uint8_t *data, size_t bytes)
 {
     GLint x = (GLint)((slot % c->slots_x) * r->payload_px);
     GLint y = (GLint)((slot / c->slots_x) * r->payload_px);
-    size_t stride = (size_t)r->payload_px * r->payload_px * 4;
+    size_t stride = r->slice_bytes ? r->slice_bytes : (size_t)r->payload_px * r->payload_px * 4;
     assert(bytes >= stride * r->phys_count);
     (void)bytes;
     for (int k = 0; k < VTV_MAP_COUNT; k++) {
@@ -374,7 +424,7 @@ void vtv_render_upload_tile(struct vtv_render *r, const struct vtv_cache *c, uin
             continue;
         const uint8_t *p = data + (size_t)r->phys_slice[k] * stride;
         glBindTexture(GL_TEXTURE_2D, r->tex_phys[k]);
-        if (is_compressed(r->phys_format[k])) {
+        if (r->phys_upload[k][1] == 0) { /* compressed */
             size_t block = r->phys_format[k] == GL_COMPRESSED_RGBA_S3TC_DXT1_EXT ||
                                    r->phys_format[k] == GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT1_EXT ||
                                    r->phys_format[k] == GL_COMPRESSED_RED_RGTC1
@@ -384,8 +434,10 @@ void vtv_render_upload_tile(struct vtv_render *r, const struct vtv_cache *c, uin
             glCompressedTexSubImage2D(GL_TEXTURE_2D, 0, x, y, (GLsizei)r->payload_px,
                                       (GLsizei)r->payload_px, r->phys_format[k], (GLsizei)n, p);
         } else {
+            glPixelStorei(GL_UNPACK_ALIGNMENT, 1); /* rows of 1..4 16-bit samples: any length */
             glTexSubImage2D(GL_TEXTURE_2D, 0, x, y, (GLsizei)r->payload_px, (GLsizei)r->payload_px,
-                            GL_RGBA, GL_UNSIGNED_BYTE, p);
+                            r->phys_upload[k][0], r->phys_upload[k][1], p);
+            glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
         }
     }
 }

@@ -11,9 +11,11 @@
 
 #include "vt_error.h"
 #include "vtv_cache.h"
+#include "vtv_display.h"
 #include "vtv_material.h"
 #include "vtv_mesh.h"
 #include "vtv_shaders.h"
+#include "vtv_wide.h"
 
 /* One shader variant: the programs of one feature set (enum vtv_feature bits). */
 struct vtv_variant {
@@ -32,6 +34,7 @@ struct vtv_phys_layer {
     uint32_t
         bc_codec;   /* VTS_CODEC_BC1..BC5 blocks uploaded as stored (vtv_render_bc_format), or 0 */
     bool rebuild_z; /* bc5 blocks of a 3-channel normal layer: the shader rebuilds z from xy */
+    struct vtv_texel_format texels; /* what a loaded tile holds (vtv_wide_format; 0: RGBA8) */
 };
 
 /* The light (docs/cli/vt-view.md: --light, --light-colour, --ambient); linear values. */
@@ -58,8 +61,11 @@ struct vtv_render {
     GLuint fb_fbo, rb_request, rb_fb_depth;
     GLuint tex_pt, tex_phys[VTV_MAP_COUNT], tex_reference;
     GLenum phys_format[VTV_MAP_COUNT]; /* GL internal format of each physical texture (0: none) */
-    int phys_slice[VTV_MAP_COUNT];     /* the layer's slice in a loaded tile (vtv_loader), or -1 */
-    uint32_t phys_count;               /* physical textures (loader layers) */
+    GLenum phys_upload[VTV_MAP_COUNT][2]; /* format and type of its texels; type 0: compressed */
+    size_t slice_bytes; /* bytes of a layer in a loaded tile (vtv_loader_slice_bytes; 0: RGBA8) */
+    struct vtv_display display;    /* range and ramp of the shown colour (vtv_display_choose) */
+    int phys_slice[VTV_MAP_COUNT]; /* the layer's slice in a loaded tile (vtv_loader), or -1 */
+    uint32_t phys_count;           /* physical textures (loader layers) */
     uint32_t phys_w, phys_h;
     /* store geometry for the uniforms */
     float virt_w, virt_h, content, border, payload;

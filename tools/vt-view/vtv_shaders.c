@@ -187,6 +187,24 @@ static const char shading[] =
     "#endif\n"
     "}\n";
 
+/* The shown colour's display (docs/viewer.md, "Ranges and ramps"): map_Kd's values mapped from
+ * [min, max] to [0,1] (u_range: min, 1 / (max - min)), then its first channel through the ramp
+ * (u_ramp: VTV_RAMP_POINTS colours at 0, 1/8, ..., 1, linear in between; as vtv_ramp_at()).
+ * Without F_RANGE and F_RAMP it is the identity. */
+static const char display[] = "uniform vec2 u_range;\n"
+                              "uniform vec3 u_ramp[9];\n"
+                              "vec4 vt_display(vec4 c) {\n"
+                              "#ifdef F_RANGE\n"
+                              "    c.rgb = (c.rgb - u_range.x) * u_range.y;\n"
+                              "#endif\n"
+                              "#ifdef F_RAMP\n"
+                              "    float s = clamp(c.r, 0.0, 1.0) * 8.0;\n"
+                              "    int i = min(int(s), 7);\n"
+                              "    c.rgb = mix(u_ramp[i], u_ramp[i + 1], s - float(i));\n"
+                              "#endif\n"
+                              "    return c;\n"
+                              "}\n";
+
 static const char vt_body[] =
     "uniform int u_debug;\n"
     "layout(location = 0) out vec4 o_color;\n"
@@ -207,7 +225,7 @@ static const char vt_body[] =
     "    return vec4(c.xy, sqrt(max(1.0 - dot(n, n), 0.0)) * 0.5 + 0.5, c.a);\n"
     "}\n"
     "vec4 map_sample(int k) {\n"
-    "    if (k == 0) return vt_rebuild_z(vt_layer(u_phys_kd), 0);\n"
+    "    if (k == 0) return vt_display(vt_rebuild_z(vt_layer(u_phys_kd), 0));\n"
     "    if (k == 1) return vt_rebuild_z(vt_layer(u_phys_norm), 1);\n"
     "    if (k == 2) return vt_rebuild_z(vt_layer(u_phys_ks), 2);\n"
     "    return vt_rebuild_z(vt_layer(u_phys_d), 3);\n"
@@ -300,7 +318,7 @@ static const char reference_body[] = "in vec2 v_uv;\n"
                                      "layout(location = 1) out uint o_fallback;\n"
                                      "vec4 map_sample(int k) {\n"
                                      "    vec2 uv = v_uv * u_st[k].xy + u_st[k].zw;\n"
-                                     "    if (k == 0) return texture(u_tex_kd, uv);\n"
+                                     "    if (k == 0) return vt_display(texture(u_tex_kd, uv));\n"
                                      "    if (k == 1) return texture(u_tex_norm, uv);\n"
                                      "    if (k == 2) return texture(u_tex_ks, uv);\n"
                                      "    return texture(u_tex_d, uv);\n"
@@ -321,6 +339,7 @@ int vtv_shader_fragment(enum vtv_program_kind kind, unsigned features, char *def
     case VTV_PROG_VT:
         pieces[n++] = vt_common;
         pieces[n++] = shading;
+        pieces[n++] = display;
         pieces[n++] = vt_body;
         break;
     case VTV_PROG_FEEDBACK:
@@ -329,6 +348,7 @@ int vtv_shader_fragment(enum vtv_program_kind kind, unsigned features, char *def
         break;
     default:
         pieces[n++] = shading;
+        pieces[n++] = display;
         pieces[n++] = reference_body;
         break;
     }

@@ -7,6 +7,7 @@
 #include "tool_common.h"
 #include "vt_codec.h"
 #include "vt_error.h"
+#include "vtv_wide.h"
 
 /* Uploads a decoded payload of tile index into a slot. Returns false when no slot could be
  * freed (the tile stays absent). */
@@ -153,6 +154,7 @@ int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, const u
         const struct vts_layer *info = vts_store_layer(store, layers[k]);
         phys[k].used = true;
         phys[k].srgb = info->colour == VTS_COLOUR_SRGB;
+        vtv_wide_format(info, &phys[k].texels);
         if (bc_upload && vtv_render_bc_format(render, info->codec, phys[k].srgb, pp)) {
             phys[k].bc_codec = info->codec;
             phys[k].rebuild_z = info->codec == VTS_CODEC_BC5 && info->channels == 3;
@@ -171,6 +173,7 @@ int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, const u
     s->loader = vtv_loader_create_layers(store, order, n, sync ? 0 : threads, compressed, err);
     if (!s->loader)
         return err->status;
+    render->slice_bytes = vtv_loader_slice_bytes(s->loader);
     uint32_t cap = vtv_loader_queue_capacity(s->loader);
     s->pending = malloc(cap * sizeof(*s->pending));
     s->pending_lxy = malloc(cap * 3 * sizeof(*s->pending_lxy));
@@ -425,6 +428,13 @@ uint8_t *vtv_stream_level0(const struct vts_store *store, uint32_t layer, struct
     if ((uint64_t)g->width * g->height > (1ull << 28)) {
         vt_error_set(err, VTS_ERR_LIMIT, "--reference: level 0 is too large (%ux%u)", g->width,
                      g->height);
+        return NULL;
+    }
+    const struct vts_layer *info = vts_store_layer(store, layer);
+    if (info && info->sample != VTS_SAMPLE_U8) {
+        vt_error_set(err, VTS_ERR_UNSUPPORTED,
+                     "--reference draws 8-bit layers; layer '%s' of %s holds %s samples",
+                     info->name, vts_store_name(store), vts_sample_name(info->sample));
         return NULL;
     }
     struct vtv_loader *l = vtv_loader_create(store, layer, 0, 0, err);

@@ -20,7 +20,9 @@ struct vt_atlas_tile_slot {
     uint32_t layer;
     struct vt_atlas_layer_format fmt;
     struct vt_pixel_mode mode;
-    uint8_t empty_px[4];
+    size_t texel_bytes; /* channels x the sample's bytes */
+    bool srgb_source;   /* a float layer of an sRGB layout layer (vt_mip_chain_spec's) */
+    uint8_t empty_px[16];
 };
 
 /* Scratch of one worker: its pinned chain blocks (the last one read kept at hand), the classes of
@@ -83,7 +85,7 @@ void vt_atlas_tile_release_grid(struct vt_atlas_tile *t);
 int32_t vt_atlas_tile_classify(const struct vt_atlas_tile *t, uint32_t L, uint32_t X, uint32_t Y,
                                uint32_t *run_end);
 
-/* Writes the value (slot s, u8) of texel (X, Y) of level L whose class is k into o. */
+/* Writes the value (slot s, its sample type) of texel (X, Y) of level L whose class is k into o. */
 int vt_atlas_tile_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, uint32_t s,
                         uint32_t L, uint32_t X, uint32_t Y, int32_t k, uint8_t *o,
                         struct vts_error *err);

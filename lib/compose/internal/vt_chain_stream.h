@@ -22,7 +22,8 @@
 
 #define VT_CHAIN_STREAM_EDGE 64u /* block edge, texels (vt_block_cache.h's) */
 
-/* Receives block (bx, by) of chain level `level`: w x h texels of 8-bit samples, rows tight. */
+/* Receives block (bx, by) of chain level `level`: w x h texels of the spec's channels and sample
+ * type, rows tight. */
 typedef int (*vt_chain_stream_emit_fn)(void *user, uint32_t level, uint32_t bx, uint32_t by,
                                        const uint8_t *px, uint32_t w, uint32_t h,
                                        struct vts_error *err);
@@ -40,8 +41,8 @@ struct vt_chain_stream *vt_chain_stream_create(const struct vt_mip_chain_spec *s
                                                uint32_t th, vt_chain_stream_emit_fn emit,
                                                void *user, struct vts_error *err);
 
-/* The next rows of the texture (8-bit, the spec's channels, tw wide), in order. 0 or the status
- * of the emit callback / VTS_ERR_NOMEM. After the last row every block has been emitted. */
+/* The next rows of the texture (the spec's channels and sample type, tw wide), in order. 0 or the
+ * status of the emit callback / VTS_ERR_NOMEM. After the last row every block has been emitted. */
 int vt_chain_stream_push(struct vt_chain_stream *cs, const struct vt_image *rows,
                          struct vts_error *err);
 

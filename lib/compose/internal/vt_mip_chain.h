@@ -1,9 +1,9 @@
 /* The mip chain of one atlas entry in one layer: the entry's texture (or constant fill) decoded,
- * converted to the layer's 8-bit format, resampled to the entry's size, cut to the entry's crop of
- * its block of copies (repeat_u x repeat_v copies side by side; the whole block without a crop),
- * then reduced level by level in the float working space (linear light for sRGB, premultiplied
- * alpha, renormalised normals) with edges clamped at the crop's rectangle, or wrapped around for
- * a wrap entry. Used by vt_atlas_build.c; see docs/atlas-build.md. */
+ * converted to the layer's format (its channels and sample type), resampled to the entry's size,
+ * cut to the entry's crop of its block of copies (repeat_u x repeat_v copies side by side; the
+ * whole block without a crop), then reduced level by level in the float working space (linear light
+ * for sRGB, premultiplied alpha, renormalised normals) with edges clamped at the crop's rectangle,
+ * or wrapped around for a wrap entry. Used by vt_atlas_build.c; see docs/atlas-build.md. */
 #ifndef VT_MIP_CHAIN_H
 #define VT_MIP_CHAIN_H
 
@@ -30,11 +30,15 @@ struct vt_mip_chain_spec {
     uint32_t colour;            /* enum vts_colour of the layer */
     enum vt_filter_kind filter; /* reduction kernel */
     uint64_t max_pixels;        /* refuse a crop of more texels than this */
+    uint32_t sample;            /* enum vts_sample of the layer; 0 = VTS_SAMPLE_U8 */
+    bool srgb_source;           /* a float layer of an sRGB layout layer (colour linear): the
+                                   colour of integer sources is sRGB-encoded */
 };
 
-/* Level l: crop_width / 2^l x crop_height / 2^l rounded up, 8-bit samples, colour_channels +
- * alpha channels. Level 0 holds the texture's texels exactly (8-bit inputs at scale 1 are copied
- * byte for byte). */
+/* Level l: crop_width / 2^l x crop_height / 2^l rounded up, the spec's sample type,
+ * colour_channels + alpha channels. Level 0 holds the texture's texels exactly (inputs of the
+ * layer's sample type at scale 1 are copied byte for byte; 8-bit texels in a u16 layer are v *
+ * 257). */
 struct vt_mip_chain {
     uint32_t level_count;
     struct vt_image levels[VTS_MAX_LEVELS];
@@ -43,8 +47,9 @@ struct vt_mip_chain {
 
 /* Builds the chain from an opened source whose size must be the entry's size times a power of two
  * (a finer texture: its own mip level k is used; a coarser one: texels are replicated); other
- * sizes are resampled nearest-neighbour. 16-bit and float sources are converted to 8 bits (float
- * as linear light). Returns 0, VTS_ERR_LIMIT, VTS_ERR_NOMEM or the source's read error. */
+ * sizes are resampled nearest-neighbour. Sources of another sample type are converted to the
+ * layer's (vt_mip_chain_convert). Returns 0, VTS_ERR_LIMIT, VTS_ERR_NOMEM or the source's read
+ * error. */
 int vt_mip_chain_from_source(struct vt_mip_chain *c, const struct vt_mip_chain_spec *s,
                              struct vt_source *src, struct vts_error *err);
 
@@ -53,8 +58,13 @@ int vt_mip_chain_from_image(struct vt_mip_chain *c, const struct vt_mip_chain_sp
                             const struct vt_source_info *in, const struct vt_image *raw,
                             struct vts_error *err);
 
-/* Step 1 alone: rows of the source (raw, any height) converted to the layer's 8-bit channels;
- * out is allocated (free with vt_image_release). */
+/* Step 1 alone: rows of the source (raw, any height) converted to the layer's channels and sample
+ * type; out is allocated (free with vt_image_release). The atlas build never narrows (a layer's
+ * sample type is its widest texture's); a narrower layer would get the sources' normalised values,
+ * rounded (no sRGB encoding of float values). Into a u16 layer: 8-bit
+ * values v become v * 257 (exact). Into a float layer (whose colour is never sRGB: float data is
+ * linear): integer sources of an sRGB texture are decoded to linear light (alpha stays as it is),
+ * others become their normalised value; f16 into f32 is exact. */
 int vt_mip_chain_convert(const struct vt_mip_chain_spec *s, const struct vt_source_info *in,
                          const struct vt_image *raw, struct vt_image *out, struct vts_error *err);
 
@@ -67,5 +77,8 @@ void vt_mip_chain_release(struct vt_mip_chain *c);
 
 /* The working-space mode of a layer format (shared with the compositor's coarse-level mixing). */
 void vt_mip_chain_mode(const struct vt_mip_chain_spec *s, struct vt_pixel_mode *out);
+
+/* The spec's sample type (VTS_SAMPLE_U8 for 0). */
+uint32_t vt_mip_chain_sample(const struct vt_mip_chain_spec *s);
 
 #endif

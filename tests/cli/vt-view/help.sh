@@ -7,3 +7,7 @@ cmp short.txt - < <("$VT_VIEW" --help)
 for a in "-j 0" "--threads 65"; do
   rc=0; "$VT_VIEW" $a s.vts 2>&1 || rc=$?; echo "exit $rc: $a"
 done
+# --range and --ramp: malformed values are usage errors (exit 2)
+for a in "--range 1" "--range 2:1" "--range 0:inf" "--range a:b" "--ramp rainbow"; do
+  rc=0; "$VT_VIEW" $a s.vts 2>&1 || rc=$?; echo "exit $rc: $a"
+done

@@ -314,6 +314,76 @@ aniso)
     grep -q "expected bilinear, trilinear or anisoN" bad.err || fail "--filtering $bad: message"
   done
   ;;
+float_range)
+  # 16-bit and float layers (stores made by vt-tiles from generated TIFF/PNG files): uploaded in
+  # their own format (GL_R32F, GL_R16), shown through --range and a ramp; the 1:1 frame equals a
+  # CPU reference of range + ramp over the source files' values (vtv_check ramp), and a reference
+  # made for a slightly different range, or another ramp, fails the same threshold.
+  "$synth_image" f.tif --format tiff --size 256x256 --channels 1 --sample f32
+  "$vt_tiles" f.tif -o f.vts --tile-size 64 --border 4 -q
+  vt f.vts --camera one.cam --frames 16 --sync --range 0.25:2.5 --ramp dusk --screenshot f.png \
+    --stats f.json
+  grep -q '"physical_format": "f32"' f.json || fail "f32 not uploaded as float"
+  grep -q '"features": \["diffuse_map", "range", "ramp"\]' f.json || fail "no range+ramp variant"
+  "$check" stat f.json fallback_pixels == 0 || fail "fallback"
+  "$check" ramp f.tif 0.25 2.5 dusk f_ref.png >/dev/null
+  "$check" psnr f.png f_ref.png --min 45 || fail "f32 range+ramp against the CPU reference"
+  "$check" ramp f.tif 0.25 2.6 dusk f_wrong.png >/dev/null
+  "$check" psnr f.png f_wrong.png --max 40 || fail "a wrong range passes"
+  "$check" ramp f.tif 0.25 2.5 heat f_heat.png >/dev/null
+  "$check" psnr f.png f_heat.png --max 30 || fail "a wrong ramp passes"
+  # --ramp none: range only, grey; the default range is the coarsest level's (logged)
+  vt f.vts --camera one.cam --frames 16 --sync --range 0.25:2.5 --ramp none --screenshot g.png \
+    --stats g.json
+  grep -q '"features": \["diffuse_map", "range"\]' g.json || fail "--ramp none kept the ramp"
+  "$check" ramp f.tif 0.25 2.5 grey g_ref.png >/dev/null
+  "$check" psnr g.png g_ref.png --min 45 || fail "f32 grey against the CPU reference"
+  vt f.vts --camera one.cam --frames 2 --sync -v 2>log.txt >/dev/null
+  grep -q "range .* (of the coarsest level), ramp dusk" log.txt || fail "no estimated range"
+  # an atlas build (vt-tiles --layout) records each float layer's range in the store's "range"
+  # metadata: the default --range is then exactly the TIFF's smallest and largest value
+  cat >atlas.json <<'EOF'
+{"format": "vtpipe-atlas", "version": 1, "width": 256, "height": 256, "tile_content": 64,
+ "border": 4, "layers": [{"name": "height", "map": "map_Kd", "colour": "data"}],
+ "entries": [{"name": "f", "x": 0, "y": 0, "width": 256, "height": 256, "repeat": [1, 1],
+   "origin": [0, 0], "cell_width": 256, "cell_height": 256, "alignment": 256, "scale": 1.0,
+   "textures": [{"path": "f.tif", "width": 256, "height": 256}]}]}
+EOF
+  "$vt_tiles" --layout atlas.json -o a.vts -q
+  vt a.vts --camera one.cam --frames 16 --sync -v --screenshot a.png 2>alog.txt
+  range=$(sed -n "s/.*layer 'height' (f32): range \([^ ]*\) (the store's), ramp dusk.*/\1/p" alog.txt)
+  [ -n "$range" ] || fail "no range from the store's metadata: $(cat alog.txt)"
+  read -r _ tmin _ tmax < <("$check" ramp f.tif "${range%%:*}" "${range##*:}" dusk a_ref.png)
+  awk -v r="$range" -v a="$tmin" -v b="$tmax" 'BEGIN { split(r, m, ":");
+    exit !(m[1] - a < 1e-5 && a - m[1] < 1e-5 && m[2] - b < 1e-5 && b - m[2] < 1e-5) }' ||
+    fail "the store's range $range is not the TIFF's $tmin:$tmax"
+  "$check" psnr a.png a_ref.png --min 45 || fail "atlas f32 layer against the CPU reference"
+  # a one-channel u16 data layer: GL_R16, normalised values, the dusk ramp by default
+  "$synth_image" u.png --format png --size 256x256 --channels 1 --sample u16
+  "$vt_tiles" u.png -o u.vts --tile-size 64 --border 4 --colour data -q
+  vt u.vts --camera one.cam --frames 16 --sync --screenshot u.png2 --stats u.json
+  grep -q '"physical_format": "u16"' u.json || fail "u16 not uploaded as 16-bit"
+  grep -q '"features": \["diffuse_map", "ramp"\]' u.json || fail "u16: no ramp variant"
+  "$check" ramp u.png 0 1 dusk u_ref.png >/dev/null
+  "$check" psnr u.png2 u_ref.png --min 45 || fail "u16 ramp against the CPU reference"
+  # the same values as an sRGB u16 layer: decoded to linear f32 for GL (no 16-bit sRGB format),
+  # filtered in linear light, encoded by the sRGB frame: grey with --ramp none, as stored
+  "$vt_tiles" u.png -o us.vts --tile-size 64 --border 4 -q
+  vt us.vts --camera one.cam --frames 16 --sync --ramp none --screenshot us.png --stats us.json
+  grep -q '"physical_format": "f32"' us.json || fail "sRGB u16 not uploaded as linear floats"
+  "$check" ramp u.png 0 1 grey us_ref.png >/dev/null
+  "$check" psnr us.png us_ref.png --min 45 || fail "sRGB u16 against the CPU reference"
+  # an 8-bit store gets neither (only what the scene calls for); --reference refuses float
+  "$synth_image" c.png --format png --size 256x256 --channels 3 --photo
+  "$vt_tiles" c.png -o c.vts --tile-size 64 --border 4 -q
+  vt c.vts --camera one.cam --frames 2 --sync --screenshot c.png2 --stats c.json
+  grep -q '"features": \["diffuse_map"\]' c.json || fail "8-bit store: range or ramp in its variant"
+  if vt f.vts --camera one.cam --frames 1 --reference --screenshot r.png 2>err.txt; then
+    fail "--reference accepted a float layer"
+  fi
+  grep -q "reference draws 8-bit layers; layer 'diffuse' of f.vts holds f32 samples" err.txt ||
+    fail "--reference refusal: $(cat err.txt)"
+  ;;
 vt_tiles_store)
   # A store made by the real pipeline: vt-tiles (box mips in linear light, sRGB layer) from a
   # generated photo-like PNG; sRGB textures on both sides.

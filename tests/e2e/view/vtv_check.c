@@ -13,6 +13,12 @@
  *                                                     clipped to the image) is at most N
  *   vtv_check mean A.png X Y W H --min V | --max V   the mean of (R + G + B) / 3 over the crop
  *                                                     (prints it)
+ *   vtv_check ramp IMAGE MIN MAX RAMP OUT.png          the CPU reference of --range MIN:MAX
+ *                                                     --ramp RAMP over a one-channel image
+ *                                                     (u8/u16 normalised, floats as they are):
+ *                                                     an RGB PNG of vtv_ramp_at((v - MIN) /
+ *                                                     (MAX - MIN)), rounded; prints the
+ *                                                     image's smallest and largest value
  * Exit 0 when the check holds, 1 when it does not, 2 on bad use or unreadable files. */
 #include <jansson.h>
 #include <math.h>
@@ -21,7 +27,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vt_filter.h"
+#include "vt_image_input.h"
 #include "vt_png_file.h"
+#include "vtv_ramp.h"
 
 static int load(const char *path, struct vt_image *img)
 {
@@ -267,6 +276,54 @@ static int mean(int argc, char **argv)
     return (min ? m >= limit : m <= limit) ? 0 : 1;
 }
 
+static int ramp(int argc, char **argv)
+{
+    enum vtv_ramp_kind k;
+    if (argc != 7 || !vtv_ramp_parse(argv[5], &k))
+        return 2;
+    double lo = atof(argv[3]), hi = atof(argv[4]);
+    struct vts_error err = {0};
+    struct vt_source src = {0};
+    struct vt_image img = {0}, out = {0};
+    struct vt_png_file_writer *w = NULL;
+    int rc = vt_image_input_open(argv[2], NULL, &src, &err) ? 2 : 0;
+    if (rc == 0 && src.info.channels != 1) {
+        fprintf(stderr, "vtv_check: %s: %u channels, not 1\n", argv[2], src.info.channels);
+        rc = 2;
+    }
+    if (rc == 0 &&
+        (vt_image_alloc(&img, src.info.width, src.info.height, 1, src.info.sample, &err) ||
+         vt_source_read(&src, 0, 0, &img, &err) ||
+         vt_image_alloc(&out, src.info.width, src.info.height, 3, VTS_SAMPLE_U8, &err)))
+        rc = 2;
+    struct vt_pixel_mode plain = {1, VTS_COLOUR_DATA, false};
+    float vmin = INFINITY, vmax = -INFINITY;
+    for (uint32_t y = 0; rc == 0 && y < img.height; y++)
+        for (uint32_t x = 0; x < img.width; x++) {
+            float v, rgb[3];
+            vt_filter_to_working(&plain, img.sample, vt_image_at(&img, x, y), &v, 1);
+            vmin = v < vmin ? v : vmin;
+            vmax = v > vmax ? v : vmax;
+            vtv_ramp_at(k, (float)((v - lo) / (hi - lo)), rgb);
+            uint8_t *o = vt_image_at(&out, x, y);
+            for (int c = 0; c < 3; c++)
+                o[c] = (uint8_t)lround(rgb[c] * 255.0);
+        }
+    if (rc == 0 && (!(w = vt_png_file_writer_create(argv[6], out.width, out.height, 3, 8, &err)) ||
+                    vt_png_file_writer_rows(w, out.pixels, out.height, out.stride, &err) ||
+                    vt_png_file_writer_finish(w, &err)))
+        rc = 2;
+    if (rc)
+        fprintf(stderr, "vtv_check: %s\n", err.message);
+    else
+        printf("min %.9g max %.9g\n", (double)vmin, (double)vmax);
+    vt_png_file_writer_destroy(w);
+    vt_source_close(&src);
+    vt_image_release(&img);
+    vt_image_release(&out);
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2)
@@ -285,5 +342,7 @@ int main(int argc, char **argv)
         return maxdiff(argc, argv);
     if (!strcmp(argv[1], "mean"))
         return mean(argc, argv);
+    if (!strcmp(argv[1], "ramp"))
+        return ramp(argc, argv);
     return 2;
 }

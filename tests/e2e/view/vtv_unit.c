@@ -1,12 +1,15 @@
 /* Checks of vt-view's material rules and tangent frames without GL (tools/vt-view/vtv_material.c,
- * vtv_tangent.c; docs/viewer.md, "Materials and shading"). Prints one line per failed check and
- * exits 1 when any failed. */
+ * vtv_tangent.c; docs/viewer.md, "Materials and shading"), its colour ramps and the formats of
+ * 16-bit and float layers (vtv_ramp.c, vtv_wide.c; "Ranges and ramps"). Prints one line per failed
+ * check and exits 1 when any failed. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "vtv_material.h"
+#include "vtv_ramp.h"
 #include "vtv_tangent.h"
+#include "vtv_wide.h"
 
 static int failures;
 
@@ -170,10 +173,66 @@ static void tangents(void)
     CHECK(fabs(t[0] * 0.6 + t[2] * 0.8) < 1e-5 && near3(t, 0.8, 0, -0.6));
 }
 
+static bool close3(const float a[3], const float b[3], float tol)
+{
+    return fabsf(a[0] - b[0]) <= tol && fabsf(a[1] - b[1]) <= tol && fabsf(a[2] - b[2]) <= tol;
+}
+
+static void ramps(void)
+{
+    enum vtv_ramp_kind k;
+    CHECK(vtv_ramp_parse("dusk", &k) && k == VTV_RAMP_DUSK);
+    CHECK(vtv_ramp_parse("none", &k) && k == VTV_RAMP_NONE && !vtv_ramp_table(k));
+    CHECK(!vtv_ramp_parse("rainbow", &k));
+    for (int r = VTV_RAMP_DUSK; r < VTV_RAMP_COUNT; r++) {
+        const float(*t)[3] = vtv_ramp_table((enum vtv_ramp_kind)r);
+        float c[3], mid[3];
+        /* the control colours at i/8, linear in between, the ends beyond [0,1] and for NaN */
+        for (int i = 0; i < VTV_RAMP_POINTS; i++) {
+            vtv_ramp_at((enum vtv_ramp_kind)r, (float)i / 8, c);
+            CHECK(close3(c, t[i], 1e-6f));
+        }
+        vtv_ramp_at((enum vtv_ramp_kind)r, 3.0f / 16, c);
+        for (int j = 0; j < 3; j++)
+            mid[j] = (t[1][j] + t[2][j]) / 2;
+        CHECK(close3(c, mid, 1e-6f));
+        CHECK(!close3(c, t[1], 1e-3f) || !close3(c, t[2], 1e-3f)); /* a wrong index fails */
+        vtv_ramp_at((enum vtv_ramp_kind)r, -5.0f, c);
+        CHECK(close3(c, t[0], 0));
+        vtv_ramp_at((enum vtv_ramp_kind)r, 7.0f, c);
+        CHECK(close3(c, t[8], 0));
+        vtv_ramp_at((enum vtv_ramp_kind)r, NAN, c);
+        CHECK(close3(c, t[0], 0));
+        /* every ramp runs dark to light: its lightness (Rec. 709 luma) rises */
+        for (int i = 1; i < VTV_RAMP_POINTS; i++)
+            CHECK(0.2126f * t[i][0] + 0.7152f * t[i][1] + 0.0722f * t[i][2] >
+                  0.2126f * t[i - 1][0] + 0.7152f * t[i - 1][1] + 0.0722f * t[i - 1][2]);
+    }
+}
+
+static void wide_formats(void)
+{
+    struct vtv_texel_format f;
+    struct vts_layer l = {VTS_CODEC_PNG, 1, VTS_SAMPLE_U8, VTS_COLOUR_DATA, 0, 0, {0}};
+    vtv_wide_format(&l, &f);
+    CHECK(f.sample == VTS_SAMPLE_U8 && f.channels == 4 && vtv_wide_texel_bytes(&f) == 4);
+    l.sample = VTS_SAMPLE_U16;
+    vtv_wide_format(&l, &f);
+    CHECK(f.sample == VTS_SAMPLE_U16 && f.channels == 1 && vtv_wide_texel_bytes(&f) == 2);
+    l.channels = 3, l.colour = VTS_COLOUR_SRGB; /* no 16-bit sRGB in GL: linear floats */
+    vtv_wide_format(&l, &f);
+    CHECK(f.sample == VTS_SAMPLE_F32 && f.channels == 3 && vtv_wide_texel_bytes(&f) == 12);
+    l.sample = VTS_SAMPLE_F16, l.channels = 4, l.colour = VTS_COLOUR_LINEAR;
+    vtv_wide_format(&l, &f);
+    CHECK(f.sample == VTS_SAMPLE_F16 && f.channels == 4 && vtv_wide_texel_bytes(&f) == 8);
+}
+
 int main(void)
 {
     material_rules();
     tangents();
+    ramps();
+    wide_formats();
     printf("%s\n", failures ? "vtv_unit: failures" : "vtv_unit: all checks passed");
     return failures ? 1 : 0;
 }

@@ -61,8 +61,21 @@ static uint64_t stream_vs_whole_wrap(uint32_t tw, uint32_t th, uint32_t ew, uint
     struct vt_image tex;
     fill_texture(&tex, tw, th, ch, tw + th);
     struct vt_source_info in = {tw, th, ch, VTS_SAMPLE_U8, colour, ch == 4, false, true, 0, 0, ""};
-    struct vt_mip_chain_spec s = {
-        ew, eh, 0, 0, ew, eh, wrap, levels, ch == 4 ? 3 : ch, ch == 4, colour, filter, 1ull << 30};
+    struct vt_mip_chain_spec s = {ew,
+                                  eh,
+                                  0,
+                                  0,
+                                  ew,
+                                  eh,
+                                  wrap,
+                                  levels,
+                                  ch == 4 ? 3 : ch,
+                                  ch == 4,
+                                  colour,
+                                  filter,
+                                  1ull << 30,
+                                  VTS_SAMPLE_U8,
+                                  false};
     struct vt_mip_chain whole;
     VT_CHECK_INT_EQ(vt_mip_chain_from_image(&whole, &s, &in, &tex, NULL), 0);
     struct got g = {0};
@@ -144,8 +157,21 @@ static void a_wrong_texel_is_caught(void)
     fill_texture(&tex, 64, 64, 3, 1);
     struct vt_source_info in = {64, 64, 3, VTS_SAMPLE_U8, VTS_COLOUR_SRGB, false, false, true,
                                 0,  0,  ""};
-    struct vt_mip_chain_spec s = {
-        64, 64, 0, 0, 64, 64, false, 3, 3, false, VTS_COLOUR_SRGB, VT_FILTER_BOX, 1ull << 30};
+    struct vt_mip_chain_spec s = {64,
+                                  64,
+                                  0,
+                                  0,
+                                  64,
+                                  64,
+                                  false,
+                                  3,
+                                  3,
+                                  false,
+                                  VTS_COLOUR_SRGB,
+                                  VT_FILTER_BOX,
+                                  1ull << 30,
+                                  VTS_SAMPLE_U8,
+                                  false};
     struct vt_mip_chain a, b;
     vt_mip_chain_from_image(&a, &s, &in, &tex, NULL);
     s.filter = VT_FILTER_LANCZOS3;
@@ -368,9 +394,21 @@ static void a_build_decodes_each_file_once_within_its_budget(void)
     for (int i = 0; b && i < NTEX; i += 2) {
         struct vt_source_info in = {
             tex_w[i], tex_h[i], 3, VTS_SAMPLE_U8, VTS_COLOUR_SRGB, false, false, true, 0, 0, ""};
-        struct vt_mip_chain_spec s = {
-            tex_w[i],        tex_h[i],           0,         0, tex_w[i], tex_h[i], true, 3, 3, true,
-            VTS_COLOUR_SRGB, VT_FILTER_LANCZOS3, 1ull << 30};
+        struct vt_mip_chain_spec s = {tex_w[i],
+                                      tex_h[i],
+                                      0,
+                                      0,
+                                      tex_w[i],
+                                      tex_h[i],
+                                      true,
+                                      3,
+                                      3,
+                                      true,
+                                      VTS_COLOUR_SRGB,
+                                      VT_FILTER_LANCZOS3,
+                                      1ull << 30,
+                                      VTS_SAMPLE_U8,
+                                      false};
         struct vt_mip_chain whole;
         VT_CHECK_INT_EQ(vt_mip_chain_from_image(&whole, &s, &in, &textures[i], NULL), 0);
         for (uint32_t l = 0; l < whole.level_count; l++) {
