@@ -431,14 +431,11 @@ static int build_atlas_coarse(struct merge *m, struct vts_error *err)
         vt_layout_release(&lay);
         return rc;
     }
-    uint32_t gx = 1, c = g->tile_content_px << level;
-    while ((uint64_t)gx * gx < count)
-        gx *= 2;
     for (int k = 0; rc == 0 && k < m->o->input_count; k++) {
         vt_shard_parse(vts_store_meta_find(m->in[k], VT_SHARD_KEY), &index, &count);
-        uint32_t px = (index - 1) % gx, py = (index - 1) / gx;
+        uint32_t px, py;
         size_t len = 0;
-        if ((uint64_t)px * c >= g->width || (uint64_t)py * c >= g->height)
+        if (!vt_atlas_build_part_tile(b, index - 1, &px, &py))
             continue; /* a part past the atlas: nothing */
         rc = vt_shard_merge_read(&m->set, k, m->copy_layers, level, px, py, m->buf[0], m->buf_cap,
                                  &len, err);

@@ -47,12 +47,13 @@ typedef int (*vt_atlas_progress_fn)(void *user, uint64_t done, uint64_t total);
 struct vt_atlas_layer_format;
 
 /* Sharded atlas builds (docs/sharding.md, "Atlas shards"). Level 0 is cut into a grid of
- * 2^ceil(m/2) x 2^floor(m/2) parts (count = 2^m) of 2^P x 2^P tiles, P the smallest that covers
- * the atlas, numbered row by row. A shard (merge false) emits the tiles of levels 0..K
- * (K = min(P, level_count - 1)) of its part: level K's tile is the part. The merge (merge true)
- * emits the levels above K from what the shards carry (vt_atlas_build_carry()): each texel of
- * level K of their part in the working space, and the chains above K of the entries whose cell
- * starts in their part. Every tile has the single build's bytes. */
+ * 2^a x 2^(m - a) parts (count = 2^m) of 2^P x 2^P tiles, numbered row by row: the grid with the
+ * smallest P that covers the atlas (ties: a = ceil(m/2), as image shards). A shard (merge false)
+ * emits the tiles of levels 0..K (K = min(P, level_count - 1)) of its part: level K's tile is the
+ * part. The merge (merge true) emits the levels above K from what the shards carry
+ * (vt_atlas_build_carry()): each texel of level K of their part in the working space, and the
+ * chains above K of the entries whose cell starts in their part. Every tile has the single build's
+ * bytes. */
 struct vt_atlas_build_part {
     uint32_t index, count; /* part (0-based) of count (a power of two); count 0: the whole build */
     bool merge;            /* the merge of count parts (textures are not read) */
@@ -127,6 +128,11 @@ void vt_atlas_build_stats(const struct vt_atlas_build *b, struct vt_atlas_build_
  * top level). */
 uint32_t vt_atlas_build_carried_level(const struct vt_atlas_build *b);
 bool vt_atlas_build_carries(const struct vt_atlas_build *b);
+
+/* The tile of level K that part `index` (0-based) is: (*px, *py); false when the part lies past
+ * the atlas (no tile, nothing carried). */
+bool vt_atlas_build_part_tile(const struct vt_atlas_build *b, uint32_t index, uint32_t *px,
+                              uint32_t *py);
 
 /* Shard: what the merge needs from this part (see vt_atlas_build_part), as one payload of
  * *len bytes (malloc'd into *payload; 0 bytes when the build carries nothing). Call after

@@ -38,6 +38,14 @@ uint32_t vt_atlas_build_carried_level(const struct vt_atlas_build *b)
     return b->carried;
 }
 
+bool vt_atlas_build_part_tile(const struct vt_atlas_build *b, uint32_t index, uint32_t *px,
+                              uint32_t *py)
+{
+    *px = index % b->parts_x;
+    *py = index / b->parts_x;
+    return (uint64_t)*px < b->tx[b->carried] && (uint64_t)*py < b->ty[b->carried];
+}
+
 bool vt_atlas_build_carries(const struct vt_atlas_build *b)
 {
     return b->part.count && b->carried + 1 < b->level_count;
@@ -146,13 +154,21 @@ int vt_atlas_shard_prepare(struct vt_atlas_build *b, struct vts_error *err)
     if ((1u << m) != p->count || p->index >= p->count || (p->merge && !p->formats))
         return vt_error_set(err, VTS_ERR_ARG, "atlas build: bad part %u of %u", p->index, p->count);
     b->part = *p;
-    uint32_t gx = 1u << ((m + 1) / 2), gy = 1u << (m / 2);
-    b->part_shift = 0;
-    while (((uint64_t)gx << b->part_shift) < b->tx[0] || ((uint64_t)gy << b->part_shift) < b->ty[0])
-        b->part_shift++;
+    /* the grid 2^a x 2^(m - a) whose parts are the smallest (the atlas's shape), ties to the
+     * image shards' 2^ceil(m/2) x 2^floor(m/2) */
+    b->part_shift = UINT32_MAX;
+    for (uint32_t i = 0; i <= m; i++) {
+        uint32_t a = i == 0 ? (m + 1) / 2 : i - 1 < (m + 1) / 2 ? i - 1 : i, sh = 0;
+        while (((uint64_t)1 << a << sh) < b->tx[0] || ((uint64_t)1 << (m - a) << sh) < b->ty[0])
+            sh++;
+        if (sh < b->part_shift) {
+            b->part_shift = sh;
+            b->parts_x = 1u << a;
+        }
+    }
     b->carried = b->part_shift < b->level_count - 1 ? b->part_shift : b->level_count - 1;
-    b->part_x = p->index % gx;
-    b->part_y = p->index / gx;
+    b->part_x = p->index % b->parts_x;
+    b->part_y = p->index / b->parts_x;
     if (p->merge) {
         merge_formats(b);
         return merge_chains(b, err);
@@ -357,10 +373,7 @@ int vt_atlas_build_put_carry(struct vt_atlas_build *b, uint32_t index, const uns
     if (!vt_atlas_build_carries(b))
         return 0;
     struct vt_atlas_tile *t = &b->t;
-    uint32_t gx = 1;
-    while ((uint64_t)gx * gx < b->part.count)
-        gx *= 2;
-    uint32_t px = index % gx, py = index / gx, x0, y0, w, h;
+    uint32_t px = index % b->parts_x, py = index / b->parts_x, x0, y0, w, h;
     carried_rect(b, px, py, &x0, &y0, &w, &h);
     uint64_t r[4];
     part_rect(b, px, py, r);

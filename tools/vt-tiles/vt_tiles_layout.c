@@ -178,12 +178,8 @@ static int put_shard_carry(struct layout_run *r, struct vts_error *err)
     unsigned char *payload;
     size_t len;
     int rc = vt_atlas_build_carry(r->build, &payload, &len, err);
-    uint32_t level = vt_atlas_build_carried_level(r->build), gx = 1;
-    while ((uint64_t)gx * gx < r->o->shard_count)
-        gx *= 2;
-    uint32_t px = (r->o->shard - 1) % gx, py = (r->o->shard - 1) / gx;
-    uint32_t c = r->lay.tile_content << level; /* level K's tiles are parts: (px, py) */
-    bool inside = (uint64_t)px * c < r->lay.width && (uint64_t)py * c < r->lay.height;
+    uint32_t level = vt_atlas_build_carried_level(r->build), px, py;
+    bool inside = vt_atlas_build_part_tile(r->build, r->o->shard - 1, &px, &py);
     if (rc == 0 && len && inside)
         rc = vts_writer_put(r->writer, r->nslots, level, px, py, payload, len, err);
     if (rc == 0)

@@ -82,6 +82,7 @@ struct vt_atlas_build {
     uint32_t part_shift;     /* a part is 2^part_shift x 2^part_shift tiles of level 0 */
     uint32_t carried;        /* min(part_shift, level_count - 1) */
     uint32_t part_x, part_y; /* the shard's part: column and row */
+    uint32_t parts_x;        /* parts per row of the grid */
     uint8_t *need;
 };
 
