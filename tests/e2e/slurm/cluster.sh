@@ -54,7 +54,7 @@ PartitionName=main Nodes=localhost Default=YES MaxTime=INFINITE State=UP
 CONF
   export SLURM_CONF=$d/slurm.conf
   slurmctld -f "$SLURM_CONF"
-  slurmd -f "$SLURM_CONF"
+  slurmd -f "$SLURM_CONF" -N localhost # the node of slurm.conf, whatever the hostname
   local i
   for i in $(seq 1 60); do
     if sinfo -h -o %T 2>/dev/null | grep -qx idle; then
