@@ -30,7 +30,7 @@ finish() {
     echo "FAILED ($rc): the logs" >&2
     tail -n 20 "$CLUSTER"/log/*.log "$work"/*/*.log 2>/dev/null >&2 || true
   fi
-  [ -n "${VT_KEEP_TEST:-}" ] || rm -rf "$work"
+  [ -n "${VT_KEEP_TEST:-}" ] || rm -rf "$work" # VT_KEEP_TEST=1: keep it to debug
   exit $rc
 }
 trap finish EXIT
