@@ -5,10 +5,14 @@
 #include <string.h>
 #include <unistd.h>
 
+#include <sys/stat.h>
+
 #include "tool_common.h"
+#include "vt_atlas_build.h"
 #include "vt_atomic_file.h"
 #include "vt_codec.h"
 #include "vt_error.h"
+#include "vt_layout.h"
 #include "vt_output_path.h"
 #include "vt_pool.h"
 #include "vt_pyramid.h"
@@ -36,6 +40,7 @@ struct merge {
     size_t buf_cap;
     struct vt_progress progress;
     bool shard_build;     /* shards of vt-tiles --shard: they carry a float layer (vt_shard.h) */
+    bool atlas;           /* shards of vt-tiles --layout --shard (shard.build carry=atlas) */
     uint32_t copy_layers; /* shards mode: layers copied (the float layer is not) */
     struct vt_tile_sink *sink; /* the coarse levels of a shard build */
 };
@@ -317,12 +322,153 @@ static int coarse_progress(void *user, uint64_t done, uint64_t total)
     return 0;
 }
 
+/* ---- the coarse levels of a vt-tiles --layout --shard set ---- */
+
+static int emit_atlas_tile(void *user, unsigned worker, uint32_t slot, uint32_t level, uint32_t tx,
+                           uint32_t ty, const struct vt_image *payload, struct vts_error *err)
+{
+    struct merge *m = user;
+    return vt_tile_sink_put(m->sink, worker, slot, level, tx, ty, payload, err);
+}
+
+static int no_texture(void *user, const char *path, struct vt_source *out, struct vts_error *err)
+{
+    (void)user;
+    (void)out;
+    return vt_error_set(err, VTS_ERR_ARG, "'%s': the merge reads no texture", path);
+}
+
+/* The layout the shards read (metadata "layout", as they named it; the same size and time). */
+static int read_shards_layout(const struct merge *m, struct vt_layout *lay, struct vts_error *err)
+{
+    const char *path = vts_store_meta_find(m->in[0], "layout");
+    const char *id = vts_store_meta_find(m->in[0], VT_SHARD_INPUT_KEY);
+    char now[96];
+    struct stat st;
+    if (!path || !id)
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': an atlas shard without layout metadata",
+                            m->o->inputs[0]);
+    if (stat(path, &st) != 0)
+        return vt_error_set(err, VTS_ERR_IO,
+                            "'%s': the shards' layout is not there (run vt-merge where the path "
+                            "the shards recorded leads to it)",
+                            path);
+    snprintf(now, sizeof now, "size=%lld mtime=%lld", (long long)st.st_size,
+             (long long)st.st_mtime);
+    if (strcmp(now, id) != 0)
+        return vt_error_set(err, VTS_ERR_BAD_INPUT,
+                            "'%s' changed since the shards read it (%s, now %s)", path, id, now);
+    return vt_layout_read(path, NULL, lay, err);
+}
+
+/* The levels above the shards' carried level K, from their carried payloads (lib/compose:
+ * vt_atlas_build_part): the single build's tiles, encoded as the shards recorded. */
+static int build_atlas_coarse(struct merge *m, struct vts_error *err)
+{
+    const struct vts_geometry *g = vts_store_geometry(m->in[0]);
+    unsigned level, quality, sub, best, index, count;
+    int used = 0;
+    if (sscanf(vts_store_meta_find(m->in[0], VT_SHARD_BUILD_KEY),
+               "carry=atlas level=%u quality=%u subsampling=%u best=%u%n", &level, &quality, &sub,
+               &best, &used) != 4 ||
+        vts_store_meta_find(m->in[0], VT_SHARD_BUILD_KEY)[used] != '\0' ||
+        vt_shard_parse(vts_store_meta_find(m->in[0], VT_SHARD_KEY), &index, &count))
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': not a well-formed atlas shard (%s)",
+                            m->o->inputs[0], VT_SHARD_BUILD_KEY);
+    struct vt_layout lay;
+    int rc = read_shards_layout(m, &lay, err);
+    uint32_t slots[VT_LAYOUT_MAX_LAYERS];
+    struct vt_atlas_layer_format formats[VT_LAYOUT_MAX_LAYERS];
+    struct vt_tile_sink_layer sinks[VT_LAYOUT_MAX_LAYERS];
+    if (rc == 0 && (lay.width != g->width || lay.height != g->height ||
+                    lay.tile_content != g->tile_content_px || lay.border != g->border_px ||
+                    m->copy_layers > VT_LAYOUT_MAX_LAYERS))
+        rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': the shards are not of this layout",
+                          vts_store_meta_find(m->in[0], "layout"));
+    for (uint32_t s = 0; rc == 0 && s < m->copy_layers; s++) {
+        const struct vts_layer *L = vts_store_layer(m->in[0], s);
+        int li = vt_layout_layer_index(&lay, L->name);
+        bool alpha = L->channels == 2 || L->channels == 4;
+        slots[s] = (uint32_t)li;
+        formats[s] = (struct vt_atlas_layer_format){L->channels, L->channels - (alpha ? 1u : 0u),
+                                                    alpha, L->colour, 0};
+        const struct vt_codec *codec = vt_codec_by_fourcc(L->codec);
+        sinks[s] = (struct vt_tile_sink_layer){
+            codec,
+            {(int)quality, codec ? vt_tile_sink_effort(codec, best != 0) : 0, (int)sub},
+            L->channels,
+            VTS_SAMPLE_U8};
+        if (li < 0 || !codec || L->sample != VTS_SAMPLE_U8)
+            rc = vt_error_set(err, VTS_ERR_BAD_INPUT,
+                              "'%s': layer '%s' is not one of the layout's, or its codec is not "
+                              "available",
+                              m->o->inputs[0], L->name);
+    }
+    char dir[VT_PATH_MAX];
+    if (rc == 0)
+        rc = vt_output_path_scratch_dir(m->o->out_path, dir, sizeof dir, err);
+    struct vt_atlas_build_options bo = {.layout = &lay,
+                                        .layers = slots,
+                                        .layer_count = m->copy_layers,
+                                        .level_count = g->level_count,
+                                        .threads = m->o->threads,
+                                        .temp_dir = m->o->temp_dir ? m->o->temp_dir : dir,
+                                        .open = no_texture,
+                                        .progress = coarse_progress,
+                                        .progress_user = m,
+                                        .part = {0, count, true, formats}};
+    struct vt_atlas_build *b = rc == 0 ? vt_atlas_build_create(&bo, err) : NULL;
+    if (rc == 0 && !b)
+        rc = err->status;
+    if (rc == 0 && vt_atlas_build_level_count(b) != g->level_count)
+        rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': level count %u, the layout gives %u",
+                          m->o->inputs[0], g->level_count, vt_atlas_build_level_count(b));
+    if (rc == 0 && vt_atlas_build_carried_level(b) != level)
+        rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': carried level %u, expected %u",
+                          m->o->inputs[0], level, vt_atlas_build_carried_level(b));
+    if (rc != 0 || !vt_atlas_build_carries(b)) { /* the shards made every level */
+        vt_atlas_build_destroy(b);
+        vt_layout_release(&lay);
+        return rc;
+    }
+    for (int k = 0; rc == 0 && k < m->o->input_count; k++) {
+        vt_shard_parse(vts_store_meta_find(m->in[k], VT_SHARD_KEY), &index, &count);
+        uint32_t px, py;
+        size_t len = 0;
+        if (!vt_atlas_build_part_tile(b, index - 1, &px, &py))
+            continue; /* a part past the atlas: nothing */
+        rc = vt_shard_merge_read(&m->set, k, m->copy_layers, level, px, py, m->buf[0], m->buf_cap,
+                                 &len, err);
+        if (rc == 0 && len == 0)
+            rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': no carried data (level %u tile %u,%u)",
+                              m->o->inputs[k], level, px, py);
+        struct vts_error why = {0};
+        if (rc == 0 && vt_atlas_build_put_carry(b, index - 1, m->buf[0], len, &why))
+            rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': %s", m->o->inputs[k], why.message);
+    }
+    if (rc == 0 && !(m->sink = vt_tile_sink_create(m->out, g->tile_payload_px, sinks,
+                                                   m->copy_layers, m->o->threads, 0, err)))
+        rc = err->status;
+    if (rc == 0) {
+        vt_log(VT_LOG_INFO, "building levels %u..%u of the atlas from the shards' level %u",
+               level + 1, g->level_count - 1, level);
+        vt_progress_start(&m->progress, "coarse levels", "tiles", vt_atlas_build_tile_count(b));
+        rc = vt_atlas_build_tiles(b, emit_atlas_tile, m, err);
+        vt_progress_end(&m->progress);
+    }
+    vt_atlas_build_destroy(b);
+    vt_layout_release(&lay);
+    return rc;
+}
+
 /* Builds the levels above the shards' first pass (with wrap) or the tiles along their seams
  * (without) from their carried texels, with the options the shards recorded (lib/pyramid:
  * vt_shard_merge, vt_pyramid_resume, vt_shard_seams): the same bytes as the single build's passes,
  * encoded with the codec and effort the shards recorded. */
 static int build_coarse(struct merge *m, struct vts_error *err)
 {
+    if (m->atlas)
+        return build_atlas_coarse(m, err);
     const struct vts_layer *L = vts_store_layer(m->in[0], 0);
     struct vt_pyramid_options po;
     struct vt_source_info input;
@@ -389,6 +535,9 @@ static int merge(struct merge *m, struct vts_error *err)
     m->set = (struct vt_shard_merge){m->in, (const char *const *)m->o->inputs, m->o->input_count};
     if (m->shard_build) /* vt-tiles --shard: all the shards of one build, or nothing */
         rc = vt_shard_merge_check(&m->set, err);
+    if (rc == 0 && m->shard_build)
+        m->atlas =
+            strncmp(vts_store_meta_find(m->in[0], VT_SHARD_BUILD_KEY), "carry=atlas ", 12) == 0;
     for (int k = 0; k < m->o->input_count && rc == 0; k++) {
         rc = check_geometry(m, k, err);
         shards = shards && same_layer_table(m->in[0], m->in[k]);
@@ -397,7 +546,7 @@ static int merge(struct merge *m, struct vts_error *err)
                                                                   : m->buf_cap;
     }
     m->copy_layers = vts_store_geometry(m->in[0])->layer_count - (m->shard_build ? 1 : 0);
-    if (rc == 0 && m->shard_build && (!shards || m->copy_layers != 1))
+    if (rc == 0 && m->shard_build && (!shards || (m->copy_layers != 1 && !m->atlas)))
         rc = vt_error_set(err, VTS_ERR_BAD_INPUT,
                           "the shards' layer tables differ or are not vt-tiles --shard's");
     if (rc == 0 && !shards)

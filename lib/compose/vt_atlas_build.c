@@ -11,16 +11,6 @@
 #include "vt_pool.h"
 #include "vts.h"
 
-struct vt_atlas_build {
-    struct vt_atlas_tile t; /* what the compositor reads, the chain cache included */
-    struct vt_atlas_build_options o;
-    uint32_t level_count;
-    uint32_t tx[VTS_MAX_LEVELS + 1], ty[VTS_MAX_LEVELS + 1];
-    uint64_t first[VTS_MAX_LEVELS + 1]; /* job number of each level's first tile */
-    uint64_t tiles_empty, decodes;
-    struct vt_atlas_tile_worker *workers; /* threads + 1 (the last for render) */
-};
-
 static uint32_t ceil_shift(uint32_t v, uint32_t k)
 {
     return k >= 32 ? 1 : (uint32_t)(((uint64_t)v + (1ull << k) - 1) >> k);
@@ -98,6 +88,10 @@ static int tile_do(void *ctx, unsigned worker, uint64_t job, struct vts_error *e
     struct vt_atlas_tile_worker *w = &b->workers[worker];
     uint32_t L, tx, ty;
     job_tile(b, job, &L, &tx, &ty);
+    if (!vt_atlas_shard_emits(b, L, tx, ty)) { /* another shard's, or the merge's */
+        __atomic_fetch_add(&r->done, 1, __ATOMIC_RELAXED);
+        return 0;
+    }
     uint32_t cx0 = tx * b->t.content, cy0 = ty * b->t.content;
     uint32_t cw = b->t.lw[L] - cx0 < b->t.content ? b->t.lw[L] - cx0 : b->t.content;
     uint32_t chh = b->t.lh[L] - cy0 < b->t.content ? b->t.lh[L] - cy0 : b->t.content;
@@ -241,7 +235,9 @@ struct vt_atlas_build *vt_atlas_build_create(const struct vt_atlas_build_options
     geometry(b);
     if (alloc_tables(b, err) || vt_atlas_tile_build_grid(&b->t, err))
         goto fail;
-    if (vt_atlas_chains_build(&b->t, &b->o, b->level_count, &b->decodes, err))
+    if (o->part.count && vt_atlas_shard_prepare(b, err))
+        goto fail;
+    if (!o->part.merge && vt_atlas_chains_build(&b->t, &b->o, b->level_count, &b->decodes, err))
         goto fail;
     if (alloc_payloads(b, err))
         goto fail;
@@ -294,5 +290,8 @@ void vt_atlas_build_destroy(struct vt_atlas_build *b)
     free(b->workers);
     free(b->t.lmax);
     vt_atlas_tile_release_grid(&b->t);
+    free(b->need);
+    for (uint32_t s = 0; s < VT_LAYOUT_MAX_LAYERS; s++)
+        free(b->t.carried[s]);
     free(b);
 }

@@ -45,6 +45,22 @@ typedef int (*vt_atlas_progress_fn)(void *user, uint64_t done, uint64_t total);
 
 #define VT_ATLAS_BUILD_CACHE (256ull << 20) /* default chain block budget, bytes */
 
+struct vt_atlas_layer_format;
+
+/* Sharded atlas builds (docs/sharding.md, "Atlas shards"). Level 0 is cut into a grid of
+ * 2^a x 2^(m - a) parts (count = 2^m) of 2^P x 2^P tiles, numbered row by row: the grid with the
+ * smallest P that covers the atlas (ties: a = ceil(m/2), as image shards). A shard (merge false)
+ * emits the tiles of levels 0..K (K = min(P, level_count - 1)) of its part: level K's tile is the
+ * part. The merge (merge true) emits the levels above K from what the shards carry
+ * (vt_atlas_build_carry()): each texel of level K of their part in the working space, and the
+ * chains above K of the entries whose cell starts in their part. Every tile has the single build's
+ * bytes. */
+struct vt_atlas_build_part {
+    uint32_t index, count; /* part (0-based) of count (a power of two); count 0: the whole build */
+    bool merge;            /* the merge of count parts (textures are not read) */
+    const struct vt_atlas_layer_format *formats; /* merge: per slot, the shards' formats */
+};
+
 struct vt_atlas_build_options {
     const struct vt_layout *layout; /* read and checked (vt_layout_read); must outlive the build */
     const uint32_t *layers;         /* layout layer indices to build, in store order */
@@ -59,6 +75,7 @@ struct vt_atlas_build_options {
     void *open_user;
     vt_atlas_progress_fn progress; /* optional, for the texture scan of create() too */
     void *progress_user;
+    struct vt_atlas_build_part part; /* zero: the whole build */
 };
 
 /* Output format of one built layer: colour_channels (1 when every texture of the layer is grey,
@@ -116,6 +133,29 @@ struct vt_atlas_build_stats {
     uint64_t texels_mixed;  /* coarse texels computed from several cells */
 };
 void vt_atlas_build_stats(const struct vt_atlas_build *b, struct vt_atlas_build_stats *out);
+
+/* Sharded builds: the carried level K, and whether the merge has levels to build (K is not the
+ * top level). */
+uint32_t vt_atlas_build_carried_level(const struct vt_atlas_build *b);
+bool vt_atlas_build_carries(const struct vt_atlas_build *b);
+
+/* The tile of level K that part `index` (0-based) is: (*px, *py); false when the part lies past
+ * the atlas (no tile, nothing carried). */
+bool vt_atlas_build_part_tile(const struct vt_atlas_build *b, uint32_t index, uint32_t *px,
+                              uint32_t *py);
+
+/* Shard: what the merge needs from this part (see vt_atlas_build_part), as one payload of
+ * *len bytes (malloc'd into *payload; 0 bytes when the build carries nothing). Call after
+ * vt_atlas_build_tiles(). Little-endian: per slot, the part's texels of level K row by row,
+ * channels + 1 floats each (value in the working space, coverage); then a u32 count of entries
+ * and per entry its u32 index and, per slot, its chain's levels K + 1.. as 8-bit texels. */
+int vt_atlas_build_carry(struct vt_atlas_build *b, unsigned char **payload, size_t *len,
+                         struct vts_error *err);
+
+/* Merge: takes part `index`'s payload (from vt_atlas_build_carry()). Every part must be put
+ * before vt_atlas_build_tiles(). VTS_ERR_BAD_INPUT when it is not such a payload. */
+int vt_atlas_build_put_carry(struct vt_atlas_build *b, uint32_t index, const unsigned char *payload,
+                             size_t len, struct vts_error *err);
 
 /* Frees everything. Accepts NULL. */
 void vt_atlas_build_destroy(struct vt_atlas_build *b);

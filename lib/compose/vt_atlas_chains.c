@@ -341,6 +341,8 @@ static int build_group(struct chains_run *r, const struct group *g, struct vts_e
         rc = r->o->open(r->o->open_user, path, &j.src, err);
     for (uint32_t i = 0; rc == 0 && i < n; i++) {
         uint32_t key = r->keys[g->first + i / 2];
+        if (t->need && !t->need[key / t->nslots]) /* a shard: another part's entry */
+            continue;
         bool alpha = i % 2 == 0 ? t->slots[key % t->nslots].fmt.alpha : false;
         if (i % 2 == 1 && r->phase != 1)
             continue;
@@ -362,8 +364,8 @@ static int build_group(struct chains_run *r, const struct group *g, struct vts_e
         if (j.cs[k] == NULL && !j.whole)
             rc = err ? err->status : VTS_ERR_NOMEM;
     }
-    j.check_alpha = r->phase == 1;
-    if (rc == 0 && j.n) {
+    j.check_alpha = r->phase == 1; /* (a shard decodes a file it needs no chain of for that) */
+    if (rc == 0 && (j.n || j.check_alpha)) {
         __atomic_fetch_add(&r->decodes, 1, __ATOMIC_RELAXED);
         rc = decode_file(&j, err);
     }
@@ -414,6 +416,12 @@ static bool group_in_phase(const struct chains_run *r, const struct group *g)
         return true;
     if (r->phase == 1)
         return alpha;
+    if (r->phase == 2 && !alpha && r->t->need) { /* a shard: files of its part only */
+        for (uint32_t i = 0; i < g->count; i++)
+            if (r->t->need[r->keys[g->first + i] / r->t->nslots])
+                return true;
+        return false;
+    }
     if (r->phase == 2)
         return !alpha;
     return false;

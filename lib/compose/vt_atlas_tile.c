@@ -179,9 +179,20 @@ static int mixed_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, 
         uint32_t cx = 2 * X + (d & 1), cy = 2 * Y + (d >> 1), run;
         if (cx >= t->lw[L - 1] || cy >= t->lh[L - 1])
             continue;
-        int32_t k = vt_atlas_tile_classify(t, L - 1, cx, cy, &run);
         float v[4], cw = 1.0f;
         int rc = 0;
+        if (t->carried[s] && L - 1 == t->carried_level) { /* a merge: what the shards carried */
+            const float *p = t->carried[s] + ((size_t)cy * t->lw[L - 1] + cx) * (ch + 1);
+            if (p[ch] == 0.0f)
+                continue;
+            memcpy(v, p, ch * sizeof *v);
+            cw = p[ch];
+            for (uint32_t c = 0; c < ch; c++)
+                sum[c] += cw * v[c];
+            wsum += cw;
+            continue;
+        }
+        int32_t k = vt_atlas_tile_classify(t, L - 1, cx, cy, &run);
         if (k == VT_ATLAS_TILE_EMPTY)
             continue;
         if (k >= 0) {
@@ -206,6 +217,28 @@ static int mixed_texel(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, 
         vt_filter_renormalize(&r);
     }
     return 0;
+}
+
+int vt_atlas_tile_working(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, uint32_t s,
+                          uint32_t L, uint32_t X, uint32_t Y, float *v, float *cov,
+                          struct vts_error *err)
+{
+    const struct vt_atlas_tile_slot *sl = &t->slots[s];
+    uint32_t run;
+    int32_t k = vt_atlas_tile_classify(t, L, X, Y, &run);
+    memset(v, 0, sl->fmt.channels * sizeof *v);
+    *cov = 0.0f;
+    if (k == VT_ATLAS_TILE_EMPTY)
+        return 0;
+    if (k == VT_ATLAS_TILE_MIXED)
+        return mixed_texel(t, w, s, L, X, Y, v, cov, err);
+    const uint8_t *p;
+    int rc = owned_texel(t, w, s, (uint32_t)k, L, X, Y, &p, err);
+    if (rc == 0) {
+        vt_filter_to_working(&sl->mode, VTS_SAMPLE_U8, p, v, 1);
+        *cov = 1.0f;
+    }
+    return rc;
 }
 
 /* Writes the value of texel (X, Y) of level L whose class is k into o. */

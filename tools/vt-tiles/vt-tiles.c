@@ -288,8 +288,10 @@ static int parse_options(int argc, char **argv, struct options *o)
         if (vt_output_path_is_stdio(o->layout))
             return vt_usage_error("--layout cannot be standard input ('-'): it names its textures "
                                   "relative to its own folder");
-        if (o->wrap || o->colour_set || o->shard)
-            return vt_usage_error("--wrap, --colour and --shard do not apply to --layout");
+        if (o->wrap || o->colour_set)
+            return vt_usage_error("--wrap and --colour do not apply to --layout");
+        if (o->shard && o->export_atlas)
+            return vt_usage_error("--shard and --export-atlas do not go together");
         if (vt_output_path_is_stdio(o->export_atlas))
             return vt_usage_error("--export-atlas cannot be standard output ('-'): its name "
                                   "(.png, .tif) gives the format");
@@ -386,7 +388,9 @@ static int run_layout(const struct options *o)
                                          .max_store = o->max_store,
                                          .cache_bytes = o->cache_bytes,
                                          .temp_dir = o->temp_dir,
-                                         .threads = o->threads};
+                                         .threads = o->threads,
+                                         .shard = o->shard,
+                                         .shard_count = o->shard_count};
     return vt_tiles_layout_run(&lo);
 }
 

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 #include "tool_common.h"
 #include "vt_atlas_build.h"
@@ -15,6 +16,7 @@
 #include "vt_layout.h"
 #include "vt_output_path.h"
 #include "vt_png_file.h"
+#include "vt_shard.h"
 #include "vt_tiff_file.h"
 #include "vt_tile_sink.h"
 #include "vt_version.h"
@@ -195,9 +197,48 @@ static int set_metadata(struct layout_run *r, struct vts_error *err)
     return 0;
 }
 
+/* ---- --shard I/N (docs/sharding.md, "Atlas shards") ---- */
+
+/* The payload the merge needs, at level K, the part's tile of the carry layer. */
+static int put_shard_carry(struct layout_run *r, struct vts_error *err)
+{
+    unsigned char *payload;
+    size_t len;
+    int rc = vt_atlas_build_carry(r->build, &payload, &len, err);
+    uint32_t level = vt_atlas_build_carried_level(r->build), px, py;
+    bool inside = vt_atlas_build_part_tile(r->build, r->o->shard - 1, &px, &py);
+    if (rc == 0 && len && inside)
+        rc = vts_writer_put(r->writer, r->nslots, level, px, py, payload, len, err);
+    if (rc == 0)
+        vt_log(VT_LOG_INFO, "shard %u/%u: levels 0..%u of part %u,%u; %zu bytes carried",
+               r->o->shard, r->o->shard_count, level, px, py, inside ? len : 0);
+    free(payload);
+    return rc;
+}
+
+/* After the single build's metadata: shard=I/N, what the merge needs (the carried level and
+ * the encoders' settings), and the layout's size and time (shards of one build). */
+static int set_shard_metadata(struct layout_run *r, struct vts_error *err)
+{
+    const struct vt_tiles_layout_options *o = r->o;
+    char value[256];
+    struct stat st;
+    if (stat(o->layout, &st) != 0)
+        return vt_error_set(err, VTS_ERR_IO, "'%s': cannot stat the layout", o->layout);
+    snprintf(value, sizeof value, "%u/%u", o->shard, o->shard_count);
+    int rc = vts_writer_set_meta(r->writer, VT_SHARD_KEY, value, err);
+    snprintf(value, sizeof value, "carry=atlas level=%u quality=%u subsampling=%u best=%u",
+             vt_atlas_build_carried_level(r->build), o->quality, o->subsampling, o->best ? 1u : 0u);
+    if (rc == 0)
+        rc = vts_writer_set_meta(r->writer, VT_SHARD_BUILD_KEY, value, err);
+    snprintf(value, sizeof value, "size=%lld mtime=%lld", (long long)st.st_size,
+             (long long)st.st_mtime);
+    return rc ? rc : vts_writer_set_meta(r->writer, VT_SHARD_INPUT_KEY, value, err);
+}
+
 static int write_store(struct layout_run *r, struct vts_error *err)
 {
-    struct vts_layer layers[VT_LAYOUT_MAX_LAYERS];
+    struct vts_layer layers[VT_LAYOUT_MAX_LAYERS + 1];
     for (uint32_t s = 0; s < r->nslots; s++) {
         int status = pick_codec(r, s, &layers[s], err);
         if (status)
@@ -210,8 +251,11 @@ static int write_store(struct layout_run *r, struct vts_error *err)
                              b,
                              c + 2 * b,
                              vt_atlas_build_level_count(r->build),
-                             r->nslots,
+                             r->nslots + (r->o->shard ? 1u : 0u),
                              0};
+    if (r->o->shard) /* + what the merge needs (vt_atlas_build_carry()): raw bytes, one tile */
+        layers[r->nslots] = (struct vts_layer){
+            VTS_CODEC_RAW, 1, VTS_SAMPLE_F32, VTS_COLOUR_DATA, 0, 0, VT_SHARD_LAYER_NAME};
     if ((r->writer = vts_writer_create(r->o->output, &g, layers, err)))
         vts_writer_set_max_bytes(r->writer, r->o->max_store);
     if (!r->writer || !(r->sink = vt_tile_sink_create(r->writer, g.tile_payload_px, r->sink_layers,
@@ -220,8 +264,12 @@ static int write_store(struct layout_run *r, struct vts_error *err)
     vt_progress_start(&r->progress, "tiling", "tiles", vt_atlas_build_tile_count(r->build));
     int rc = vt_atlas_build_tiles(r->build, emit_tile, r, err);
     vt_progress_end(&r->progress);
+    if (rc == 0 && r->o->shard)
+        rc = put_shard_carry(r, err);
     if (rc == 0)
         rc = set_metadata(r, err);
+    if (rc == 0 && r->o->shard)
+        rc = set_shard_metadata(r, err);
     if (rc == 0)
         rc = vts_writer_finish(r->writer, err);
     if (rc)
@@ -329,18 +377,20 @@ static int start_build(struct layout_run *r, struct vts_error *err)
     if (!temp_dir && o->output && !vt_output_path_is_stdio(o->output) &&
         vt_output_path_scratch_dir(o->output, dir, sizeof dir, &dir_err) == 0)
         temp_dir = dir;
-    struct vt_atlas_build_options bo = {.layout = &r->lay,
-                                        .layers = r->layers,
-                                        .layer_count = r->nslots,
-                                        .filter = o->filter,
-                                        .threads = o->threads,
-                                        .cache_bytes = o->cache_bytes,
-                                        .temp_dir = temp_dir,
-                                        .max_pixels = o->max_pixels,
-                                        .open = open_texture,
-                                        .open_user = r,
-                                        .progress = show_progress,
-                                        .progress_user = r};
+    struct vt_atlas_build_options bo = {
+        .layout = &r->lay,
+        .layers = r->layers,
+        .layer_count = r->nslots,
+        .filter = o->filter,
+        .threads = o->threads,
+        .cache_bytes = o->cache_bytes,
+        .temp_dir = temp_dir,
+        .max_pixels = o->max_pixels,
+        .open = open_texture,
+        .open_user = r,
+        .progress = show_progress,
+        .progress_user = r,
+        .part = {o->shard ? o->shard - 1 : 0, o->shard_count, false, NULL}};
     vt_progress_start(&r->progress, "reading textures", "textures",
                       (uint64_t)r->lay.entry_count * r->nslots);
     r->build = vt_atlas_build_create(&bo, err);

@@ -29,6 +29,7 @@ struct vt_tiles_layout_options {
     unsigned threads;
     uint64_t cache_bytes; /* decoded texture blocks kept in memory; 0 = 256 MiB */
     const char *temp_dir; /* where blocks over the budget spill; NULL = the output's directory */
+    uint32_t shard, shard_count; /* --shard I/N (docs/sharding.md, "Atlas shards"); 0 = whole */
 };
 
 /* Runs the build; logs through tool_common (vt_log, progress). Returns the exit status: 0, 1 (an

@@ -61,7 +61,47 @@ struct vt_atlas_tile {
     struct vt_block_cache *blocks;
     struct vt_atlas_chain_info *chains; /* per key */
     uint64_t texels_mixed;              /* updated atomically */
+    /* sharded builds (vt_atlas_shard.c): entries whose chains a shard builds (NULL: all), and
+     * in the merge the carried level, whole: per slot, (value in the working space, coverage)
+     * of each texel, channels + 1 floats; NULL in a shard and in a single build */
+    const uint8_t *need;
+    uint32_t carried_level;
+    float *carried[VT_LAYOUT_MAX_LAYERS];
 };
+
+/* The build (vt_atlas_build.c), shared with the shard and merge parts (vt_atlas_shard.c). */
+struct vt_atlas_build {
+    struct vt_atlas_tile t; /* what the compositor reads, the chain cache included */
+    struct vt_atlas_build_options o;
+    uint32_t level_count;
+    uint32_t tx[VTS_MAX_LEVELS + 1], ty[VTS_MAX_LEVELS + 1];
+    uint64_t first[VTS_MAX_LEVELS + 1]; /* job number of each level's first tile */
+    uint64_t tiles_empty, decodes;
+    struct vt_atlas_tile_worker *workers; /* threads + 1 (the last for render) */
+    /* a shard (part.count > 0, not merge): the tiles of levels 0..carried of its part; the merge
+     * (part.merge): the levels above; vt_atlas_shard.c */
+    struct vt_atlas_build_part part;
+    uint32_t part_shift;     /* a part is 2^part_shift x 2^part_shift tiles of level 0 */
+    uint32_t carried;        /* min(part_shift, level_count - 1) */
+    uint32_t part_x, part_y; /* the shard's part: column and row */
+    uint32_t parts_x;        /* parts per row of the grid */
+    uint8_t *need;
+};
+
+/* Whether the build emits tile (L, tx, ty): every tile, or a shard's or the merge's
+ * (vt_atlas_shard.c). */
+bool vt_atlas_shard_emits(const struct vt_atlas_build *b, uint32_t L, uint32_t tx, uint32_t ty);
+
+/* Shards: after geometry, the part's place and the entries it needs (b->need, t.need); the
+ * merge: the chains' plan of the levels above the carried one and the slots' formats. 0 or the
+ * first error. */
+int vt_atlas_shard_prepare(struct vt_atlas_build *b, struct vts_error *err);
+
+/* The working-space value and coverage (0: empty, 1: owned) of texel (X, Y) of level L, as a
+ * mixed texel of level L + 1 reads it. */
+int vt_atlas_tile_working(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *w, uint32_t s,
+                          uint32_t L, uint32_t X, uint32_t Y, float *v, float *cov,
+                          struct vts_error *err);
 
 /* The texture pass (vt_atlas_chains.c): opens every texture of the built layers (checking its
  * size), decides the layer formats (t->slots[].fmt, mode, empty_px), then decodes each texture
