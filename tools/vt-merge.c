@@ -235,7 +235,15 @@ static int set_metadata(struct merge *m, bool shards, struct vts_error *err)
     int rc = 0;
     for (uint32_t i = 0; rc == 0 && i < vts_store_meta_count(m->in[0]); i++) {
         const char *key = vts_store_meta_key(m->in[0], i);
-        if (!single_build || !vt_shard_merge_drops_key(key, m->shard_build))
+        if (single_build && strcmp(key, VT_SHARD_RANGE_KEY) == 0) { /* the union, as "range" */
+            char range[VTS_MAX_LAYERS * 40];
+            int any = vt_shard_merge_range(&m->set, range, sizeof range);
+            if (any < 0)
+                rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': bad %s metadata", m->o->inputs[0],
+                                  VT_SHARD_RANGE_KEY);
+            else if (any)
+                rc = vts_writer_set_meta(m->out, "range", range, err);
+        } else if (!single_build || !vt_shard_merge_drops_key(key, m->shard_build))
             rc = vts_writer_set_meta(m->out, key, vts_store_meta_value(m->in[0], i), err);
     }
     if (rc != 0 || single_build) {
@@ -390,15 +398,19 @@ static int build_atlas_coarse(struct merge *m, struct vts_error *err)
         int li = vt_layout_layer_index(&lay, L->name);
         bool alpha = L->channels == 2 || L->channels == 4;
         slots[s] = (uint32_t)li;
-        formats[s] = (struct vt_atlas_layer_format){L->channels, L->channels - (alpha ? 1u : 0u),
-                                                    alpha, L->colour, 0};
+        formats[s] =
+            (struct vt_atlas_layer_format){.channels = L->channels,
+                                           .colour_channels = L->channels - (alpha ? 1u : 0u),
+                                           .alpha = alpha,
+                                           .colour = L->colour,
+                                           .sample = L->sample};
         const struct vt_codec *codec = vt_codec_by_fourcc(L->codec);
         sinks[s] = (struct vt_tile_sink_layer){
             codec,
             {(int)quality, codec ? vt_tile_sink_effort(codec, best != 0) : 0, (int)sub},
             L->channels,
-            VTS_SAMPLE_U8};
-        if (li < 0 || !codec || L->sample != VTS_SAMPLE_U8)
+            L->sample};
+        if (li < 0 || !codec)
             rc = vt_error_set(err, VTS_ERR_BAD_INPUT,
                               "'%s': layer '%s' is not one of the layout's, or its codec is not "
                               "available",

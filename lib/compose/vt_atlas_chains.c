@@ -513,17 +513,23 @@ static void decide_formats(struct chains_run *r, bool final)
         sl->fmt.colour_channels = grey && sl->fmt.colour != VTS_COLOUR_NORMAL ? 1 : 3;
         sl->fmt.alpha = alpha;
         sl->fmt.channels = sl->fmt.colour_channels + (alpha ? 1u : 0u);
-        sl->texel_bytes = (size_t)sl->fmt.channels * vts_sample_bytes(sample);
-        sl->mode = (struct vt_pixel_mode){sl->fmt.channels, sl->fmt.colour,
-                                          alpha && sl->fmt.colour != VTS_COLOUR_DATA};
-        memset(sl->empty_px, 0, sizeof sl->empty_px);
-        if (sl->fmt.colour == VTS_COLOUR_NORMAL && sample == VTS_SAMPLE_U8) {
-            sl->empty_px[0] = sl->empty_px[1] = 128; /* a flat normal, not (-1,-1,-1) */
-            sl->empty_px[2] = 255;
-        } else if (sl->fmt.colour == VTS_COLOUR_NORMAL) { /* (0, 0, 1), alpha 0 */
-            const float flat[4] = {0.0f, 0.0f, 1.0f, 0.0f};
-            vt_filter_from_working(&sl->mode, sample, flat, sl->empty_px, 1);
-        }
+        vt_atlas_slot_derive(sl);
+    }
+}
+
+void vt_atlas_slot_derive(struct vt_atlas_tile_slot *sl)
+{
+    uint32_t sample = sl->fmt.sample;
+    sl->texel_bytes = (size_t)sl->fmt.channels * vts_sample_bytes(sample);
+    sl->mode = (struct vt_pixel_mode){sl->fmt.channels, sl->fmt.colour,
+                                      sl->fmt.alpha && sl->fmt.colour != VTS_COLOUR_DATA};
+    memset(sl->empty_px, 0, sizeof sl->empty_px);
+    if (sl->fmt.colour == VTS_COLOUR_NORMAL && sample == VTS_SAMPLE_U8) {
+        sl->empty_px[0] = sl->empty_px[1] = 128; /* a flat normal, not (-1,-1,-1) */
+        sl->empty_px[2] = 255;
+    } else if (sl->fmt.colour == VTS_COLOUR_NORMAL) { /* (0, 0, 1), alpha 0 */
+        const float flat[4] = {0.0f, 0.0f, 1.0f, 0.0f};
+        vt_filter_from_working(&sl->mode, sample, flat, sl->empty_px, 1);
     }
 }
 

@@ -95,13 +95,7 @@ static void merge_formats(struct vt_atlas_build *b)
     for (uint32_t s = 0; s < b->t.nslots; s++) {
         struct vt_atlas_tile_slot *sl = &b->t.slots[s];
         sl->fmt = b->part.formats[s];
-        sl->mode = (struct vt_pixel_mode){sl->fmt.channels, sl->fmt.colour,
-                                          sl->fmt.alpha && sl->fmt.colour != VTS_COLOUR_DATA};
-        memset(sl->empty_px, 0, sizeof sl->empty_px);
-        if (sl->fmt.colour == VTS_COLOUR_NORMAL) {
-            sl->empty_px[0] = sl->empty_px[1] = 128;
-            sl->empty_px[2] = 255;
-        }
+        vt_atlas_slot_derive(sl);
     }
 }
 
@@ -248,7 +242,7 @@ static bool entry_bytes(const struct vt_atlas_build *b, uint32_t e, size_t *out)
             uint32_t w, h;
             level_size(ci, l, &w, &h);
             size_t lb;
-            if (!vt_size_mul3(w, h, b->t.slots[s].fmt.channels, &lb) || !vt_size_add(n, lb, &n))
+            if (!vt_size_mul3(w, h, b->t.slots[s].texel_bytes, &lb) || !vt_size_add(n, lb, &n))
                 return false;
         }
     }
@@ -264,7 +258,8 @@ static int chain_level(struct vt_atlas_build *b, size_t key, uint32_t l, unsigne
     struct vt_atlas_tile *t = &b->t;
     const struct vt_atlas_chain_info *ci = &t->chains[key];
     struct vt_atlas_tile_worker *wk = &b->workers[b->o.threads];
-    uint32_t w, h, ch = t->slots[key % t->nslots].fmt.channels, E = VT_BLOCK_CACHE_EDGE;
+    uint32_t w, h, E = VT_BLOCK_CACHE_EDGE;
+    size_t ch = t->slots[key % t->nslots].texel_bytes; /* bytes per texel */
     level_size(ci, l, &w, &h);
     uint32_t nbx = ceil_shift(w, VT_BLOCK_CACHE_SHIFT);
     bool to_cache = from != NULL;
@@ -352,7 +347,7 @@ int vt_atlas_build_carry(struct vt_atlas_build *b, unsigned char **payload, size
                 uint32_t lw, lh;
                 level_size(&t->chains[key], l, &lw, &lh);
                 rc = chain_level(b, key, l, o, NULL, err);
-                o += (size_t)lw * lh * t->slots[s].fmt.channels;
+                o += (size_t)lw * lh * t->slots[s].texel_bytes;
             }
         }
     }
@@ -415,7 +410,7 @@ int vt_atlas_build_put_carry(struct vt_atlas_build *b, uint32_t index, const uns
                 int rc = chain_level(b, key, l, NULL, payload + at, err);
                 if (rc)
                     return rc;
-                at += (size_t)lw * lh * t->slots[s].fmt.channels;
+                at += (size_t)lw * lh * t->slots[s].texel_bytes;
             }
         }
     }

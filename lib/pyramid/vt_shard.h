@@ -24,6 +24,7 @@
 #define VT_SHARD_KEY        "shard"       /* I/N */
 #define VT_SHARD_BUILD_KEY  "shard.build" /* vt_shard_build_format() */
 #define VT_SHARD_INPUT_KEY  "shard.input" /* size=BYTES mtime=SECONDS */
+#define VT_SHARD_RANGE_KEY  "shard.range" /* an atlas shard's part of the "range" key */
 #define VT_SHARD_LAYER_NAME "shard.carry"
 #define VT_SHARD_MAX_COUNT  4096u
 

@@ -1,6 +1,7 @@
 /* Merging shards: the complete set, the metadata it drops, the resumed build (see
  * vt_shard_merge.h). */
 #include "vt_shard_merge.h"
+#include <math.h>
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -61,12 +62,75 @@ bool vt_shard_merge_drops_key(const char *key, bool vt_tiles_build)
            (vt_tiles_build && strncmp(key, VT_SHARD_KEY ".", sizeof VT_SHARD_KEY) == 0);
 }
 
-/* Index of the first metadata entry at or after i that is not the shard key. */
+/* The keys whose values differ between the shards of one build: the shard key, and an atlas
+ * shard's value range (of the textures it read; the merge writes their union). */
+static bool per_shard_key(const char *key)
+{
+    return strcmp(key, VT_SHARD_KEY) == 0 || strcmp(key, VT_SHARD_RANGE_KEY) == 0;
+}
+
+/* Index of the first metadata entry at or after i that is not a per-shard key. */
 static uint32_t skip_shard_key(const struct vts_store *s, uint32_t i)
 {
-    while (i < vts_store_meta_count(s) && strcmp(vts_store_meta_key(s, i), VT_SHARD_KEY) == 0)
+    while (i < vts_store_meta_count(s) && per_shard_key(vts_store_meta_key(s, i)))
         i++;
     return i;
+}
+
+/* Widens [lo, hi] with one "MIN:MAX" item of a range list; false when it is not one. */
+static bool widen_item(const char *item, size_t len, float *lo, float *hi)
+{
+    char buf[64], tail[2];
+    float a, b;
+    if (len == 0 || len >= sizeof buf)
+        return false;
+    memcpy(buf, item, len);
+    buf[len] = '\0';
+    if (sscanf(buf, "%f:%f%1s", &a, &b, tail) != 2 || !(a <= b))
+        return false;
+    *lo = a < *lo ? a : *lo;
+    *hi = b > *hi ? b : *hi;
+    return true;
+}
+
+int vt_shard_merge_range(const struct vt_shard_merge *m, char *out, size_t cap)
+{
+    float lo[VTS_MAX_LAYERS], hi[VTS_MAX_LAYERS];
+    uint32_t items = 0;
+    for (int k = 0; k < m->count; k++) {
+        const char *v = vts_store_meta_find(m->stores[k], VT_SHARD_RANGE_KEY);
+        if (!v)
+            return -1;
+        uint32_t n = 0;
+        for (const char *p = v;; n++) {
+            size_t len = strcspn(p, ",");
+            if (n >= VTS_MAX_LAYERS)
+                return -1;
+            if (k == 0)
+                lo[n] = INFINITY, hi[n] = -INFINITY;
+            if (!(len == 1 && *p == '-') && !widen_item(p, len, &lo[n], &hi[n]))
+                return -1;
+            if (p[len] == '\0')
+                break;
+            p += len + 1;
+        }
+        if (k > 0 && n + 1 != items)
+            return -1;
+        items = n + 1;
+    }
+    size_t used = 0;
+    bool any = false;
+    out[0] = '\0';
+    for (uint32_t i = 0; i < items; i++) {
+        int w = lo[i] <= hi[i] ? snprintf(out + used, cap - used, "%s%.9g:%.9g", i ? "," : "",
+                                          (double)lo[i], (double)hi[i])
+                               : snprintf(out + used, cap - used, "%s-", i ? "," : "");
+        if (w < 0 || (size_t)w >= cap - used)
+            return -1;
+        used += (size_t)w;
+        any |= lo[i] <= hi[i];
+    }
+    return any ? 1 : 0;
 }
 
 /* True when a and b have the same metadata, in the same order, apart from the shard key. */
@@ -109,7 +173,7 @@ static const char *metadata_difference(const struct vts_store *a, const struct v
         for (uint32_t i = 0; i < vts_store_meta_count(s[t]); i++) {
             const char *key = vts_store_meta_key(s[t], i),
                        *other = vts_store_meta_find(s[1 - t], key);
-            if (strcmp(key, VT_SHARD_KEY) != 0 &&
+            if (!per_shard_key(key) &&
                 (!other || strcmp(other, vts_store_meta_value(s[t], i)) != 0))
                 return key;
         }

@@ -42,6 +42,12 @@ int vt_shard_merge_tile(const struct vt_shard_merge *m, uint64_t index, uint32_t
  * keeps none of the keys vt_shard_merge_drops_key() names. */
 bool vt_shard_merge_is_single_build(const struct vt_shard_merge *m);
 
+/* The union of the shards' VT_SHARD_RANGE_KEY lists (atlas shards: per layer "MIN:MAX" of the
+ * textures each read, or "-"), formatted as vt-tiles --layout writes its "range" key. Returns 1
+ * with out filled when some layer has a range, 0 when none has, -1 when a shard lacks the key or
+ * a list is malformed or longer than cap. */
+int vt_shard_merge_range(const struct vt_shard_merge *m, char *out, size_t cap);
+
 /* True for the metadata keys a complete shard set drops: VT_SHARD_KEY, and when vt_tiles_build is
  * true (shards of vt-tiles --shard) every VT_SHARD_KEY ".*" key as well. */
 bool vt_shard_merge_drops_key(const char *key, bool vt_tiles_build);

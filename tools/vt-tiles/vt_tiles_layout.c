@@ -102,9 +102,8 @@ static int pick_codec(struct layout_run *r, uint32_t slot, struct vts_layer *lay
     const struct vt_tiles_layout_options *o = r->o;
     struct vt_atlas_layer_format f;
     vt_atlas_build_format(r->build, slot, &f);
-    const char *name =
-        vt_tile_sink_layer_codec_name(o->codec_name ? o->codec_name : VT_TILE_SINK_AUTO, f.sample,
-                                      f.channels, f.alpha, f.colour);
+    const char *name = vt_tile_sink_layer_codec_name(
+        o->codec_name ? o->codec_name : VT_TILE_SINK_AUTO, f.sample, f.channels, f.alpha, f.colour);
     const struct vt_codec *codec = vt_codec_find(name);
     if (!codec)
         return vt_usage_error(
@@ -178,8 +177,11 @@ static int set_metadata(struct layout_run *r, struct vts_error *err)
             snprintf(ranges + n, sizeof ranges - n, "%s-", s ? "," : "");
         any_range |= f.has_range;
     }
-    if (any_range) {
-        int rc = vts_writer_set_meta(r->writer, "range", ranges, err);
+    /* a shard's range is of the textures it read: under its own key, always, for the merge to
+     * join (vt_shard_merge_range) into the single build's "range" at this place */
+    if (any_range || r->o->shard) {
+        int rc =
+            vts_writer_set_meta(r->writer, r->o->shard ? VT_SHARD_RANGE_KEY : "range", ranges, err);
         if (rc)
             return rc;
     }

@@ -103,6 +103,10 @@ int vt_atlas_tile_working(struct vt_atlas_tile *t, struct vt_atlas_tile_worker *
                           uint32_t L, uint32_t X, uint32_t Y, float *v, float *cov,
                           struct vts_error *err);
 
+/* Sets the slot's texel bytes, pixel mode and empty texel from its fmt (the chains' decision or,
+ * in a merge, the shards'). */
+void vt_atlas_slot_derive(struct vt_atlas_tile_slot *sl);
+
 /* The texture pass (vt_atlas_chains.c): opens every texture of the built layers (checking its
  * size), decides the layer formats (t->slots[].fmt, mode, empty_px), then decodes each texture
  * file once and streams its chains into t->blocks (created here, o->cache_bytes of memory). Keys

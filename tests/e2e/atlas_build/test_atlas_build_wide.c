@@ -7,8 +7,9 @@
  * f32, decoded to linear light in f16); levels 1 and 2 equal a reference 2x2 box reduction
  * computed here in double precision (linear light for the sRGB u16 layer). Each comparison is
  * also run against a deliberately wrong expectation, which must fail. Codecs that cannot hold the
- * sample types are refused, naming the layer. -j1 and -j2 give the same bytes.
- * Usage: test_atlas_build_wide VT_TILES WORKDIR */
+ * sample types are refused, naming the layer. -j1 and -j2 give the same bytes, and so do shards
+ * merged by vt-merge.
+ * Usage: test_atlas_build_wide VT_TILES WORKDIR VT_MERGE */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -366,6 +367,45 @@ static void test_codec_refused(void)
     VT_CHECK_STR_CONTAINS(abuild_stderr, "holds f32 samples");
 }
 
+/* Shards of the wide layers (--shard I/N, then vt-merge) give the single build's bytes; each
+ * shard's range is of the textures it read (they differ), the merge writes their union. */
+static const char *merge_tool;
+static void test_shards_merge_equal(void)
+{
+    static const uint32_t counts[] = {2, 4, 16};
+    for (size_t c = 0; c < sizeof counts / sizeof counts[0]; c++) {
+        uint32_t n = counts[c];
+        char args[2400], shard[700], merged[700], all[16 * 720] = "";
+        bool ranges_differ = false;
+        char first[200] = "";
+        for (uint32_t i = 1; i <= n; i++) {
+            snprintf(shard, sizeof shard, "%s/wide_s%u_%u.vts", abuild_dir, n, i);
+            snprintf(args, sizeof args, "-q -j%u --layout %s --shard %u/%u -o %s", 1 + i % 2,
+                     layout_path, i, n, shard);
+            VT_CHECK_INT_EQ(abuild_run(args), 0);
+            size_t len = strlen(all);
+            snprintf(all + len, sizeof all - len, " %s", shard);
+            struct vts_error err;
+            struct vts_store *s = vts_open(shard, &err);
+            VT_CHECK(s != NULL);
+            const char *r = s ? vts_store_meta_find(s, "shard.range") : NULL;
+            VT_CHECK(r != NULL);
+            VT_CHECK(s && vts_store_meta_find(s, "range") == NULL);
+            if (r && i == 1)
+                snprintf(first, sizeof first, "%s", r);
+            else if (r && strcmp(r, first) != 0)
+                ranges_differ = true;
+            vts_close(s);
+        }
+        VT_CHECK(ranges_differ); /* else the union is not exercised */
+        snprintf(merged, sizeof merged, "%s/wide_m%u.vts", abuild_dir, n);
+        snprintf(args, sizeof args, "%s -q -o %s%s", merge_tool, merged, all);
+        VT_CHECK_INT_EQ(system(args), 0);
+        snprintf(args, sizeof args, "cmp -s %s %s", store_path, merged);
+        VT_CHECK_INT_EQ(system(args), 0);
+    }
+}
+
 /* --export-atlas keeps 16 bits (PNG), refuses f16 naming the layer. */
 static void test_export(void)
 {
@@ -402,12 +442,13 @@ static void test_export(void)
 
 int main(int argc, char **argv)
 {
-    if (argc < 3) {
-        fprintf(stderr, "usage: test_atlas_build_wide VT_TILES WORKDIR\n");
+    if (argc < 4) {
+        fprintf(stderr, "usage: test_atlas_build_wide VT_TILES WORKDIR VT_MERGE\n");
         return 2;
     }
     abuild_tool = argv[1];
     abuild_dir = argv[2];
+    merge_tool = argv[3];
     mkdir(abuild_dir, 0777);
     make_textures();
     snprintf(layout_path, sizeof layout_path, "%s/wide.json", abuild_dir);
@@ -417,6 +458,7 @@ int main(int argc, char **argv)
     VT_RUN(test_texels);
     VT_RUN(test_range_metadata);
     VT_RUN(test_threads_same_bytes);
+    VT_RUN(test_shards_merge_equal);
     VT_RUN(test_codec_refused);
     VT_RUN(test_export);
     for (uint32_t i = 0; i < T_COUNT; i++)
