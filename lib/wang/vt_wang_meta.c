@@ -92,11 +92,12 @@ int vt_wang_info_parse(const char *(*get)(void *user, const char *key), void *us
     if ((v = get(user, VT_WANG_KEY_ORDER)) != NULL) {
         uint32_t slots = cols * rows;
         info->order = malloc(slots * sizeof *info->order);
-        if (!info->order || parse_list(v, info->order, slots, slots - 1) != slots ||
+        bool allocated = info->order != NULL;
+        if (!allocated || parse_list(v, info->order, slots, slots - 1) != slots ||
             !is_permutation(info->order, slots)) {
             vt_wang_info_release(info);
-            return info->order ? bad(err, VT_WANG_KEY_ORDER)
-                               : vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
+            return allocated ? bad(err, VT_WANG_KEY_ORDER)
+                             : vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
         }
     }
     return 0;

@@ -48,19 +48,23 @@ static void to_tile(uint32_t t, bool flip_x, bool flip_y, uint32_t u, uint32_t v
 /* Minimum-error cut of one quadrant of an edge tile between A (the patch of the horizontal edge,
  * row v = 0 of the quadrant) and B (the vertical edge, column u = 0): in row v the texels u < c(v)
  * come from B, the rest from A. c(0) = 0 (the edge row is A's), c(v) >= 1 below it (the edge
- * column is B's), |c(v) - c(v - 1)| <= 1, within `band` of the diagonal: the path of least summed
+ * column is B's), |c(v) - c(v - 1)| <= 1, within min(v, h - v) / 3 of the diagonal (so that near
+ * the tile's corner and centre the cut is the diagonal: there tiles of other edge colours meet, and
+ * a cut that strays from the diagonal there brings them into what filtering across an edge reads):
+ * the path of least summed
  * error over its texels, by dynamic programming. */
 static void edge_quadrant(const struct side *a, const struct side *b, bool flip_x, bool flip_y,
                           struct vt_image *dst, uint32_t *cost, uint8_t *from)
 {
-    uint32_t t = dst->width, h = t / 2, band = h / 4 + 1, ch = dst->channels;
+    uint32_t t = dst->width, h = t / 2, ch = dst->channels;
     const uint32_t inf = UINT32_MAX / 2;
     /* cost[v * (h + 1) + c]: least error of a path ending at c in row v */
     for (uint32_t i = 0; i < (h + 1) * h; i++)
         cost[i] = inf;
     cost[0] = 0;
     for (uint32_t v = 1; v < h; v++) {
-        uint32_t lo = v > band ? v - band : 1, hi = v + band < h ? v + band : h;
+        uint32_t band = (v < h - v ? v : h - v) / 3;
+        uint32_t lo = v > band + 1 ? v - band : 1, hi = v + band < h ? v + band : h;
         for (uint32_t c = lo; c <= hi; c++) {
             uint32_t best = inf;
             uint8_t step = 0;

@@ -11,9 +11,11 @@
 #include "vt_atomic_file.h"
 #include "vt_output_path.h"
 #include "vtv_app.h"
+#include "vtv_wang.h"
 
 static const char usage_text[] =
     "usage: vt-view STORE.vts [SCENE.vt.obj] [options]\n"
+    "       vt-view --wang PACK.vts [--extent MxN] [--reference] [options]\n"
     "Shows a virtual-texture store through a page table and a tile cache: 2D (pan/zoom over the\n"
     "whole texture) without a scene, 3D with a .vt.obj scene.\n"
     "  --headless            render offscreen (EGL surfaceless) instead of a window\n"
@@ -51,6 +53,11 @@ static const char usage_text[] =
     "  --ambient R,G,B       ambient light, linear (default 0.15,0.15,0.15)\n"
     "  --bc-upload auto|off  BC1/BC3 tiles: upload the blocks compressed when the GL has S3TC\n"
     "                        (auto, default) or decode them on the CPU (off)\n"
+    "  --wang PACK.vts       draw a Wang pack (vt-wang) with TileTex: an output of --extent\n"
+    "                        tiles from its top-left corner, trilinear; with --reference the\n"
+    "                        same output assembled on the CPU in one mipmapped texture\n"
+    "  --extent MxN          with --wang: tiles across and down the frame, 1..65536 (default\n"
+    "                        8x8)\n"
     "  -q, --quiet           errors only\n"
     "  -v, --verbose         more messages\n"
     "  -h, --help            this help;    --version  version\n"
@@ -82,6 +89,8 @@ enum {
     OPT_LIGHT_COLOUR,
     OPT_AMBIENT,
     OPT_LOD_BIAS,
+    OPT_WANG,
+    OPT_EXTENT,
     OPT_VERSION,
 };
 
@@ -118,6 +127,30 @@ static int check_stdio(const struct vtv_options *o)
     return status;
 }
 
+/* --wang PACK.vts: its own checks, then vtv_wang_run(). */
+static int run_wang(struct vtv_options *o, int rest, bool frames_set)
+{
+    if (!o->wang_path)
+        return vt_usage_error("--extent needs --wang PACK.vts");
+    if (rest > 0)
+        return vt_usage_error("--wang takes no STORE or SCENE argument");
+    if (o->camera_path || o->orbit || o->reference_scene || o->layer_name || o->stats)
+        return vt_usage_error(
+            "--wang draws its extent: no --camera, --orbit, --reference-scene, --layer or --stats");
+    if (!o->extent_x)
+        o->extent_x = o->extent_y = 8;
+    if (!frames_set)
+        o->frames = o->headless ? 1 : 0;
+    if (o->headless && o->frames == 0)
+        return vt_usage_error("--frames 0 needs a window (no --headless)");
+    o->store_path = o->wang_path;
+    int status = check_stdio(o);
+    if (status >= 0)
+        return status;
+    status = vt_check_output(o->screenshot, &o->wang_path, 1);
+    return status >= 0 ? status : vtv_wang_run(o);
+}
+
 int main(int argc, char **argv)
 {
     vt_tool_init("vt-view");
@@ -149,6 +182,8 @@ int main(int argc, char **argv)
         {"light-colour", required_argument, NULL, OPT_LIGHT_COLOUR},
         {"ambient", required_argument, NULL, OPT_AMBIENT},
         {"lod-bias", required_argument, NULL, OPT_LOD_BIAS},
+        {"wang", required_argument, NULL, OPT_WANG},
+        {"extent", required_argument, NULL, OPT_EXTENT},
         {"quiet", no_argument, NULL, 'q'},
         {"verbose", no_argument, NULL, 'v'},
         {"help", no_argument, NULL, 'h'},
@@ -286,6 +321,13 @@ int main(int argc, char **argv)
             o.lod_bias = o.auto_lod ? 0.0f : (float)b;
             break;
         }
+        case OPT_WANG:
+            o.wang_path = optarg;
+            break;
+        case OPT_EXTENT:
+            if (vt_parse_u32_pair(optarg, 'x', 1, 65536, &o.extent_x, &o.extent_y) != 0)
+                return vt_usage_error("--extent '%s': expected MxN tiles, 1..65536 each", optarg);
+            break;
         case 'q':
             verbosity = VT_LOG_ERROR;
             break;
@@ -304,6 +346,8 @@ int main(int argc, char **argv)
     }
     vt_log_set_level(verbosity);
     int rest = argc - optind;
+    if (o.wang_path || o.extent_x)
+        return run_wang(&o, rest, frames_set);
     if (rest < 1 || rest > 2)
         return vt_usage_error(rest < 1 ? "missing STORE.vts" : "too many arguments");
     o.store_path = argv[optind];

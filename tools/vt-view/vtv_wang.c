@@ -1,0 +1,322 @@
+/* vt-view --wang (vtv_wang.h). */
+#include "vtv_wang.h"
+
+#include <epoxy/gl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "tool_common.h"
+#include "vt_wang_pack.h"
+#include "vtv_context.h"
+#include "vtv_mipmap.h"
+#include "vtv_output.h"
+#include "vtv_wang_glsl.h"
+
+struct wang_view {
+    const struct vtv_options *o;
+    struct vts_store *store;
+    struct vt_wang_info info;
+    uint32_t levels;
+    GLuint program, vao, fbo, rb, pack, perm, order, image;
+};
+
+static GLuint compile_program(const char *fragment, const char *what, struct vts_error *err)
+{
+    const char *src[2] = {vtv_wang_vertex_glsl, fragment};
+    GLuint p = glCreateProgram();
+    for (int i = 0; i < 2; i++) {
+        GLuint s = glCreateShader(i ? GL_FRAGMENT_SHADER : GL_VERTEX_SHADER);
+        GLint ok = 0;
+        glShaderSource(s, 1, &src[i], NULL);
+        glCompileShader(s);
+        glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+        if (!ok) {
+            char log[512] = "";
+            glGetShaderInfoLog(s, sizeof log, NULL, log);
+            vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot compile the %s shader: %s", what, log);
+            glDeleteShader(s);
+            glDeleteProgram(p);
+            return 0;
+        }
+        glAttachShader(p, s);
+        glDeleteShader(s);
+    }
+    GLint ok = 0;
+    glLinkProgram(p);
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot link the %s program", what);
+        glDeleteProgram(p);
+        return 0;
+    }
+    return p;
+}
+
+/* n entries as an R32UI texture of 256 columns. */
+static GLuint uint_texture(const uint32_t *v, uint32_t n, struct vts_error *err)
+{
+    uint32_t rows = (n + 255) / 256;
+    uint32_t *buf = calloc((size_t)rows * 256, sizeof *buf);
+    if (!buf) {
+        vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
+        return 0;
+    }
+    memcpy(buf, v, n * sizeof *v);
+    GLuint t;
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D, t);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, 256, (GLsizei)rows, 0, GL_RED_INTEGER,
+                 GL_UNSIGNED_INT, buf);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    free(buf);
+    return t;
+}
+
+static void upload_level(uint32_t level, const struct vt_image *img)
+{
+    static const GLenum formats[5] = {0, GL_RED, GL_RG, GL_RGB, GL_RGBA};
+    static const GLenum internal[5] = {0, GL_R8, GL_RG8, GL_SRGB8, GL_SRGB8_ALPHA8};
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, (GLint)(img->stride / img->channels));
+    glTexImage2D(GL_TEXTURE_2D, (GLint)level, (GLint)internal[img->channels], (GLsizei)img->width,
+                 (GLsizei)img->height, 0, formats[img->channels], GL_UNSIGNED_BYTE, img->pixels);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+}
+
+/* The pack's levels (as stored: levels with at least one texel per Wang tile) into a repeating,
+ * mipmapped sRGB texture. */
+static int load_pack(struct wang_view *w, struct vts_error *err)
+{
+    const struct vts_geometry *g = vts_store_geometry(w->store);
+    w->levels = 0;
+    glGenTextures(1, &w->pack);
+    glBindTexture(GL_TEXTURE_2D, w->pack);
+    for (uint32_t level = 0; level < g->level_count && (w->info.tile_px >> level) > 0; level++) {
+        struct vt_image img;
+        int rc = vt_wang_pack_read_level(w->store, level, &img, err);
+        if (rc)
+            return rc;
+        upload_level(level, &img);
+        vt_image_release(&img);
+        w->levels = level + 1;
+    }
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, (GLint)w->levels - 1);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    w->perm = uint_texture(w->info.hash, w->info.hash_n, err);
+    uint32_t none = 0;
+    w->order = w->info.order ? uint_texture(w->info.order, w->info.cols * w->info.rows, err)
+                             : uint_texture(&none, 1, err);
+    return w->perm && w->order ? 0 : err->status;
+}
+
+/* --reference: the extent assembled on the CPU from level 0 (vt_wang_assemble, the C API), RGBA,
+ * with the store's mip chain (vtv_mipmap_upload) cut at the pack's level count. */
+static int load_reference(struct wang_view *w, struct vts_error *err)
+{
+    uint64_t ew = (uint64_t)w->o->extent_x * w->info.tile_px;
+    uint64_t eh = (uint64_t)w->o->extent_y * w->info.tile_px;
+    if (ew > 16384 || eh > 16384)
+        return vt_error_set(err, VTS_ERR_LIMIT,
+                            "--reference: the extent is %llux%llu texels, more than 16384 per side",
+                            (unsigned long long)ew, (unsigned long long)eh);
+    struct vt_image pack, out;
+    int rc = vt_wang_pack_read_level(w->store, 0, &pack, err);
+    if (rc)
+        return rc;
+    rc = vt_image_alloc(&out, (uint32_t)ew, (uint32_t)eh, pack.channels, VTS_SAMPLE_U8, err);
+    uint8_t *rgba = rc ? NULL : malloc((size_t)ew * eh * 4);
+    if (rc == 0 && !rgba)
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
+    if (rc == 0) {
+        vt_wang_assemble(&w->info, &pack, 0, 0, 0, &out);
+        const uint8_t *src = out.pixels;
+        for (size_t i = 0; i < (size_t)ew * eh; i++)
+            for (uint32_t c = 0; c < 4; c++)
+                rgba[i * 4 + c] = c < pack.channels ? src[i * pack.channels + c]
+                                  : c == 3      ? 255
+                                                : src[i * pack.channels]; /* grey */
+        glGenTextures(1, &w->image);
+        glBindTexture(GL_TEXTURE_2D, w->image);
+        rc = vtv_mipmap_upload(rgba, (uint32_t)ew, (uint32_t)eh, VTS_COLOUR_SRGB, false,
+                               vts_store_name(w->store), err);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, (GLint)w->levels - 1);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    }
+    free(rgba);
+    vt_image_release(&out);
+    vt_image_release(&pack);
+    return rc;
+}
+
+static int setup(struct wang_view *w, struct vts_error *err)
+{
+    const struct vtv_options *o = w->o;
+    int rc = vt_wang_pack_open(w->store, &w->info, err);
+    if (rc == 0)
+        rc = load_pack(w, err);
+    if (rc == 0 && o->reference)
+        rc = load_reference(w, err);
+    if (rc)
+        return rc;
+    w->program = compile_program(o->reference ? vtv_wang_reference_glsl : vtv_wang_tiletex_glsl,
+                                 o->reference ? "reference" : "TileTex", err);
+    if (!w->program)
+        return err->status;
+    glGenVertexArrays(1, &w->vao);
+    glGenRenderbuffers(1, &w->rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, w->rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_SRGB8_ALPHA8, (GLsizei)o->width, (GLsizei)o->height);
+    glGenFramebuffers(1, &w->fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, w->fbo);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, w->rb);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED, "the framebuffer is incomplete");
+    GLuint p = w->program;
+    glUseProgram(p);
+    glUniform2f(glGetUniformLocation(p, "frame"), (float)o->width, (float)o->height);
+    if (o->reference) {
+        glUniform1i(glGetUniformLocation(p, "image"), 0);
+        return 0;
+    }
+    glUniform1i(glGetUniformLocation(p, "pack"), 0);
+    glUniform1i(glGetUniformLocation(p, "perm"), 1);
+    glUniform1i(glGetUniformLocation(p, "order"), 2);
+    glUniform1ui(glGetUniformLocation(p, "n"), w->info.hash_n);
+    glUniform1ui(glGetUniformLocation(p, "kh"), w->info.kh);
+    glUniform1ui(glGetUniformLocation(p, "kv"), w->info.kv);
+    glUniform1ui(glGetUniformLocation(p, "cols"), w->info.cols);
+    glUniform1ui(glGetUniformLocation(p, "rows"), w->info.rows);
+    glUniform1i(glGetUniformLocation(p, "corners"), w->info.corners);
+    glUniform1i(glGetUniformLocation(p, "shuffled"), w->info.order != NULL);
+    glUniform2f(glGetUniformLocation(p, "extent"), (float)o->extent_x, (float)o->extent_y);
+    return 0;
+}
+
+static void draw(const struct wang_view *w)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, w->fbo);
+    glViewport(0, 0, (GLsizei)w->o->width, (GLsizei)w->o->height);
+    glEnable(GL_FRAMEBUFFER_SRGB);
+    glUseProgram(w->program);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, w->o->reference ? w->image : w->pack);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, w->perm);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, w->order);
+    glBindVertexArray(w->vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_FRAMEBUFFER_SRGB);
+}
+
+/* Reads the frame, rows top first. */
+static int read_frame(const struct wang_view *w, uint8_t **out, struct vts_error *err)
+{
+    uint32_t fw = w->o->width, fh = w->o->height;
+    uint8_t *rgba = malloc((size_t)fw * fh * 4), *row = malloc((size_t)fw * 4);
+    if (!rgba || !row) {
+        free(rgba);
+        free(row);
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
+    }
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, w->fbo);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, (GLsizei)fw, (GLsizei)fh, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    for (uint32_t y = 0; y < fh / 2; y++) {
+        memcpy(row, rgba + (size_t)y * fw * 4, fw * 4);
+        memcpy(rgba + (size_t)y * fw * 4, rgba + (size_t)(fh - 1 - y) * fw * 4, fw * 4);
+        memcpy(rgba + (size_t)(fh - 1 - y) * fw * 4, row, fw * 4);
+    }
+    free(row);
+    *out = rgba;
+    return 0;
+}
+
+static double now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec / 1e6;
+}
+
+/* Frames: headless o->frames, window until closed (or o->frames); the last one to the
+ * screenshot. Logs the time per frame (glFinish after each). */
+static int render(struct wang_view *w, struct vtv_context *ctx, struct vts_error *err)
+{
+    const struct vtv_options *o = w->o;
+    double t0 = now_ms();
+    uint32_t frames = 0;
+    for (;;) {
+        draw(w);
+        glFinish();
+        frames++;
+        if (vtv_context_is_window(ctx)) {
+            struct vtv_input in;
+            uint32_t ww, wh;
+            glBindFramebuffer(GL_READ_FRAMEBUFFER, w->fbo);
+            glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+            glBlitFramebuffer(0, 0, (GLint)o->width, (GLint)o->height, 0, 0, (GLint)o->width,
+                              (GLint)o->height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+            vtv_context_frame(ctx, &in, &ww, &wh);
+            if (in.quit || (o->frames && frames >= o->frames))
+                break;
+        } else if (frames >= o->frames) {
+            break;
+        }
+    }
+    double ms = (now_ms() - t0) / frames;
+    vt_log(VT_LOG_INFO, "%s: %u frames of %ux%u, %.3f ms per frame", o->reference ? "reference" : "TileTex",
+           frames, o->width, o->height, ms);
+    if (!o->screenshot)
+        return 0;
+    uint8_t *rgba = NULL;
+    int rc = read_frame(w, &rgba, err);
+    if (rc == 0) {
+        rc = vtv_write_screenshot(o->screenshot, rgba, o->width, o->height, err);
+        free(rgba);
+    }
+    return rc;
+}
+
+int vtv_wang_run(const struct vtv_options *o)
+{
+    struct vts_error err = {0};
+    struct wang_view w = {.o = o};
+    struct vtv_context *ctx = NULL;
+    int rc = 0;
+    if (!(w.store = vts_open(o->wang_path, &err))) {
+        rc = err.status;
+        goto out;
+    }
+    ctx = o->headless ? vtv_context_headless(&err)
+                      : vtv_context_window(o->width, o->height, "vt-view --wang", &err);
+    if (!ctx) {
+        rc = err.status ? err.status : VTS_ERR_UNSUPPORTED;
+        goto out;
+    }
+    rc = setup(&w, &err);
+    if (rc == 0)
+        rc = render(&w, ctx, &err);
+out:
+    if (rc)
+        vt_log(VT_LOG_ERROR, "%s", err.message);
+    if (ctx) {
+        GLuint textures[4] = {w.pack, w.perm, w.order, w.image};
+        glDeleteTextures(4, textures);
+        glDeleteFramebuffers(1, &w.fbo);
+        glDeleteRenderbuffers(1, &w.rb);
+        glDeleteVertexArrays(1, &w.vao);
+        glDeleteProgram(w.program);
+    }
+    vtv_context_destroy(ctx);
+    vt_wang_info_release(&w.info);
+    vts_close(w.store);
+    return rc ? VT_EXIT_BAD_INPUT : VT_EXIT_OK;
+}
