@@ -33,8 +33,8 @@ struct options {
     uint32_t wang_w, wang_h;
 };
 
-enum { OPT_JSON = 256, OPT_VERIFY, OPT_EXTRACT, OPT_STATS, OPT_TILE, OPT_LAYER, OPT_VERSION,
-       OPT_WANG_REGION };
+enum { OPT_JSON = 256, OPT_VERIFY, OPT_EXTRACT, OPT_STATS, OPT_TILE, OPT_LAYER, OPT_VERSION };
+enum { OPT_WANG = 512 }; /* --wang-region */
 
 static const struct option long_options[] = {{"json", no_argument, NULL, OPT_JSON},
                                              {"verify", no_argument, NULL, OPT_VERIFY},
@@ -42,7 +42,7 @@ static const struct option long_options[] = {{"json", no_argument, NULL, OPT_JSO
                                              {"stats", no_argument, NULL, OPT_STATS},
                                              {"tile", required_argument, NULL, OPT_TILE},
                                              {"layer", required_argument, NULL, OPT_LAYER},
-                                             {"wang-region", required_argument, NULL, OPT_WANG_REGION},
+                                             {"wang-region", required_argument, NULL, OPT_WANG},
                                              {"output", required_argument, NULL, 'o'},
                                              {"quiet", no_argument, NULL, 'q'},
                                              {"verbose", no_argument, NULL, 'v'},
@@ -146,7 +146,7 @@ static int parse_options(int argc, char **argv, struct options *o)
             o->has_tile = true;
             if (vt_parse_u32_pair(optarg, ',', 0, UINT32_MAX, &o->tile_x, &o->tile_y) != 0)
                 return vt_usage_error("--tile: '%s' is not X,Y (two tile numbers)", optarg);
-        } else if (c == OPT_WANG_REGION) {
+        } else if (c == OPT_WANG) {
             if (parse_wang_region(optarg, o) != 0)
                 return vt_usage_error("--wang-region: '%s' is not X,Y,W,H (W, H in 1..16384)",
                                       optarg);
@@ -322,11 +322,10 @@ static json_t *json_wang(const struct vts_store *s)
     json_t *o = NULL;
     if (vt_wang_pack_open(s, &i, &err) == 0)
         o = json_pack("{s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:b}", "kind",
-                      i.corners ? "corner" : "edge", "kh", (json_int_t)i.kh, "kv",
-                      (json_int_t)i.kv, "tile_px", (json_int_t)i.tile_px, "cols",
-                      (json_int_t)i.cols, "rows", (json_int_t)i.rows, "hash_entries",
-                      (json_int_t)i.hash_n, "repeat_px", (json_int_t)i.hash_n * i.tile_px,
-                      "shuffled", i.order != NULL);
+                      i.corners ? "corner" : "edge", "kh", (json_int_t)i.kh, "kv", (json_int_t)i.kv,
+                      "tile_px", (json_int_t)i.tile_px, "cols", (json_int_t)i.cols, "rows",
+                      (json_int_t)i.rows, "hash_entries", (json_int_t)i.hash_n, "repeat_px",
+                      (json_int_t)i.hash_n * i.tile_px, "shuffled", i.order != NULL);
     else
         vt_log(VT_LOG_WARN, "%s", err.message);
     vt_wang_info_release(&i);

@@ -44,8 +44,20 @@ static const char usage_text[] =
     "  -v, --verbose            more messages\n"
     "  -h, --help               this help;    --version  version\n";
 
-enum { OPT_TILE = 256, OPT_COLOURS, OPT_CORNERS, OPT_SEED, OPT_HASH, OPT_SHUFFLE, OPT_STORE_TILE,
-       OPT_BORDER, OPT_FILTER, OPT_CODEC, OPT_QUALITY, OPT_VERSION };
+enum {
+    OPT_TILE = 256,
+    OPT_COLOURS,
+    OPT_CORNERS,
+    OPT_SEED,
+    OPT_HASH,
+    OPT_SHUFFLE,
+    OPT_STORE_TILE,
+    OPT_BORDER,
+    OPT_FILTER,
+    OPT_CODEC,
+    OPT_QUALITY,
+    OPT_VERSION
+};
 
 static const struct option long_options[] = {{"output", required_argument, 0, 'o'},
                                              {"tile", required_argument, 0, OPT_TILE},
@@ -129,8 +141,8 @@ static int parse_options(int argc, char **argv, struct options *o)
             break;
         case OPT_FILTER:
             if (vt_filter_parse(optarg, &o->filter))
-                return vt_usage_error("--filter must be box, triangle, lanczos3 or kaiser, not '%s'",
-                                      optarg);
+                return vt_usage_error(
+                    "--filter must be box, triangle, lanczos3 or kaiser, not '%s'", optarg);
             break;
         case OPT_CODEC:
             o->codec_name = optarg;
@@ -185,11 +197,12 @@ static int read_sample(const char *path, struct vt_image *img, struct vts_error 
     if (rc)
         return rc;
     if (src.info.sample != VTS_SAMPLE_U8)
-        rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': the sample must have 8-bit samples, not %s",
-                          path, vts_sample_name(src.info.sample));
+        rc =
+            vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': the sample must have 8-bit samples, not %s",
+                         path, vts_sample_name(src.info.sample));
     if (rc == 0)
-        rc = vt_image_alloc(img, src.info.width, src.info.height, src.info.channels,
-                            VTS_SAMPLE_U8, err);
+        rc = vt_image_alloc(img, src.info.width, src.info.height, src.info.channels, VTS_SAMPLE_U8,
+                            err);
     if (rc == 0)
         rc = vt_source_read(&src, 0, 0, img, err);
     vt_source_close(&src);
@@ -282,14 +295,20 @@ static int write_store(const struct options *o, struct vt_image *pack, const uin
     if (!codec)
         return vt_error_set(err, VTS_ERR_ARG, "codec '%s' is not available", name);
     uint32_t content = o->store_tile - 2 * o->border;
-    struct vts_geometry g = {pack->width, pack->height, content, o->border, o->store_tile, 0, 1,
+    struct vts_geometry g = {pack->width,
+                             pack->height,
+                             content,
+                             o->border,
+                             o->store_tile,
+                             0,
+                             1,
                              VTS_STORE_WRAP_X | VTS_STORE_WRAP_Y};
     g.level_count = vts_full_level_count(g.width, g.height, content);
     int rc = codec->check(g.tile_payload_px, pack->channels, VTS_SAMPLE_U8, err);
     if (rc)
         return rc;
-    struct vts_layer layer = {codec->fourcc,  (uint8_t)pack->channels, VTS_SAMPLE_U8,
-                              VTS_COLOUR_SRGB, 0, 0, {0}};
+    struct vts_layer layer = {
+        codec->fourcc, (uint8_t)pack->channels, VTS_SAMPLE_U8, VTS_COLOUR_SRGB, 0, 0, {0}};
     layer.codec_param = codec->fourcc == VTS_CODEC_JPEG ? o->quality : 0;
     snprintf(layer.name, sizeof layer.name, "diffuse");
     struct vt_codec_params params = {(int)o->quality, vt_tile_sink_effort(codec, false), 420};
@@ -306,7 +325,9 @@ static int write_store(const struct options *o, struct vt_image *pack, const uin
     for (unsigned i = 0; i < o->threads; i++) {
         src[i] = (struct vt_source){{pack->width, pack->height, pack->channels, VTS_SAMPLE_U8,
                                      VTS_COLOUR_SRGB, false, false, false, 0, 0, "memory"},
-                                    &pack_ops, pack, "pack"};
+                                    &pack_ops,
+                                    pack,
+                                    "pack"};
         ptrs[i] = &src[i];
     }
     struct vt_pyramid_options po = {.width = g.width,

@@ -30,8 +30,7 @@ static int check_params(const struct vt_image *sample, const struct vt_wang_para
                         uint32_t patch, struct vts_error *err)
 {
     if (p->tile_px < 8 || p->tile_px % 2 || p->tile_px > 4096)
-        return vt_error_set(err, VTS_ERR_ARG, "tile size %u: expected an even 8..4096",
-                            p->tile_px);
+        return vt_error_set(err, VTS_ERR_ARG, "tile size %u: expected an even 8..4096", p->tile_px);
     if (p->kh < 1 || p->kh > VTS_WANG_MAX_COLOURS || p->kv < 1 || p->kv > VTS_WANG_MAX_COLOURS)
         return vt_error_set(err, VTS_ERR_ARG, "colours %ux%u: expected 1..%u each", p->kh, p->kv,
                             VTS_WANG_MAX_COLOURS);

@@ -34,8 +34,8 @@ struct vt_wang_params {
     uint32_t tile_px; /* even, >= 8 */
     uint32_t kh, kv;  /* 1 .. VTS_WANG_MAX_COLOURS; corner packs: kh == kv */
     bool corners;
-    uint64_t seed;     /* patch positions */
-    bool shuffle;      /* tiles in an arbitrary order (Wei's figure 5; tests) */
+    uint64_t seed; /* patch positions */
+    bool shuffle;  /* tiles in an arbitrary order (Wei's figure 5; tests) */
     uint64_t shuffle_seed;
 };
 

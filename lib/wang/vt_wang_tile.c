@@ -1,4 +1,5 @@
-/* One Wang tile from its sample patches, the patches joined along minimum-error cuts (vt_wang.h). */
+/* One Wang tile from its sample patches, the patches joined along minimum-error cuts (vt_wang.h).
+ */
 #include <assert.h>
 #include <limits.h>
 #include <stdlib.h>
@@ -186,7 +187,8 @@ void vt_wang_corner_tile(const struct vt_image *const patches[4], struct vt_imag
     int32_t o = (int32_t)(h + m);
     /* the patch of each corner is centred on it, with a margin of m around */
     struct side nw = {patches[0], o, o}, ne = {patches[1], o - (int32_t)t, o};
-    struct side sw = {patches[2], o, o - (int32_t)t}, se = {patches[3], o - (int32_t)t, o - (int32_t)t};
+    struct side sw = {patches[2], o, o - (int32_t)t},
+                se = {patches[3], o - (int32_t)t, o - (int32_t)t};
     uint32_t w = 2 * m + 1;
     uint32_t *cost = malloc((size_t)t * w * sizeof *cost), *cuts = malloc(4 * (size_t)t * 4);
     uint8_t *step = malloc((size_t)t * w);
@@ -207,8 +209,7 @@ void vt_wang_corner_tile(const struct vt_image *const patches[4], struct vt_imag
         for (uint32_t x = 0; x < t; x++) {
             /* upper or lower from the horizontal cut of the column's half, then left or right
              * from the vertical cut of that half (clamped to the rows it covers) */
-            uint32_t hc = x < h ? left[x < h + m ? x : h + m - 1]
-                                : right[x >= h - m ? x : h - m];
+            uint32_t hc = x < h ? left[x < h + m ? x : h + m - 1] : right[x >= h - m ? x : h - m];
             bool upper = y < hc;
             uint32_t vr = upper ? (y < h + m ? y : h + m - 1) : (y >= h - m ? y : h - m);
             uint32_t vc = upper ? up[vr] : down[vr];

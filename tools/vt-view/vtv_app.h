@@ -18,8 +18,8 @@ struct vtv_options {
     float light_dir[3], light_colour[3], ambient[3]; /* --light, --light-colour, --ambient */
     bool auto_lod;                                   /* --lod-bias auto (default) */
     float lod_bias;                                  /* --lod-bias N */
-    const char *wang_path;         /* --wang PACK.vts: vtv_wang.h draws it instead */
-    uint32_t extent_x, extent_y;   /* --extent MxN: tiles of the Wang output in the frame */
+    const char *wang_path;       /* --wang PACK.vts: vtv_wang.h draws it instead */
+    uint32_t extent_x, extent_y; /* --extent MxN: tiles of the Wang output in the frame */
 };
 
 void vtv_options_default(struct vtv_options *o);

@@ -67,8 +67,8 @@ static GLuint uint_texture(const uint32_t *v, uint32_t n, struct vts_error *err)
     GLuint t;
     glGenTextures(1, &t);
     glBindTexture(GL_TEXTURE_2D, t);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, 256, (GLsizei)rows, 0, GL_RED_INTEGER,
-                 GL_UNSIGNED_INT, buf);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, 256, (GLsizei)rows, 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                 buf);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     free(buf);
@@ -139,8 +139,8 @@ static int load_reference(struct wang_view *w, struct vts_error *err)
         for (size_t i = 0; i < (size_t)ew * eh; i++)
             for (uint32_t c = 0; c < 4; c++)
                 rgba[i * 4 + c] = c < pack.channels ? src[i * pack.channels + c]
-                                  : c == 3      ? 255
-                                                : src[i * pack.channels]; /* grey */
+                                  : c == 3          ? 255
+                                                    : src[i * pack.channels]; /* grey */
         glGenTextures(1, &w->image);
         glBindTexture(GL_TEXTURE_2D, w->image);
         rc = vtv_mipmap_upload(rgba, (uint32_t)ew, (uint32_t)eh, VTS_COLOUR_SRGB, false,
@@ -272,8 +272,8 @@ static int render(struct wang_view *w, struct vtv_context *ctx, struct vts_error
         }
     }
     double ms = (now_ms() - t0) / frames;
-    vt_log(VT_LOG_INFO, "%s: %u frames of %ux%u, %.3f ms per frame", o->reference ? "reference" : "TileTex",
-           frames, o->width, o->height, ms);
+    vt_log(VT_LOG_INFO, "%s: %u frames of %ux%u, %.3f ms per frame",
+           o->reference ? "reference" : "TileTex", frames, o->width, o->height, ms);
     if (!o->screenshot)
         return 0;
     uint8_t *rgba = NULL;

@@ -9,7 +9,7 @@
 
 /* The vertex shader (a full-screen triangle from gl_VertexID) and the two fragment shaders. */
 extern const char vtv_wang_vertex_glsl[];
-extern const char vtv_wang_tiletex_glsl[];  /* uniforms: see the source */
+extern const char vtv_wang_tiletex_glsl[];   /* uniforms: see the source */
 extern const char vtv_wang_reference_glsl[]; /* one texture over the extent */
 
 #endif

@@ -49,8 +49,8 @@ int main(int argc, char **argv)
             if (x + 0.5 < band || y + 0.5 < band || a.width - x - 0.5 < band ||
                 a.height - y - 0.5 < band)
                 continue;
-            bool edge = edge_distance(x, a.width, tiles) < band ||
-                        edge_distance(y, a.height, tiles) < band;
+            bool edge =
+                edge_distance(x, a.width, tiles) < band || edge_distance(y, a.height, tiles) < band;
             const uint8_t *p = vt_image_at(&a, x, y), *q = vt_image_at(&b, x, y);
             double se = 0;
             for (int c = 0; c < 3; c++)

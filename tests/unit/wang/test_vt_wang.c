@@ -11,8 +11,8 @@
 #include "vt_wang.h"
 
 /* Mean squared difference between texel rows (or columns) a and b of img over n texels. */
-static double line_mse(const struct vt_image *img, bool rows, uint32_t a, uint32_t b,
-                       uint32_t from, uint32_t n)
+static double line_mse(const struct vt_image *img, bool rows, uint32_t a, uint32_t b, uint32_t from,
+                       uint32_t n)
 {
     double sum = 0;
     for (uint32_t i = from; i < from + n; i++) {
@@ -118,8 +118,7 @@ static void check_output(bool corners, bool shuffle)
     vt_wang_grid(&p, &cols, &rows);
     VT_CHECK_INT_EQ(vt_wang_build(&sample, &p, &pack, shuffle ? order : NULL, &err), 0);
     vts_wang_permutation(9, 8, perm);
-    struct vt_wang_info info = {corners, 2, 2, 32, cols, rows, 9, 8, perm,
-                                shuffle ? order : NULL};
+    struct vt_wang_info info = {corners, 2, 2, 32, cols, rows, 9, 8, perm, shuffle ? order : NULL};
     VT_CHECK_INT_EQ(vt_image_alloc(&out, 8 * 32, 8 * 32, 3, VTS_SAMPLE_U8, &err), 0);
     vt_wang_assemble(&info, &pack, 0, 0, 0, &out);
     unsigned bad = 0;
@@ -156,8 +155,8 @@ static void assembled_output_is_seamless(void)
 
 static void metadata_parses_and_refuses(void)
 {
-    const char *good[] = {"wang.kind", "edge", "wang.colours", "2x3", "wang.tile", "64",
-                          "wang.grid", "9x4", "wang.hash", "2 0 1", NULL};
+    const char *good[] = {"wang.kind", "edge", "wang.colours", "2x3",   "wang.tile", "64",
+                          "wang.grid", "9x4",  "wang.hash",    "2 0 1", NULL};
     struct vt_wang_info info;
     struct vts_error err = {0};
     VT_CHECK_INT_EQ(vt_wang_info_parse(meta_get, good, &info, &err), 0);
