@@ -172,9 +172,7 @@ static int load_reference(struct wang_view *w, struct vts_error *err)
 static int setup(struct wang_view *w, struct vts_error *err)
 {
     const struct vtv_options *o = w->o;
-    int rc = vt_wang_pack_open(w->store, &w->info, err);
-    if (rc == 0)
-        rc = load_pack(w, err);
+    int rc = load_pack(w, err);
     if (rc == 0 && o->reference)
         rc = load_reference(w, err);
     if (rc)
@@ -307,7 +305,8 @@ int vtv_wang_run(const struct vtv_options *o)
     struct wang_view w = {.o = o};
     struct vtv_context *ctx = NULL;
     int rc = 0;
-    if (!(w.store = vts_open(o->wang_path, &err))) {
+    if (!(w.store = vts_open(o->wang_path, &err)) ||
+        vt_wang_pack_open(w.store, &w.info, &err) != 0) { /* before any GL: plain errors */
         rc = err.status;
         goto out;
     }
