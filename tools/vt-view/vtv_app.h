@@ -20,6 +20,7 @@ struct vtv_options {
     float lod_bias;                                  /* --lod-bias N */
     const char *wang_path;       /* --wang PACK.vts: vtv_wang.h draws it instead */
     uint32_t extent_x, extent_y; /* --extent MxN: tiles of the Wang output in the frame */
+    uint32_t origin_x, origin_y; /* --origin X,Y: its top-left tile */
 };
 
 void vtv_options_default(struct vtv_options *o);

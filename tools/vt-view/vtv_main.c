@@ -15,7 +15,7 @@
 
 static const char usage_text[] =
     "usage: vt-view STORE.vts [SCENE.vt.obj] [options]\n"
-    "       vt-view --wang PACK.vts [--extent MxN] [--reference] [options]\n"
+    "       vt-view --wang PACK.vts [--extent MxN] [--origin X,Y] [--reference] [options]\n"
     "Shows a virtual-texture store through a page table and a tile cache: 2D (pan/zoom over the\n"
     "whole texture) without a scene, 3D with a .vt.obj scene.\n"
     "  --headless            render offscreen (EGL surfaceless) instead of a window\n"
@@ -58,6 +58,8 @@ static const char usage_text[] =
     "                        same output assembled on the CPU in one mipmapped texture\n"
     "  --extent MxN          with --wang: tiles across and down the frame, 1..65536 (default\n"
     "                        8x8)\n"
+    "  --origin X,Y          with --wang: the output tile at the frame's top-left corner,\n"
+    "                        0..4294967295 each (default 0,0)\n"
     "  -q, --quiet           errors only\n"
     "  -v, --verbose         more messages\n"
     "  -h, --help            this help;    --version  version\n"
@@ -91,6 +93,7 @@ enum {
     OPT_LOD_BIAS,
     OPT_WANG,
     OPT_EXTENT,
+    OPT_ORIGIN,
     OPT_VERSION,
 };
 
@@ -131,7 +134,7 @@ static int check_stdio(const struct vtv_options *o)
 static int run_wang(struct vtv_options *o, int rest, bool frames_set)
 {
     if (!o->wang_path)
-        return vt_usage_error("--extent needs --wang PACK.vts");
+        return vt_usage_error("--extent and --origin need --wang PACK.vts");
     if (rest > 0)
         return vt_usage_error("--wang takes no STORE or SCENE argument");
     if (o->camera_path || o->orbit || o->reference_scene || o->layer_name || o->stats)
@@ -184,6 +187,7 @@ int main(int argc, char **argv)
         {"lod-bias", required_argument, NULL, OPT_LOD_BIAS},
         {"wang", required_argument, NULL, OPT_WANG},
         {"extent", required_argument, NULL, OPT_EXTENT},
+        {"origin", required_argument, NULL, OPT_ORIGIN},
         {"quiet", no_argument, NULL, 'q'},
         {"verbose", no_argument, NULL, 'v'},
         {"help", no_argument, NULL, 'h'},
@@ -192,7 +196,7 @@ int main(int argc, char **argv)
     };
     struct vtv_options o;
     vtv_options_default(&o);
-    bool frames_set = false;
+    bool frames_set = false, origin_set = false;
     int verbosity = VT_LOG_WARN;
     opterr = 0;
     int c;
@@ -328,6 +332,11 @@ int main(int argc, char **argv)
             if (vt_parse_u32_pair(optarg, 'x', 1, 65536, &o.extent_x, &o.extent_y) != 0)
                 return vt_usage_error("--extent '%s': expected MxN tiles, 1..65536 each", optarg);
             break;
+        case OPT_ORIGIN:
+            if (vt_parse_u32_pair(optarg, ',', 0, UINT32_MAX, &o.origin_x, &o.origin_y) != 0)
+                return vt_usage_error("--origin '%s': expected X,Y tiles", optarg);
+            origin_set = true;
+            break;
         case 'q':
             verbosity = VT_LOG_ERROR;
             break;
@@ -346,7 +355,7 @@ int main(int argc, char **argv)
     }
     vt_log_set_level(verbosity);
     int rest = argc - optind;
-    if (o.wang_path || o.extent_x)
+    if (o.wang_path || o.extent_x || origin_set)
         return run_wang(&o, rest, frames_set);
     if (rest < 1 || rest > 2)
         return vt_usage_error(rest < 1 ? "missing STORE.vts" : "too many arguments");

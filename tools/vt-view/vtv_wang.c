@@ -129,8 +129,8 @@ static int load_pack(struct wang_view *w, struct vts_error *err)
     return w->perm && w->order ? 0 : err->status;
 }
 
-/* --reference: the extent assembled on the CPU from level 0 (vt_wang_assemble, the C API), RGBA,
- * with the store's mip chain (vtv_mipmap_upload) cut at the pack's level count. */
+/* --reference: the extent (from --origin) assembled on the CPU from level 0 (vt_wang_assemble, the
+ * C API), RGBA, with the store's mip chain (vtv_mipmap_upload) cut at the pack's level count. */
 static int load_reference(struct wang_view *w, struct vts_error *err)
 {
     uint64_t ew = (uint64_t)w->o->extent_x * w->info.tile_px;
@@ -148,7 +148,8 @@ static int load_reference(struct wang_view *w, struct vts_error *err)
     if (rc == 0 && !rgba)
         rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     if (rc == 0) {
-        vt_wang_assemble(&w->info, &pack, 0, 0, 0, &out);
+        vt_wang_assemble(&w->info, &pack, 0, (uint64_t)w->o->origin_x * w->info.tile_px,
+                         (uint64_t)w->o->origin_y * w->info.tile_px, &out);
         const uint8_t *src = out.pixels;
         for (size_t i = 0; i < (size_t)ew * eh; i++)
             for (uint32_t c = 0; c < 4; c++)
@@ -208,6 +209,8 @@ static int setup(struct wang_view *w, struct vts_error *err)
     glUniform1i(glGetUniformLocation(p, "corners"), w->info.corners);
     glUniform1i(glGetUniformLocation(p, "shuffled"), w->info.order != NULL);
     glUniform2f(glGetUniformLocation(p, "extent"), (float)o->extent_x, (float)o->extent_y);
+    glUniform2ui(glGetUniformLocation(p, "origin"), o->origin_x % w->info.hash_n,
+                 o->origin_y % w->info.hash_n);
     return 0;
 }
 

@@ -8,7 +8,9 @@ const char vtv_wang_vertex_glsl[] =
     "    gl_Position = vec4(p, 0.0, 1.0);\n"
     "}\n";
 
-/* Output coordinate: the frame covers `extent` tiles, image rows downwards (row 0 at the top). */
+/* Output coordinate: the frame covers `extent` tiles from tile `origin`, image rows downwards (row
+ * 0 at the top). The origin enters as an integer (mod n): the floats only hold the position inside
+ * the extent, so a frame a million tiles out is as precise as at 0,0. */
 const char vtv_wang_tiletex_glsl[] =
     "#version 330 core\n"
     "uniform sampler2D pack;        /* the pack, sRGB, repeat, mipmapped */\n"
@@ -17,6 +19,7 @@ const char vtv_wang_tiletex_glsl[] =
     "uniform uint n, kh, kv, cols, rows;\n"
     "uniform bool corners, shuffled;\n"
     "uniform vec2 frame, extent;    /* frame in pixels, extent in tiles */\n"
+    "uniform uvec2 origin;          /* the top-left tile, mod n */\n"
     "out vec4 colour;\n"
     "uint fetch(usampler2D t, uint i) { return texelFetch(t, ivec2(int(i & 255u), int(i >> 8)), 0).r; }\n"
     "uint H(uint i) { return fetch(perm, i % n); }\n"
@@ -44,7 +47,7 @@ const char vtv_wang_tiletex_glsl[] =
     "    vec2 uv = vec2(gl_FragCoord.x / frame.x, 1.0 - gl_FragCoord.y / frame.y);\n"
     "    vec2 p = uv * extent;            /* output position in tiles */\n"
     "    vec2 t = floor(p), f = p - t;    /* the tile and the offset inside it */\n"
-    "    uint x = uint(t.x) % n, y = uint(t.y) % n;\n"
+    "    uint x = (origin.x + uint(t.x)) % n, y = (origin.y + uint(t.y)) % n;\n"
     "    uvec2 slot = corners ? corner_tile(x, y) : edge_tile(x, y);\n"
     "    if (shuffled) {\n"
     "        uint s = fetch(order, slot.y * cols + slot.x);\n"

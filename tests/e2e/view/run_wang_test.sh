@@ -61,6 +61,15 @@ wang_hash_agrees)
     --store-tile 32 --border 2
   vt --wang other.vts --extent 16x16 --reference --screenshot o.png
   if "$vcheck" psnr t.png o.png --min 30; then fail "another hash gives the same output"; fi
+  # far out: tiles 4294967290.. of a 4096-entry hash (across its wrap at 4096 too), the origin an
+  # integer in the shader: as exact as at 0,0
+  "$wang" sample.png -o far.vts --tile 16 --colours 2x2 --hash 4096 --codec png \
+    --store-tile 32 --border 2
+  vt --wang far.vts --extent 16x16 --origin 4294967290,4090 --screenshot t.png
+  vt --wang far.vts --extent 16x16 --origin 4294967290,4090 --reference --screenshot r.png
+  "$vcheck" psnr t.png r.png --min 99
+  vt --wang far.vts --extent 16x16 --reference --screenshot o.png
+  if "$vcheck" psnr t.png o.png --min 30; then fail "the origin changes nothing"; fi
   "$wang" sample.png -o corner.vts --tile 16 --corners --colours 3x3 --hash 64 --codec png \
     --store-tile 32 --border 2
   vt --wang corner.vts --extent 16x16 --screenshot t.png
