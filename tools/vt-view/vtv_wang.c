@@ -2,6 +2,7 @@
 #include "vtv_wang.h"
 
 #include <epoxy/gl.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,6 +20,9 @@ struct wang_view {
     struct vts_store *store;
     struct vt_wang_info info;
     uint32_t levels;
+    uint32_t origin_x, origin_y; /* the frame's first tile, mod the hash size */
+    double shift_x, shift_y;     /* the position inside it, in [0, 1) tiles */
+    double extent_x, extent_y;   /* tiles across and down the frame */
     GLuint program, vao, fbo, rb, pack, perm, order, image;
 };
 
@@ -208,10 +212,44 @@ static int setup(struct wang_view *w, struct vts_error *err)
     glUniform1ui(glGetUniformLocation(p, "rows"), w->info.rows);
     glUniform1i(glGetUniformLocation(p, "corners"), w->info.corners);
     glUniform1i(glGetUniformLocation(p, "shuffled"), w->info.order != NULL);
-    glUniform2f(glGetUniformLocation(p, "extent"), (float)o->extent_x, (float)o->extent_y);
-    glUniform2ui(glGetUniformLocation(p, "origin"), o->origin_x % w->info.hash_n,
-                 o->origin_y % w->info.hash_n);
+    w->origin_x = o->origin_x % w->info.hash_n;
+    w->origin_y = o->origin_y % w->info.hash_n;
+    w->extent_x = o->extent_x;
+    w->extent_y = o->extent_y;
     return 0;
+}
+
+/* The view's uniforms (TileTex). */
+static void set_view(const struct wang_view *w)
+{
+    GLuint p = w->program;
+    glUniform2f(glGetUniformLocation(p, "extent"), (float)w->extent_x, (float)w->extent_y);
+    glUniform2ui(glGetUniformLocation(p, "origin"), w->origin_x, w->origin_y);
+    glUniform2f(glGetUniformLocation(p, "shift"), (float)w->shift_x, (float)w->shift_y);
+}
+
+/* Moves the origin by whole tiles of *shift (mod the hash size), keeping *shift in [0, 1). */
+static void carry(uint32_t *origin, double *shift, uint32_t n)
+{
+    double whole = floor(*shift);
+    *shift -= whole;
+    int64_t k = (int64_t)fmod(whole, (double)n);
+    *origin = (uint32_t)(((int64_t)*origin + k % n + n) % n);
+}
+
+/* A window's pan (pixels dragged or keyed) and zoom (around the frame's centre). */
+static void move_view(struct wang_view *w, const struct vtv_input *in)
+{
+    double zoom = in->zoom > 0 ? in->zoom : 1;
+    double ex = w->extent_x / zoom, ey = w->extent_y / zoom;
+    if (ex < 1.0 / 64 || ey < 1.0 / 64 || ex > 65536 || ey > 65536)
+        ex = w->extent_x, ey = w->extent_y;
+    w->shift_x += (w->extent_x - ex) / 2 - in->pan_x * ex / w->o->width;
+    w->shift_y += (w->extent_y - ey) / 2 - in->pan_y * ey / w->o->height;
+    w->extent_x = ex;
+    w->extent_y = ey;
+    carry(&w->origin_x, &w->shift_x, w->info.hash_n);
+    carry(&w->origin_y, &w->shift_y, w->info.hash_n);
 }
 
 static void draw(const struct wang_view *w)
@@ -220,6 +258,8 @@ static void draw(const struct wang_view *w)
     glViewport(0, 0, (GLsizei)w->o->width, (GLsizei)w->o->height);
     glEnable(GL_FRAMEBUFFER_SRGB);
     glUseProgram(w->program);
+    if (!w->o->reference)
+        set_view(w);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, w->o->reference ? w->image : w->pack);
     glActiveTexture(GL_TEXTURE1);
@@ -282,6 +322,8 @@ static int render(struct wang_view *w, struct vtv_context *ctx, struct vts_error
             glBlitFramebuffer(0, 0, (GLint)o->width, (GLint)o->height, 0, 0, (GLint)o->width,
                               (GLint)o->height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
             vtv_context_frame(ctx, &in, &ww, &wh);
+            if (!o->reference)
+                move_view(w, &in);
             if (in.quit || (o->frames && frames >= o->frames))
                 break;
         } else if (frames >= o->frames) {

@@ -76,6 +76,16 @@ wang_hash_agrees)
   vt --wang corner.vts --extent 16x16 --reference --screenshot r.png
   "$vcheck" psnr t.png r.png --min 99
   ;;
+wang_window)
+  # The GLFW window (under xvfb-run) draws what the headless run draws. LeakSanitizer is off for
+  # the window (the window case of run_view_test.sh says why).
+  pack -o good.vts
+  ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0 \
+    xvfb-run -a "$view" --wang good.vts --extent 5x5 --frames 3 --size 256x256 \
+    --screenshot win.png || fail "window run"
+  vt --wang good.vts --extent 5x5 --screenshot head.png
+  "$vcheck" psnr win.png head.png --min 99
+  ;;
 *)
   fail "unknown case $case_name"
   ;;
