@@ -182,6 +182,13 @@ static int parse_options(int argc, char **argv, struct options *o)
     if (o->wang.corners && o->wang.kh != o->wang.kv)
         return vt_usage_error("--corners needs one colour count (--colours KxK), not %ux%u",
                               o->wang.kh, o->wang.kv);
+    uint32_t cols, rows;
+    vt_wang_grid(&o->wang, &cols, &rows);
+    if ((uint64_t)cols * rows * o->wang.tile_px * o->wang.tile_px > VT_WANG_MAX_PACK_TEXELS)
+        return vt_usage_error("--colours %ux%u%s with --tile %u make a pack of %ux%u tiles, more "
+                              "than 2^30 texels",
+                              o->wang.kh, o->wang.kv, o->wang.corners ? " --corners" : "",
+                              o->wang.tile_px, cols, rows);
     if (o->store_tile <= 2 * o->border)
         return vt_usage_error("--store-tile %u leaves no content with --border %u", o->store_tile,
                               o->border);
@@ -238,11 +245,6 @@ static int emit_tile(void *user, unsigned worker, uint32_t level, uint32_t tx, u
     return vt_tile_sink_put(r->sink, worker, 0, level, tx, ty, payload, err);
 }
 
-static char *format_order(const uint32_t *order, uint32_t n)
-{
-    return vt_wang_hash_format(order, n); /* the same space-separated list */
-}
-
 static int set_metadata(struct vts_writer *w, const struct options *o, const char *codec,
                         const uint32_t *order, struct vts_error *err)
 {
@@ -273,7 +275,7 @@ static int set_metadata(struct vts_writer *w, const struct options *o, const cha
     char *hash = perm && vts_wang_permutation(o->wang.seed, o->hash_n, perm) == 0
                      ? vt_wang_hash_format(perm, o->hash_n)
                      : NULL;
-    char *ord = order ? format_order(order, cols * rows) : NULL;
+    char *ord = order ? vt_wang_hash_format(order, cols * rows) : NULL; /* same format */
     int rc = !hash || (order && !ord) ? vt_error_set(err, VTS_ERR_NOMEM, "out of memory") : 0;
     if (rc == 0)
         rc = vts_writer_set_meta(w, VT_WANG_KEY_HASH, hash, err);

@@ -87,9 +87,11 @@ int vt_wang_build(const struct vt_image *sample, const struct vt_wang_params *p,
     uint32_t cols, rows, t = p->tile_px;
     vt_wang_grid(p, &cols, &rows);
     uint64_t w, h;
-    if (!vt_u64_mul(cols, t, &w) || !vt_u64_mul(rows, t, &h) || w > UINT32_MAX || h > UINT32_MAX)
-        return vt_error_set(err, VTS_ERR_LIMIT, "a pack of %ux%u tiles of %u texels is too large",
-                            cols, rows, t);
+    if (!vt_u64_mul(cols, t, &w) || !vt_u64_mul(rows, t, &h) || w * h > VT_WANG_MAX_PACK_TEXELS)
+        return vt_error_set(
+            err, VTS_ERR_LIMIT,
+            "a pack of %ux%u tiles of %u texels is too large (more than 2^30 texels)", cols, rows,
+            t);
     rc = vt_image_alloc(pack, (uint32_t)w, (uint32_t)h, sample->channels, VTS_SAMPLE_U8, err);
     if (rc)
         return rc;

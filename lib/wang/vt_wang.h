@@ -30,6 +30,9 @@
 #define VT_WANG_KEY_SEED    "wang.seed"    /* the seed of the patches and the permutation */
 #define VT_WANG_KEY_ORDER   "wang.order"   /* only in a shuffled pack: slot of each tile */
 
+/* The largest pack vt_wang_build makes (texels of level 0). */
+#define VT_WANG_MAX_PACK_TEXELS (1ull << 30)
+
 struct vt_wang_params {
     uint32_t tile_px; /* even, >= 8 */
     uint32_t kh, kv;  /* 1 .. VTS_WANG_MAX_COLOURS; corner packs: kh == kv */
@@ -46,7 +49,8 @@ void vt_wang_grid(const struct vt_wang_params *p, uint32_t *cols, uint32_t *rows
  * *pack (allocated here: free with vt_image_release): cols * tile_px x rows * tile_px texels of
  * the sample's channels. With shuffle, order[] (cols * rows entries, may be NULL otherwise) gets
  * the slot (row * cols + col) where the tile of canonical slot i lies. Returns 0, VTS_ERR_ARG (a
- * bad parameter or a sample smaller than a tile: message says which) or VTS_ERR_LIMIT. */
+ * bad parameter or a sample smaller than a tile: message says which) or VTS_ERR_LIMIT (a pack of
+ * more than VT_WANG_MAX_PACK_TEXELS, or out of memory). */
 int vt_wang_build(const struct vt_image *sample, const struct vt_wang_params *p,
                   struct vt_image *pack, uint32_t *order, struct vts_error *err);
 

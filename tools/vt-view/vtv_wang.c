@@ -107,6 +107,12 @@ static int upload_level(uint32_t level, const struct vt_image *img, struct vts_e
 static int load_pack(struct wang_view *w, struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(w->store);
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    if (g->width > (uint32_t)max_size || g->height > (uint32_t)max_size)
+        return vt_error_set(err, VTS_ERR_LIMIT,
+                            "'%s': the pack (%ux%u texels) is larger than this GL's textures (%d)",
+                            vts_store_name(w->store), g->width, g->height, max_size);
     w->levels = 0;
     glGenTextures(1, &w->pack);
     glBindTexture(GL_TEXTURE_2D, w->pack);

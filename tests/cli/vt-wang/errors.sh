@@ -8,6 +8,7 @@ set -uo pipefail
 "$VT_WANG" small.png -o p.vts --tile 33; echo "exit $?"
 "$VT_WANG" small.png -o p.vts --colours 2x17; echo "exit $?"
 "$VT_WANG" small.png -o p.vts --corners --colours 2x3; echo "exit $?"
+"$VT_WANG" small.png -o p.vts --colours 16x16; echo "exit $?"
 "$VT_WANG" small.png; echo "exit $?"
 "$VT_WANG" small.png -o small.png; echo "exit $?"
 test ! -e p.vts && echo "no pack written"
