@@ -9,6 +9,7 @@
 #include <time.h>
 
 #include "tool_common.h"
+#include "vt_filter.h"
 #include "vt_wang_pack.h"
 #include "vtv_context.h"
 #include "vtv_mipmap.h"
@@ -102,8 +103,42 @@ static int upload_level(uint32_t level, const struct vt_image *img, struct vts_e
     return 0;
 }
 
-/* The pack's levels (as stored: levels with at least one texel per Wang tile) into a repeating,
- * mipmapped sRGB texture. */
+/* The next coarser level of a pack level: the store's 2:1 box in linear light (lib/filter), with
+ * wrap. A level of even size (tile_px a power of two) keeps every texel inside its Wang tile. */
+static int reduce_level(const struct vt_image *in, struct vt_image *out, struct vts_error *err)
+{
+    uint32_t ch = in->channels, w = in->width / 2 ? in->width / 2 : 1;
+    uint32_t h = in->height / 2 ? in->height / 2 : 1;
+    struct vt_pixel_mode mode = {ch, VTS_COLOUR_SRGB, ch % 2 == 0};
+    struct vt_kernel k;
+    vt_kernel_init(&k, VT_FILTER_BOX);
+    struct vt_edges edges = {in->width, in->height, true, true};
+    struct vt_fregion src = {0, 0, in->width, in->height, ch, NULL};
+    struct vt_fregion dst = {0, 0, w, h, ch, NULL};
+    size_t scratch_n = vt_filter_reduce_scratch(&k, &src, &dst);
+    src.px = malloc((size_t)in->width * in->height * ch * sizeof(float));
+    dst.px = malloc((size_t)w * h * ch * sizeof(float));
+    float *scratch = malloc(scratch_n * sizeof(float));
+    int rc = src.px && dst.px && scratch ? 0 : vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
+    for (uint32_t y = 0; rc == 0 && y < in->height; y++)
+        vt_filter_to_working(&mode, VTS_SAMPLE_U8, vt_image_at(in, 0, y),
+                             src.px + (size_t)y * in->width * ch, in->width);
+    if (rc == 0)
+        rc = vt_filter_reduce(&k, &edges, &src, &dst, scratch, scratch_n, err);
+    if (rc == 0)
+        rc = vt_image_alloc(out, w, h, ch, VTS_SAMPLE_U8, err);
+    if (rc == 0)
+        vt_filter_from_working(&mode, VTS_SAMPLE_U8, dst.px, out->pixels, (size_t)w * h);
+    free(src.px);
+    free(dst.px);
+    free(scratch);
+    return rc;
+}
+
+/* The pack's levels into a repeating, mipmapped sRGB texture: those of the store, then (Wei,
+ * section 5) coarser ones made here down to one texel per Wang tile, where the store stopped at
+ * the level that fits in one of its tiles. Coarser than that a texel would mix tiles the hash
+ * puts apart: the level of detail stops there. */
 static int load_pack(struct wang_view *w, struct vts_error *err)
 {
     const struct vts_geometry *g = vts_store_geometry(w->store);
@@ -116,17 +151,21 @@ static int load_pack(struct wang_view *w, struct vts_error *err)
     w->levels = 0;
     glGenTextures(1, &w->pack);
     glBindTexture(GL_TEXTURE_2D, w->pack);
-    for (uint32_t level = 0; level < g->level_count && (w->info.tile_px >> level) > 0; level++) {
-        struct vt_image img;
-        int rc = vt_wang_pack_read_level(w->store, level, &img, err);
-        if (rc)
-            return rc;
-        rc = upload_level(level, &img, err);
+    struct vt_image img = {0}, next;
+    for (uint32_t level = 0; (w->info.tile_px >> level) > 0; level++) {
+        int rc = level < g->level_count ? vt_wang_pack_read_level(w->store, level, &next, err)
+                                        : reduce_level(&img, &next, err);
         vt_image_release(&img);
-        if (rc)
+        img = next;
+        if (rc == 0)
+            rc = upload_level(level, &img, err);
+        if (rc) {
+            vt_image_release(&img);
             return rc;
+        }
         w->levels = level + 1;
     }
+    vt_image_release(&img);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, (GLint)w->levels - 1);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);

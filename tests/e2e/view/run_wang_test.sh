@@ -56,6 +56,11 @@ wang_hash_agrees)
     vt --wang p$colours.vts --extent 16x16 --screenshot t.png
     vt --wang p$colours.vts --extent 16x16 --reference --screenshot r.png
     "$vcheck" psnr t.png r.png --min 99
+    # 2 texels per tile: level 3, past the store's levels (64, 32, 16 texels): made by vt-view
+    # from the coarsest stored level (one rounding to 8 bits more than the reference's chain)
+    vt --wang p$colours.vts --extent 128x128 --screenshot t.png
+    vt --wang p$colours.vts --extent 128x128 --reference --screenshot r.png
+    "$vcheck" psnr t.png r.png --min 45
   done
   "$wang" sample.png -o other.vts --tile 16 --colours 3x2 --hash 63 --codec png \
     --store-tile 32 --border 2
