@@ -15,7 +15,7 @@
 
 static const char usage_text[] =
     "usage: vt-view STORE.vts [SCENE.vt.obj] [options]\n"
-    "       vt-view --wang PACK.vts [--extent MxN] [--origin X,Y] [--reference] [options]\n"
+    "       vt-view --wang PACK.vts [--extent MxN] [--origin X,Y] [--tilemap | --reference]\n"
     "Shows a virtual-texture store through a page table and a tile cache: 2D (pan/zoom over the\n"
     "whole texture) without a scene, 3D with a .vt.obj scene.\n"
     "  --headless            render offscreen (EGL surfaceless) instead of a window\n"
@@ -60,6 +60,8 @@ static const char usage_text[] =
     "                        8x8)\n"
     "  --origin X,Y          with --wang: the output tile at the frame's top-left corner,\n"
     "                        0..4294967295 each (default 0,0)\n"
+    "  --tilemap             with --wang: look tiles up in a precomputed map of the hash (one\n"
+    "                        fetch; hash sizes up to 4096) instead of evaluating it\n"
     "  -q, --quiet           errors only\n"
     "  -v, --verbose         more messages\n"
     "  -h, --help            this help;    --version  version\n"
@@ -94,6 +96,7 @@ enum {
     OPT_WANG,
     OPT_EXTENT,
     OPT_ORIGIN,
+    OPT_TILEMAP,
     OPT_VERSION,
 };
 
@@ -134,12 +137,14 @@ static int check_stdio(const struct vtv_options *o)
 static int run_wang(struct vtv_options *o, int rest, bool frames_set)
 {
     if (!o->wang_path)
-        return vt_usage_error("--extent and --origin need --wang PACK.vts");
+        return vt_usage_error("--extent, --origin and --tilemap need --wang PACK.vts");
     if (rest > 0)
         return vt_usage_error("--wang takes no STORE or SCENE argument");
     if (o->camera_path || o->orbit || o->reference_scene || o->layer_name || o->stats)
         return vt_usage_error(
             "--wang draws its extent: no --camera, --orbit, --reference-scene, --layer or --stats");
+    if (o->wang_tilemap && o->reference)
+        return vt_usage_error("--tilemap and --reference exclude each other");
     if (!o->extent_x)
         o->extent_x = o->extent_y = 8;
     if (!frames_set)
@@ -188,6 +193,7 @@ int main(int argc, char **argv)
         {"wang", required_argument, NULL, OPT_WANG},
         {"extent", required_argument, NULL, OPT_EXTENT},
         {"origin", required_argument, NULL, OPT_ORIGIN},
+        {"tilemap", no_argument, NULL, OPT_TILEMAP},
         {"quiet", no_argument, NULL, 'q'},
         {"verbose", no_argument, NULL, 'v'},
         {"help", no_argument, NULL, 'h'},
@@ -196,7 +202,7 @@ int main(int argc, char **argv)
     };
     struct vtv_options o;
     vtv_options_default(&o);
-    bool frames_set = false, origin_set = false;
+    bool frames_set = false, origin_set = false; /* origin_set: any --wang option */
     int verbosity = VT_LOG_WARN;
     opterr = 0;
     int c;
@@ -331,6 +337,10 @@ int main(int argc, char **argv)
         case OPT_EXTENT:
             if (vt_parse_u32_pair(optarg, 'x', 1, 65536, &o.extent_x, &o.extent_y) != 0)
                 return vt_usage_error("--extent '%s': expected MxN tiles, 1..65536 each", optarg);
+            break;
+        case OPT_TILEMAP:
+            o.wang_tilemap = true;
+            origin_set = true; /* a --wang option */
             break;
         case OPT_ORIGIN:
             if (vt_parse_u32_pair(optarg, ',', 0, UINT32_MAX, &o.origin_x, &o.origin_y) != 0)

@@ -24,7 +24,7 @@ struct wang_view {
     uint32_t origin_x, origin_y; /* the frame's first tile, mod the hash size */
     double shift_x, shift_y;     /* the position inside it, in [0, 1) tiles */
     double extent_x, extent_y;   /* tiles across and down the frame */
-    GLuint program, vao, fbo, rb, pack, perm, order, image;
+    GLuint program, vao, fbo, rb, pack, perm, order, image, tilemap;
 };
 
 static GLuint compile_program(const char *fragment, const char *what, struct vts_error *err)
@@ -178,6 +178,38 @@ static int load_pack(struct wang_view *w, struct vts_error *err)
     return w->perm && w->order ? 0 : err->status;
 }
 
+/* --tilemap (Wei's second implementation): the pack slot of every tile of one period of the hash
+ * (n x n, through the C API's vt_wang_info_locate, the shuffled order included) as an RG16UI
+ * texture; TileTex then reads it with one fetch instead of evaluating the hash. */
+static int load_tilemap(struct wang_view *w, struct vts_error *err)
+{
+    uint32_t n = w->info.hash_n;
+    if (n > 4096)
+        return vt_error_set(err, VTS_ERR_LIMIT,
+                            "--tilemap: the hash has %u entries, a map of more than 4096 x 4096 "
+                            "tiles",
+                            n);
+    uint16_t *map = malloc((size_t)n * n * 2 * sizeof *map);
+    if (!map)
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
+    for (uint32_t y = 0; y < n; y++)
+        for (uint32_t x = 0; x < n; x++) {
+            uint32_t col, row;
+            vt_wang_info_locate(&w->info, x, y, &col, &row);
+            map[((size_t)y * n + x) * 2] = (uint16_t)col;
+            map[((size_t)y * n + x) * 2 + 1] = (uint16_t)row;
+        }
+    glGenTextures(1, &w->tilemap);
+    glBindTexture(GL_TEXTURE_2D, w->tilemap);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RG16UI, (GLsizei)n, (GLsizei)n, 0, GL_RG_INTEGER,
+                 GL_UNSIGNED_SHORT, map);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    free(map);
+    return 0;
+}
+
 /* --reference: the extent (from --origin) assembled on the CPU from level 0 (vt_wang_assemble, the
  * C API), RGBA, with the store's mip chain (vtv_mipmap_upload) cut at the pack's level count. */
 static int load_reference(struct wang_view *w, struct vts_error *err)
@@ -225,6 +257,8 @@ static int setup(struct wang_view *w, struct vts_error *err)
     int rc = load_pack(w, err);
     if (rc == 0 && o->reference)
         rc = load_reference(w, err);
+    else if (rc == 0 && o->wang_tilemap)
+        rc = load_tilemap(w, err);
     if (rc)
         return rc;
     w->program = compile_program(o->reference ? vtv_wang_reference_glsl : vtv_wang_tiletex_glsl,
@@ -250,6 +284,8 @@ static int setup(struct wang_view *w, struct vts_error *err)
     glUniform1i(glGetUniformLocation(p, "pack"), 0);
     glUniform1i(glGetUniformLocation(p, "perm"), 1);
     glUniform1i(glGetUniformLocation(p, "order"), 2);
+    glUniform1i(glGetUniformLocation(p, "tilemap"), 3);
+    glUniform1i(glGetUniformLocation(p, "use_map"), w->tilemap != 0);
     glUniform1ui(glGetUniformLocation(p, "n"), w->info.hash_n);
     glUniform1ui(glGetUniformLocation(p, "kh"), w->info.kh);
     glUniform1ui(glGetUniformLocation(p, "kv"), w->info.kv);
@@ -311,6 +347,8 @@ static void draw(const struct wang_view *w)
     glBindTexture(GL_TEXTURE_2D, w->perm);
     glActiveTexture(GL_TEXTURE2);
     glBindTexture(GL_TEXTURE_2D, w->order);
+    glActiveTexture(GL_TEXTURE3);
+    glBindTexture(GL_TEXTURE_2D, w->tilemap);
     glBindVertexArray(w->vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDisable(GL_FRAMEBUFFER_SRGB);
@@ -413,8 +451,8 @@ out:
     if (rc)
         vt_log(VT_LOG_ERROR, "%s", err.message);
     if (ctx) {
-        GLuint textures[4] = {w.pack, w.perm, w.order, w.image};
-        glDeleteTextures(4, textures);
+        GLuint textures[5] = {w.pack, w.perm, w.order, w.image, w.tilemap};
+        glDeleteTextures(5, textures);
         glDeleteFramebuffers(1, &w.fbo);
         glDeleteRenderbuffers(1, &w.rb);
         glDeleteVertexArrays(1, &w.vao);

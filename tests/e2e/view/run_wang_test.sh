@@ -80,6 +80,17 @@ wang_hash_agrees)
   vt --wang corner.vts --extent 16x16 --screenshot t.png
   vt --wang corner.vts --extent 16x16 --reference --screenshot r.png
   "$vcheck" psnr t.png r.png --min 99
+  # --tilemap (the hash precomputed with the C API, one fetch) draws what the GLSL hash draws:
+  # every tile of a 64-entry hash (64 x 64 tiles, off the texel grid), shuffled and corner packs
+  "$wang" sample.png -o shuffled.vts --tile 16 --colours 3x2 --hash 64 --codec png \
+    --store-tile 32 --border 2 --shuffle 3
+  for p in p2x2 shuffled corner; do
+    vt --wang $p.vts --extent 64x64 --origin 7,3 --screenshot t.png
+    vt --wang $p.vts --extent 64x64 --origin 7,3 --tilemap --screenshot m.png
+    "$vcheck" psnr t.png m.png --min 99
+  done
+  vt --wang p2x2.vts --extent 64x64 --origin 8,3 --tilemap --screenshot m.png
+  if "$vcheck" psnr t.png m.png --min 30; then fail "a tile off gives the same frame"; fi
   ;;
 wang_window)
   # The GLFW window (under xvfb-run) draws what the headless run draws. LeakSanitizer is off for
