@@ -11,3 +11,4 @@ set -uo pipefail
 "$VT_VIEW" --wang plain.vts --extent 0x4 --headless; echo "exit $?"
 "$VT_VIEW" --wang plain.vts --orbit 3 --headless; echo "exit $?"
 "$VT_VIEW" --wang plain.vts --headless --screenshot plain.vts; echo "exit $?"
+"$VT_VIEW" --wang plain.vts --tilemap --reference --headless; echo "exit $?"
