@@ -1,5 +1,6 @@
 /* vt-info: describes a .vts tile store, verifies its tiles, or extracts a tile or level as PNG.
  * Reference (options, output fields, JSON keys): docs/cli/vt-info.md. */
+#include <ctype.h>
 #include <errno.h>
 #include <jansson.h>
 #include <math.h>
@@ -17,6 +18,7 @@
 #include "vt_stdin_spool.h"
 #include "vt_store_stats.h"
 #include "vt_tile_reader.h"
+#include "vt_wang_pack.h"
 #include "vts.h"
 
 #define EXTRACT_MAX_TEXELS (1ull << 32) /* --extract refuses larger images */
@@ -26,9 +28,13 @@ struct options {
     const char *out_path; /* -o */
     bool json, verify, extract, stats, has_tile, has_layer;
     uint32_t level, tile_x, tile_y, layer; /* --extract, --tile, --layer */
+    bool wang_region;                      /* --wang-region X,Y,W,H */
+    uint64_t wang_x, wang_y;
+    uint32_t wang_w, wang_h;
 };
 
 enum { OPT_JSON = 256, OPT_VERIFY, OPT_EXTRACT, OPT_STATS, OPT_TILE, OPT_LAYER, OPT_VERSION };
+enum { OPT_WANG = 512 }; /* --wang-region */
 
 static const struct option long_options[] = {{"json", no_argument, NULL, OPT_JSON},
                                              {"verify", no_argument, NULL, OPT_VERIFY},
@@ -36,6 +42,7 @@ static const struct option long_options[] = {{"json", no_argument, NULL, OPT_JSO
                                              {"stats", no_argument, NULL, OPT_STATS},
                                              {"tile", required_argument, NULL, OPT_TILE},
                                              {"layer", required_argument, NULL, OPT_LAYER},
+                                             {"wang-region", required_argument, NULL, OPT_WANG},
                                              {"output", required_argument, NULL, 'o'},
                                              {"quiet", no_argument, NULL, 'q'},
                                              {"verbose", no_argument, NULL, 'v'},
@@ -64,6 +71,9 @@ static void usage(void)
           "                       border; default: the whole level stitched without borders\n"
           "      --layer N        layer to extract (integer, 0..layers-1; default 0); with\n"
           "                       --stats the one layer to describe (default: all)\n"
+          "      --wang-region X,Y,W,H\n"
+          "                       a Wang pack (vt-wang): write W x H texels (1..16384 each) of\n"
+          "                       the virtual output at X,Y (texels of LEVEL) instead (PNG)\n"
           "  -o, --output FILE    PNG to write (replaced only when complete); - for standard\n"
           "                       output (not a terminal)\n"
           "General:\n"
@@ -85,6 +95,24 @@ static void usage(void)
           "Exit status: 0 ok, 1 bad input (unreadable or corrupt store, bad tile, output not\n"
           "written), 2 bad usage (including a level, tile or layer the store does not have).\n",
           stdout);
+}
+
+/* "X,Y,W,H" of --wang-region. */
+static int parse_wang_region(const char *s, struct options *o)
+{
+    unsigned long long x, y;
+    unsigned w, h;
+    char tail;
+    if (sscanf(s, "%llu,%llu,%u,%u%c", &x, &y, &w, &h, &tail) != 4 || !isdigit((unsigned char)*s) ||
+        w < 1 || h < 1 || w > 16384 || h > 16384 || x > UINT32_MAX * 65536ull ||
+        y > UINT32_MAX * 65536ull)
+        return -1;
+    o->wang_region = true;
+    o->wang_x = x;
+    o->wang_y = y;
+    o->wang_w = w;
+    o->wang_h = h;
+    return 0;
 }
 
 /* Returns an exit code when main should stop now (help, version, usage error), else -1. */
@@ -118,6 +146,10 @@ static int parse_options(int argc, char **argv, struct options *o)
             o->has_tile = true;
             if (vt_parse_u32_pair(optarg, ',', 0, UINT32_MAX, &o->tile_x, &o->tile_y) != 0)
                 return vt_usage_error("--tile: '%s' is not X,Y (two tile numbers)", optarg);
+        } else if (c == OPT_WANG) {
+            if (parse_wang_region(optarg, o) != 0)
+                return vt_usage_error("--wang-region: '%s' is not X,Y,W,H (W, H in 1..16384)",
+                                      optarg);
         } else if (c == OPT_LAYER) {
             o->has_layer = true;
             if (vt_parse_u32(optarg, 0, UINT32_MAX, &o->layer) != 0)
@@ -173,6 +205,9 @@ static int validate_options(const struct options *o)
                                                                    : "-o");
     if (o->extract && !o->out_path)
         return vt_usage_error("--extract needs -o OUT.png");
+    if (o->wang_region && (!o->extract || o->has_tile || o->has_layer || wants_tiff(o->out_path)))
+        return vt_usage_error("--wang-region needs --extract LEVEL and a PNG, without --tile and "
+                              "--layer");
     const char *format = o->extract ? other_image_format(o->out_path) : NULL;
     if (format)
         return vt_usage_error(
@@ -248,6 +283,55 @@ static void print_layer(const struct vts_store *s, const struct vt_store_stats *
     print_counts("total", "", tiles, total);
 }
 
+/* The long lists of a Wang pack (wang.hash, wang.order): their first entries and count. Returns
+ * false for other keys. */
+static bool vt_wang_print_list(const char *key, const char *value)
+{
+    if (strcmp(key, VT_WANG_KEY_HASH) != 0 && strcmp(key, VT_WANG_KEY_ORDER) != 0)
+        return false;
+    size_t n = *value != '\0', shown = 0;
+    for (const char *p = value; *p; p++)
+        n += *p == ' ';
+    for (const char *p = value; *p && shown < 8; p++) {
+        shown += *p == ' ';
+        if (shown < 8)
+            putchar(*p);
+    }
+    printf("%s (%zu entries)", n > 8 ? " ..." : "", n);
+    return true;
+}
+
+/* A Wang pack's parameters (vt-wang), or a warning when its metadata is bad. */
+static void print_wang(const struct vts_store *s)
+{
+    struct vt_wang_info info;
+    struct vts_error err = {0};
+    if (!vt_wang_pack_is(s))
+        return;
+    if (vt_wang_pack_open(s, &info, &err) == 0)
+        vt_wang_pack_print(&info);
+    else
+        vt_log(VT_LOG_WARN, "%s", err.message);
+    vt_wang_info_release(&info);
+}
+
+static json_t *json_wang(const struct vts_store *s)
+{
+    struct vt_wang_info i;
+    struct vts_error err = {0};
+    json_t *o = NULL;
+    if (vt_wang_pack_open(s, &i, &err) == 0)
+        o = json_pack("{s:s, s:I, s:I, s:I, s:I, s:I, s:I, s:I, s:b}", "kind",
+                      i.corners ? "corner" : "edge", "kh", (json_int_t)i.kh, "kv", (json_int_t)i.kv,
+                      "tile_px", (json_int_t)i.tile_px, "cols", (json_int_t)i.cols, "rows",
+                      (json_int_t)i.rows, "hash_entries", (json_int_t)i.hash_n, "repeat_px",
+                      (json_int_t)i.hash_n * i.tile_px, "shuffled", i.order != NULL);
+    else
+        vt_log(VT_LOG_WARN, "%s", err.message);
+    vt_wang_info_release(&i);
+    return o ? o : json_null();
+}
+
 static void print_summary(const struct vts_store *s, const struct vt_store_stats *st)
 {
     const struct vts_geometry *g = vts_store_geometry(s);
@@ -277,9 +361,11 @@ static void print_summary(const struct vts_store *s, const struct vt_store_stats
     printf("metadata:          %u entries\n", vts_store_meta_count(s));
     for (uint32_t i = 0; i < vts_store_meta_count(s); i++) {
         printf("  %s=", vts_store_meta_key(s, i));
-        print_escaped(vts_store_meta_value(s, i));
+        if (!vt_wang_print_list(vts_store_meta_key(s, i), vts_store_meta_value(s, i)))
+            print_escaped(vts_store_meta_value(s, i));
         putchar('\n');
     }
+    print_wang(s);
 }
 
 /* A JSON string of text from the file (layer names and metadata values are not checked for
@@ -369,6 +455,8 @@ static int print_json(const struct vts_store *s, const struct vt_store_stats *st
                   "level_count", (json_int_t)g->level_count, "layer_count",
                   (json_int_t)g->layer_count, "flags", json_flags(g->flags, store_flag_names),
                   "layers", layers, "totals", totals, "metadata", meta);
+    if (root && vt_wang_pack_is(s))
+        json_object_set_new(root, "wang", json_wang(s));
     int rc = root ? json_dumpf(root, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(6)) : -1;
     json_decref(root);
     if (rc != 0) {
@@ -544,8 +632,33 @@ static int check_extract_range(const struct vts_store *s, const struct options *
     return 0;
 }
 
+/* --extract LEVEL --wang-region X,Y,W,H: the virtual output of a Wang pack. */
+static int run_wang_region(const struct vts_store *s, const struct options *o)
+{
+    struct vt_wang_info info;
+    struct vts_error err = {0};
+    int rc = vt_wang_pack_open(s, &info, &err);
+    if (rc == 0 && o->level >= vts_store_geometry(s)->level_count) {
+        vt_wang_info_release(&info);
+        return vt_usage_error("level %u is outside '%s' (levels 0..%u)", o->level,
+                              vts_store_name(s), vts_store_geometry(s)->level_count - 1);
+    }
+    if (rc == 0)
+        rc = vt_wang_pack_write_region(s, &info, o->level, o->wang_x, o->wang_y, o->wang_w,
+                                       o->wang_h, o->out_path, &err);
+    vt_wang_info_release(&info);
+    if (rc != 0) {
+        vt_log(VT_LOG_ERROR, "%s", err.message);
+        return VT_EXIT_BAD_INPUT;
+    }
+    vt_log(VT_LOG_INFO, "wrote '%s'", o->out_path);
+    return VT_EXIT_OK;
+}
+
 static int run_extract(const struct vts_store *s, const struct options *o)
 {
+    if (o->wang_region)
+        return run_wang_region(s, o);
     struct vt_tile_reader r;
     struct vts_error err = {0};
     struct vts_tile_entry e;

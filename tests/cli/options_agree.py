@@ -17,7 +17,7 @@ import subprocess
 import sys
 
 TOOLS = ["vt-atlas", "vt-offset", "vt-tiles", "vt-info", "vt-convert", "vt-merge", "vt-export",
-         "vt-view", "vt-obj2ply"]
+         "vt-view", "vt-obj2ply", "vt-wang"]
 ENTRY = re.compile(r'\{\s*"([a-z0-9][a-z0-9-]*)"\s*,\s*(?:no|required|optional)_argument')
 HELP_OPT = re.compile(r"(?:^[ \t]{0,8}|;\s+)(?:-[A-Za-z0-9], )?--([a-z0-9][a-z0-9-]*)")
 DOC_ROW = re.compile(r"^\|([^|]*)\|")

@@ -21,6 +21,10 @@ struct vtv_options {
     bool has_range;                                  /* --range MIN:MAX given */
     float range[2];                                  /* its MIN, MAX (MIN < MAX) */
     int ramp; /* --ramp: enum vtv_ramp_kind, or -1 (default: a ramp for one-channel wide layers) */
+    const char *wang_path;       /* --wang PACK.vts: vtv_wang.h draws it instead */
+    uint32_t extent_x, extent_y; /* --extent MxN: tiles of the Wang output in the frame */
+    uint32_t origin_x, origin_y; /* --origin X,Y: its top-left tile */
+    bool wang_tilemap;           /* --tilemap: the hash precomputed (Wei's TileMap) */
 };
 
 void vtv_options_default(struct vtv_options *o);

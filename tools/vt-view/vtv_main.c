@@ -12,9 +12,11 @@
 #include "vt_output_path.h"
 #include "vtv_app.h"
 #include "vtv_ramp.h"
+#include "vtv_wang.h"
 
 static const char usage_text[] =
     "usage: vt-view STORE.vts [SCENE.vt.obj] [options]\n"
+    "       vt-view --wang PACK.vts [--extent MxN] [--origin X,Y] [--tilemap | --reference]\n"
     "Shows a virtual-texture store through a page table and a tile cache: 2D (pan/zoom over the\n"
     "whole texture) without a scene, 3D with a .vt.obj scene.\n"
     "  --headless            render offscreen (EGL surfaceless) instead of a window\n"
@@ -57,6 +59,15 @@ static const char usage_text[] =
     "                        (default: dusk for one-channel u16/f16/f32 layers, else none)\n"
     "  --bc-upload auto|off  BC1..BC5 tiles: upload the blocks compressed when the GL has S3TC\n"
     "                        or RGTC (auto, default) or decode them on the CPU (off)\n"
+    "  --wang PACK.vts       draw a Wang pack (vt-wang) with TileTex: an output of --extent\n"
+    "                        tiles from its top-left corner, trilinear; with --reference the\n"
+    "                        same output assembled on the CPU in one mipmapped texture\n"
+    "  --extent MxN          with --wang: tiles across and down the frame, 1..65536 (default\n"
+    "                        8x8)\n"
+    "  --origin X,Y          with --wang: the output tile at the frame's top-left corner,\n"
+    "                        0..4294967295 each (default 0,0)\n"
+    "  --tilemap             with --wang: look tiles up in a precomputed map of the hash (one\n"
+    "                        fetch; hash sizes up to 4096) instead of evaluating it\n"
     "  -q, --quiet           errors only\n"
     "  -v, --verbose         more messages\n"
     "  -h, --help            this help;    --version  version\n"
@@ -90,6 +101,10 @@ enum {
     OPT_LOD_BIAS,
     OPT_RANGE,
     OPT_RAMP,
+    OPT_WANG,
+    OPT_EXTENT,
+    OPT_ORIGIN,
+    OPT_TILEMAP,
     OPT_VERSION,
 };
 
@@ -126,6 +141,32 @@ static int check_stdio(const struct vtv_options *o)
     return status;
 }
 
+/* --wang PACK.vts: its own checks, then vtv_wang_run(). */
+static int run_wang(struct vtv_options *o, int rest, bool frames_set)
+{
+    if (!o->wang_path)
+        return vt_usage_error("--extent, --origin and --tilemap need --wang PACK.vts");
+    if (rest > 0)
+        return vt_usage_error("--wang takes no STORE or SCENE argument");
+    if (o->camera_path || o->orbit || o->reference_scene || o->layer_name || o->stats)
+        return vt_usage_error(
+            "--wang draws its extent: no --camera, --orbit, --reference-scene, --layer or --stats");
+    if (o->wang_tilemap && o->reference)
+        return vt_usage_error("--tilemap and --reference exclude each other");
+    if (!o->extent_x)
+        o->extent_x = o->extent_y = 8;
+    if (!frames_set)
+        o->frames = o->headless ? 1 : 0;
+    if (o->headless && o->frames == 0)
+        return vt_usage_error("--frames 0 needs a window (no --headless)");
+    o->store_path = o->wang_path;
+    int status = check_stdio(o);
+    if (status >= 0)
+        return status;
+    status = vt_check_output(o->screenshot, &o->wang_path, 1);
+    return status >= 0 ? status : vtv_wang_run(o);
+}
+
 int main(int argc, char **argv)
 {
     vt_tool_init("vt-view");
@@ -159,6 +200,10 @@ int main(int argc, char **argv)
         {"lod-bias", required_argument, NULL, OPT_LOD_BIAS},
         {"range", required_argument, NULL, OPT_RANGE},
         {"ramp", required_argument, NULL, OPT_RAMP},
+        {"wang", required_argument, NULL, OPT_WANG},
+        {"extent", required_argument, NULL, OPT_EXTENT},
+        {"origin", required_argument, NULL, OPT_ORIGIN},
+        {"tilemap", no_argument, NULL, OPT_TILEMAP},
         {"quiet", no_argument, NULL, 'q'},
         {"verbose", no_argument, NULL, 'v'},
         {"help", no_argument, NULL, 'h'},
@@ -167,7 +212,7 @@ int main(int argc, char **argv)
     };
     struct vtv_options o;
     vtv_options_default(&o);
-    bool frames_set = false;
+    bool frames_set = false, origin_set = false; /* origin_set: any --wang option */
     int verbosity = VT_LOG_WARN;
     opterr = 0;
     int c;
@@ -319,6 +364,22 @@ int main(int argc, char **argv)
             o.ramp = (int)k;
             break;
         }
+        case OPT_WANG:
+            o.wang_path = optarg;
+            break;
+        case OPT_EXTENT:
+            if (vt_parse_u32_pair(optarg, 'x', 1, 65536, &o.extent_x, &o.extent_y) != 0)
+                return vt_usage_error("--extent '%s': expected MxN tiles, 1..65536 each", optarg);
+            break;
+        case OPT_TILEMAP:
+            o.wang_tilemap = true;
+            origin_set = true; /* a --wang option */
+            break;
+        case OPT_ORIGIN:
+            if (vt_parse_u32_pair(optarg, ',', 0, UINT32_MAX, &o.origin_x, &o.origin_y) != 0)
+                return vt_usage_error("--origin '%s': expected X,Y tiles", optarg);
+            origin_set = true;
+            break;
         case 'q':
             verbosity = VT_LOG_ERROR;
             break;
@@ -337,6 +398,8 @@ int main(int argc, char **argv)
     }
     vt_log_set_level(verbosity);
     int rest = argc - optind;
+    if (o.wang_path || o.extent_x || origin_set)
+        return run_wang(&o, rest, frames_set);
     if (rest < 1 || rest > 2)
         return vt_usage_error(rest < 1 ? "missing STORE.vts" : "too many arguments");
     o.store_path = argv[optind];

@@ -1,0 +1,109 @@
+#!/usr/bin/env bash
+# vt-view --wang (tests/e2e/view/CMakeLists.txt): packs built by vt-wang from a generated
+# photo-like sample, rendered headless (EGL surfaceless, llvmpipe) with TileTex and with
+# --reference (the output assembled on the CPU by lib/wang through libvts's vts_wang API).
+# usage: run_wang_test.sh CASE VT_VIEW VT_WANG VT_SYNTH_IMAGE VTV_WANG_CHECK VTV_CHECK WORKDIR
+set -euo pipefail
+case_name=$1 view=$2 wang=$3 synth=$4 check=$5 vcheck=$6 work=$7
+rm -rf "$work"
+mkdir -p "$work"
+cd "$work"
+export MESA_SHADER_CACHE_DISABLE=true EGL_LOG_LEVEL=fatal
+fail() { echo "FAIL: $*" >&2; exit 1; }
+vt() { "$view" --headless --size 256x256 "$@"; }
+# edge_db A B TILES: the PSNR at tile edges (within 2 pixels)
+edge_db() { "$check" edges "$1" "$2" "$3" 2 | tee /dev/stderr | awk '{print $2}'; }
+"$synth" sample.png --format png --size 384x384 --channels 3 --photo --seed 7
+pack() { "$wang" sample.png --tile 64 --hash 64 --codec png --store-tile 64 --border 2 "$@"; }
+
+case "$case_name" in
+wang_filtering)
+  # Wei's figure 5: with the TileIndex packing, hardware bilinear + mipmap filtering across tile
+  # edges matches the CPU-assembled reference (>= 40 dB at the edges); tiles in an arbitrary
+  # order give wrong neighbours at every edge (>= 5 dB lower). Extents off the texel grid:
+  # magnified (3 tiles: level 0 between texels), minified (6 and 11 tiles: levels 0-2). Edge
+  # tiles differ near tile corners (four diamonds meet there); corner tiles filter exactly.
+  for kind in edge corner; do
+    opts=""
+    if [ $kind = corner ]; then opts="--corners --colours 2x2"; fi
+    pack -o good.vts $opts
+    pack -o shuffled.vts --shuffle 5 $opts
+    for extent in 3 6 11; do
+      vt --wang good.vts --extent ${extent}x$extent --screenshot good$extent.png
+      vt --wang shuffled.vts --extent ${extent}x$extent --screenshot shuffled$extent.png
+      vt --wang good.vts --extent ${extent}x$extent --reference --screenshot ref$extent.png
+      vt --wang shuffled.vts --extent ${extent}x$extent --reference --screenshot refs$extent.png
+      cmp ref$extent.png refs$extent.png || fail "the references of the two packs differ"
+      g=$(edge_db good$extent.png ref$extent.png $extent)
+      s=$(edge_db shuffled$extent.png ref$extent.png $extent)
+      echo "$kind tiles, extent $extent: TileIndex $g dB, shuffled $s dB at tile edges"
+      awk -v g="$g" -v s="$s" 'BEGIN { exit !(g >= 40 && s <= g - 5) }' ||
+        fail "extent $extent: $g dB (want >= 40), shuffled $s dB (want <= $g - 5)"
+    done
+  done
+  ;;
+wang_hash_agrees)
+  # TileTex's GLSL hash and TileIndex against the C API: at scales where every pixel samples one
+  # texel centre (1:1 on level 0, 4:1 on level 2), the render is the reference exactly, for
+  # edge packs of 2x2 and 3x2 colours over 4096 tiles and a corner pack. A different tile choice
+  # is caught: the same tiles with another hash permutation (--hash 63) score far lower.
+  for colours in 2x2 3x2; do
+    "$wang" sample.png -o p$colours.vts --tile 16 --colours $colours --hash 64 --codec png \
+      --store-tile 32 --border 2
+    vt --wang p$colours.vts --extent 64x64 --screenshot t.png
+    vt --wang p$colours.vts --extent 64x64 --reference --screenshot r.png
+    "$vcheck" psnr t.png r.png --min 99
+    vt --wang p$colours.vts --extent 16x16 --screenshot t.png
+    vt --wang p$colours.vts --extent 16x16 --reference --screenshot r.png
+    "$vcheck" psnr t.png r.png --min 99
+    # 2 texels per tile: level 3, past the store's levels (64, 32, 16 texels): made by vt-view
+    # from the coarsest stored level (one rounding to 8 bits more than the reference's chain)
+    vt --wang p$colours.vts --extent 128x128 --screenshot t.png
+    vt --wang p$colours.vts --extent 128x128 --reference --screenshot r.png
+    "$vcheck" psnr t.png r.png --min 45
+  done
+  "$wang" sample.png -o other.vts --tile 16 --colours 3x2 --hash 63 --codec png \
+    --store-tile 32 --border 2
+  vt --wang other.vts --extent 16x16 --reference --screenshot o.png
+  if "$vcheck" psnr t.png o.png --min 30; then fail "another hash gives the same output"; fi
+  # far out: tiles 4294967290.. of a 4096-entry hash (across its wrap at 4096 too), the origin an
+  # integer in the shader: as exact as at 0,0
+  "$wang" sample.png -o far.vts --tile 16 --colours 2x2 --hash 4096 --codec png \
+    --store-tile 32 --border 2
+  vt --wang far.vts --extent 16x16 --origin 4294967290,4090 --screenshot t.png
+  vt --wang far.vts --extent 16x16 --origin 4294967290,4090 --reference --screenshot r.png
+  "$vcheck" psnr t.png r.png --min 99
+  vt --wang far.vts --extent 16x16 --reference --screenshot o.png
+  if "$vcheck" psnr t.png o.png --min 30; then fail "the origin changes nothing"; fi
+  "$wang" sample.png -o corner.vts --tile 16 --corners --colours 3x3 --hash 64 --codec png \
+    --store-tile 32 --border 2
+  vt --wang corner.vts --extent 16x16 --screenshot t.png
+  vt --wang corner.vts --extent 16x16 --reference --screenshot r.png
+  "$vcheck" psnr t.png r.png --min 99
+  # --tilemap (the hash precomputed with the C API, one fetch) draws what the GLSL hash draws:
+  # every tile of a 64-entry hash (64 x 64 tiles, off the texel grid), shuffled and corner packs
+  "$wang" sample.png -o shuffled.vts --tile 16 --colours 3x2 --hash 64 --codec png \
+    --store-tile 32 --border 2 --shuffle 3
+  for p in p2x2 shuffled corner; do
+    vt --wang $p.vts --extent 64x64 --origin 7,3 --screenshot t.png
+    vt --wang $p.vts --extent 64x64 --origin 7,3 --tilemap --screenshot m.png
+    "$vcheck" psnr t.png m.png --min 99
+  done
+  vt --wang p2x2.vts --extent 64x64 --origin 8,3 --tilemap --screenshot m.png
+  if "$vcheck" psnr t.png m.png --min 30; then fail "a tile off gives the same frame"; fi
+  ;;
+wang_window)
+  # The GLFW window (under xvfb-run) draws what the headless run draws. LeakSanitizer is off for
+  # the window (the window case of run_view_test.sh says why).
+  pack -o good.vts
+  ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0 \
+    xvfb-run -a "$view" --wang good.vts --extent 5x5 --frames 3 --size 256x256 \
+    --screenshot win.png || fail "window run"
+  vt --wang good.vts --extent 5x5 --screenshot head.png
+  "$vcheck" psnr win.png head.png --min 99
+  ;;
+*)
+  fail "unknown case $case_name"
+  ;;
+esac
+echo "ok $case_name"
