@@ -218,8 +218,8 @@ def _read_png16(path):
 def read_texture(path):
     """The texture's texels as 8-bit values (H, W, C) with C 1 (grey), 2 (grey + alpha), 3 (RGB)
     or 4 (RGBA): palettes expanded (RGBA when they have tRNS), grey below 8 bits scaled to 8 bits,
-    16-bit samples converted to round(v * 255 / 65535), which is what vtpipe's docs say a store
-    holds (docs/atlas-build.md: 'converted to 8 bits', as data values)."""
+    16-bit samples converted to round(v * 255 / 65535): a layer with a 16-bit texture keeps 16
+    bits (docs/atlas-build.md), and read_store_image reduces its texels the same way."""
     head = _png_header(path)
     if head and head[2] == 16:
         v = _read_png16(path).astype(np.int64)
@@ -265,7 +265,14 @@ def fill_texel(kd, store_channels):
 
 
 def read_store_image(path):
-    """The extracted store level (vt-info --extract) as uint8 (H, W, C)."""
+    """The extracted store level (vt-info --extract) as uint8 (H, W, C). A layer with a 16-bit
+    texture is a u16 layer (docs/atlas-build.md: 8-bit textures in it are v * 257) and extracts
+    as a 16-bit PNG: reduced here as read_texture reduces 16-bit textures, round(v * 255 / 65535),
+    which gives back v for the 8-bit textures' v * 257 (PIL would truncate)."""
+    head = _png_header(path)
+    if head and head[2] == 16:
+        v = _read_png16(path).astype(np.int64)
+        return ((v * 255 + 32767) // 65535).astype(np.uint8)
     im = Image.open(path)
     if im.mode not in ("L", "LA", "RGB", "RGBA"):
         raise ValueError("%s: image mode %s not handled" % (path, im.mode))
