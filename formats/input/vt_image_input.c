@@ -1,12 +1,15 @@
 /* vt_image_input_open(): recognises the format by its first bytes (each reader's sniff()) and
- * hands the file to that reader, or to the OpenImageIO fallback. */
+ * hands the file to that reader, to GDAL (VRT, JPEG 2000, GeoTIFFs and TIFFs libtiff's reader does
+ * not take) or to the OpenImageIO fallback. */
 #include "vt_image_input.h"
 
 #include <errno.h>
 #include <stdbool.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "internal/vt_input_gdal.h"
 #include "internal/vt_input_readers.h"
 #include "internal/vt_input_util.h"
 #include "vt_error.h"
@@ -44,24 +47,115 @@ static int input_read_magic(const char *path, unsigned char magic[8], size_t *le
     return 0;
 }
 
+/* Where a file goes: a native reader, GDAL, or the OpenImageIO fallback. TIFFs go to GDAL when
+ * they are GeoTIFFs or hold what libtiff's reader does not take (vt_input_tiff_wants_gdal()) and
+ * the module loads; a GeoTIFF of up to 4 bands is read natively without it (*geo_unread). */
+enum input_route { ROUTE_READER, ROUTE_GDAL };
+
+static enum input_route input_route(const char *path, const unsigned char *magic, size_t len,
+                                    const struct vt_input_reader **reader, bool *geo_unread,
+                                    char *why, size_t why_size)
+{
+    *reader = input_reader_for(magic, len);
+    *geo_unread = false;
+    why[0] = '\0';
+    if (*reader == &vt_input_reader_tiff) {
+        if (!vt_input_tiff_wants_gdal(path))
+            return ROUTE_READER;
+        if (vt_input_gdal_available(why, why_size))
+            return ROUTE_GDAL;
+        *geo_unread = true;
+        return ROUTE_READER;
+    }
+    if (*reader == &vt_input_reader_oiio && vt_input_gdal_sniff(magic, len))
+        return ROUTE_GDAL;
+    return ROUTE_READER;
+}
+
+/* Checks the path, resolves the limit and reads the magic bytes. */
+static int input_start(const char *path, const struct vt_input_limits *limits,
+                       uint64_t *max_pixels, unsigned char magic[8], size_t *len,
+                       struct vts_error *err)
+{
+    if (!path || !path[0])
+        return vt_error_set(err, VTS_ERR_ARG, "cannot open an image: empty path");
+    *max_pixels = limits && limits->max_pixels ? limits->max_pixels : VT_INPUT_DEFAULT_MAX_PIXELS;
+    *len = 0;
+    return input_read_magic(path, magic, len, err);
+}
+
 int vt_image_input_open(const char *path, const struct vt_input_limits *limits,
                         struct vt_source *out, struct vts_error *err)
 {
+    return vt_image_input_open_bands(path, limits, 0, 0, out, err);
+}
+
+int vt_image_input_open_bands(const char *path, const struct vt_input_limits *limits,
+                              uint32_t first, uint32_t count, struct vt_source *out,
+                              struct vts_error *err)
+{
     memset(out, 0, sizeof *out);
-    if (!path || !path[0])
-        return vt_error_set(err, VTS_ERR_ARG, "cannot open an image: empty path");
-    uint64_t max_pixels =
-        limits && limits->max_pixels ? limits->max_pixels : VT_INPUT_DEFAULT_MAX_PIXELS;
+    uint64_t max_pixels = 0;
     unsigned char magic[8];
-    size_t len = 0;
-    int rc = input_read_magic(path, magic, &len, err);
+    size_t len;
+    int rc = input_start(path, limits, &max_pixels, magic, &len, err);
     if (rc < 0)
         return rc;
-    rc = input_reader_for(magic, len)->open(path, max_pixels, out, err);
+    const struct vt_input_reader *reader;
+    bool geo_unread;
+    char why[160];
+    if (input_route(path, magic, len, &reader, &geo_unread, why, sizeof why) == ROUTE_GDAL) {
+        rc = vt_input_gdal_open(path, max_pixels, first, count, out, err);
+    } else {
+        rc = reader->open(path, max_pixels, out, err);
+        if (rc < 0 && geo_unread) /* what GDAL would have read */
+            vt_error_set(err, VTS_ERR_UNSUPPORTED,
+                         "'%s': needs GDAL: cannot load the GDAL module (%s)", path, why);
+        if (rc == 0 && count && (first != 0 || count != out->info.channels)) {
+            vt_source_close(out);
+            rc = vt_error_set(err, VTS_ERR_ARG, "cannot read '%s': bands %u..%u of %u", path,
+                              first + 1, first + count, out->info.channels);
+        }
+    }
     if (rc < 0) {
         memset(out, 0, sizeof *out);
         return rc;
     }
     vt_input_copy_name(out->name, sizeof out->name, path);
     return 0;
+}
+
+int vt_image_input_describe(const char *path, const struct vt_input_limits *limits,
+                            struct vt_input_raster *out, struct vts_error *err)
+{
+    memset(out, 0, sizeof *out);
+    uint64_t max_pixels = 0;
+    unsigned char magic[8];
+    size_t len;
+    int rc = input_start(path, limits, &max_pixels, magic, &len, err);
+    if (rc < 0)
+        return rc;
+    const struct vt_input_reader *reader;
+    if (input_route(path, magic, len, &reader, &out->geo_unread, out->why, sizeof out->why) ==
+        ROUTE_GDAL)
+        return vt_input_gdal_describe(path, max_pixels, out, err);
+    struct vt_source src;
+    memset(&src, 0, sizeof src);
+    rc = reader->open(path, max_pixels, &src, err);
+    if (rc < 0 && out->geo_unread)
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
+                            "'%s': needs GDAL: cannot load the GDAL module (%s)", path, out->why);
+    if (rc < 0)
+        return rc;
+    out->band_count = src.info.channels;
+    vt_source_close(&src);
+    return 0;
+}
+
+void vt_input_raster_release(struct vt_input_raster *r)
+{
+    if (!r)
+        return;
+    free(r->crs_wkt);
+    r->crs_wkt = NULL;
 }

@@ -509,3 +509,44 @@ static bool tiff_sniff(const unsigned char *magic, size_t len)
 }
 
 const struct vt_input_reader vt_input_reader_tiff = {"tiff", tiff_sniff, tiff_open};
+
+static int tiff_ignore(TIFF *tif, void *user_data, const char *module, const char *fmt,
+                       va_list ap)
+{
+    (void)tif;
+    (void)user_data;
+    (void)module;
+    (void)fmt;
+    (void)ap;
+    return 1;
+}
+
+bool vt_input_tiff_wants_gdal(const char *path)
+{
+    TIFFOpenOptions *opts = TIFFOpenOptionsAlloc();
+    if (!opts)
+        return false;
+    TIFFOpenOptionsSetErrorHandlerExtR(opts, tiff_ignore, NULL);
+    TIFFOpenOptionsSetWarningHandlerExtR(opts, tiff_ignore, NULL);
+    TIFF *tif = TIFFOpenExt(path, "rm", opts); /* "m": no mmap (RSS) */
+    TIFFOpenOptionsFree(opts);
+    if (!tif)
+        return false; /* the native reader says why */
+    uint16_t spp = tiff_get16(tif, TIFFTAG_SAMPLESPERPIXEL, 1);
+    uint16_t format = tiff_get16(tif, TIFFTAG_SAMPLEFORMAT, SAMPLEFORMAT_UINT);
+    uint16_t bps = tiff_get16(tif, TIFFTAG_BITSPERSAMPLE, 1);
+    /* GeoTIFF: ModelPixelScale, ModelTiepoint, ModelTransformation, GeoKeyDirectory; libtiff
+     * keeps them as anonymous fields, present only when this file has them */
+    static const uint32_t geo_tags[] = {33550, 33922, 34264, 34735};
+    bool geo = false;
+    for (size_t i = 0; i < sizeof geo_tags / sizeof geo_tags[0]; i++) {
+        uint32_t count = 0;
+        void *data = NULL;
+        if (TIFFFindField(tif, geo_tags[i], TIFF_ANY) &&
+            TIFFGetField(tif, geo_tags[i], &count, &data))
+            geo = true;
+    }
+    TIFFClose(tif);
+    return geo || spp > 4 || format == SAMPLEFORMAT_INT || (format == SAMPLEFORMAT_UINT && bps == 32) ||
+           (format == SAMPLEFORMAT_IEEEFP && bps == 64);
+}
