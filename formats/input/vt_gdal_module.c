@@ -187,8 +187,10 @@ VT_GDAL_EXPORT char *vt_gdal_crs_wkt(void *handle)
     OGRSpatialReferenceH srs = GDALGetSpatialRef(h->ds);
     if (!srs)
         return NULL;
+    /* the form gdalinfo -json shows (WKT2 2019), on one line */
+    const char *const options[] = {"FORMAT=WKT2_2019", "MULTILINE=NO", NULL};
     char *wkt = NULL;
-    if (OSRExportToWkt(srs, &wkt) != OGRERR_NONE || !wkt) {
+    if (OSRExportToWktEx(srs, &wkt, options) != OGRERR_NONE || !wkt) {
         CPLFree(wkt);
         return NULL;
     }

@@ -52,24 +52,28 @@ static int input_read_magic(const char *path, unsigned char magic[8], size_t *le
  * the module loads; a GeoTIFF of up to 4 bands is read natively without it (*geo_unread). */
 enum input_route { ROUTE_READER, ROUTE_GDAL };
 
-static enum input_route input_route(const char *path, const unsigned char *magic, size_t len,
-                                    const struct vt_input_reader **reader, bool *geo_unread,
-                                    char *why, size_t why_size)
+static int input_route(const char *path, const unsigned char *magic, size_t len,
+                       const struct vt_input_reader **reader, enum input_route *route,
+                       bool *geo_unread, char *why, size_t why_size, struct vts_error *err)
 {
     *reader = input_reader_for(magic, len);
+    *route = ROUTE_READER;
     *geo_unread = false;
     why[0] = '\0';
     if (*reader == &vt_input_reader_tiff) {
-        if (!vt_input_tiff_wants_gdal(path))
-            return ROUTE_READER;
+        bool wants = false;
+        int rc = vt_input_tiff_wants_gdal(path, &wants, err);
+        if (rc < 0 || !wants)
+            return rc;
         if (vt_input_gdal_available(why, why_size))
-            return ROUTE_GDAL;
-        *geo_unread = true;
-        return ROUTE_READER;
+            *route = ROUTE_GDAL;
+        else
+            *geo_unread = true;
+        return 0;
     }
     if (*reader == &vt_input_reader_oiio && vt_input_gdal_sniff(magic, len))
-        return ROUTE_GDAL;
-    return ROUTE_READER;
+        *route = ROUTE_GDAL;
+    return 0;
 }
 
 /* Checks the path, resolves the limit and reads the magic bytes. */
@@ -102,9 +106,13 @@ int vt_image_input_open_bands(const char *path, const struct vt_input_limits *li
     if (rc < 0)
         return rc;
     const struct vt_input_reader *reader;
+    enum input_route route;
     bool geo_unread;
     char why[160];
-    if (input_route(path, magic, len, &reader, &geo_unread, why, sizeof why) == ROUTE_GDAL) {
+    rc = input_route(path, magic, len, &reader, &route, &geo_unread, why, sizeof why, err);
+    if (rc < 0)
+        return rc;
+    if (route == ROUTE_GDAL) {
         rc = vt_input_gdal_open(path, max_pixels, first, count, out, err);
     } else {
         rc = reader->open(path, max_pixels, out, err);
@@ -136,8 +144,12 @@ int vt_image_input_describe(const char *path, const struct vt_input_limits *limi
     if (rc < 0)
         return rc;
     const struct vt_input_reader *reader;
-    if (input_route(path, magic, len, &reader, &out->geo_unread, out->why, sizeof out->why) ==
-        ROUTE_GDAL)
+    enum input_route route;
+    rc = input_route(path, magic, len, &reader, &route, &out->geo_unread, out->why,
+                     sizeof out->why, err);
+    if (rc < 0)
+        return rc;
+    if (route == ROUTE_GDAL)
         return vt_input_gdal_describe(path, max_pixels, out, err);
     struct vt_source src;
     memset(&src, 0, sizeof src);

@@ -309,9 +309,11 @@ static int tiff_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *
 
 static const struct vt_source_ops tiff_ops = {tiff_read_region, tiff_close};
 
-static int tiff_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                     struct vts_error *err)
+/* Opens path through libtiff (the first directory read): *out to tiff_close(), or a negative
+ * status with err set ("cannot read 'x.tif': Input/output error"). */
+static int tiff_open_file(const char *path, struct tiff_input **out, struct vts_error *err)
 {
+    *out = NULL;
     struct tiff_input *t = calloc(1, sizeof *t);
     if (!t)
         return vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", path);
@@ -340,6 +342,21 @@ static int tiff_open(const char *path, uint64_t max_pixels, struct vt_source *ou
         rc = vt_error_set(err, tiff_status(t), "cannot read '%s': %s", path, tiff_message(t));
         goto out_free;
     }
+    *out = t;
+    return 0;
+
+out_free:
+    tiff_close(t);
+    return rc;
+}
+
+static int tiff_open(const char *path, uint64_t max_pixels, struct vt_source *out,
+                     struct vts_error *err)
+{
+    struct tiff_input *t;
+    int rc = tiff_open_file(path, &t, err);
+    if (rc < 0)
+        return rc;
     uint32_t sample = 0;
     if (!TIFFGetField(t->tif, TIFFTAG_IMAGEWIDTH, &t->width) ||
         !TIFFGetField(t->tif, TIFFTAG_IMAGELENGTH, &t->height)) {
@@ -510,33 +527,19 @@ static bool tiff_sniff(const unsigned char *magic, size_t len)
 
 const struct vt_input_reader vt_input_reader_tiff = {"tiff", tiff_sniff, tiff_open};
 
-static int tiff_ignore(TIFF *tif, void *user_data, const char *module, const char *fmt,
-                       va_list ap)
+int vt_input_tiff_wants_gdal(const char *path, bool *wants, struct vts_error *err)
 {
-    (void)tif;
-    (void)user_data;
-    (void)module;
-    (void)fmt;
-    (void)ap;
-    return 1;
-}
-
-bool vt_input_tiff_wants_gdal(const char *path)
-{
-    TIFFOpenOptions *opts = TIFFOpenOptionsAlloc();
-    if (!opts)
-        return false;
-    TIFFOpenOptionsSetErrorHandlerExtR(opts, tiff_ignore, NULL);
-    TIFFOpenOptionsSetWarningHandlerExtR(opts, tiff_ignore, NULL);
-    TIFF *tif = TIFFOpenExt(path, "rm", opts); /* "m": no mmap (RSS) */
-    TIFFOpenOptionsFree(opts);
-    if (!tif)
-        return false; /* the native reader says why */
+    *wants = false;
+    struct tiff_input *t;
+    int rc = tiff_open_file(path, &t, err);
+    if (rc < 0)
+        return rc;
+    TIFF *tif = t->tif;
     uint16_t spp = tiff_get16(tif, TIFFTAG_SAMPLESPERPIXEL, 1);
     uint16_t format = tiff_get16(tif, TIFFTAG_SAMPLEFORMAT, SAMPLEFORMAT_UINT);
     uint16_t bps = tiff_get16(tif, TIFFTAG_BITSPERSAMPLE, 1);
     /* GeoTIFF: ModelPixelScale, ModelTiepoint, ModelTransformation, GeoKeyDirectory; libtiff
-     * keeps them as anonymous fields, present only when this file has them */
+     * keeps them as anonymous fields, known only when this file has them */
     static const uint32_t geo_tags[] = {33550, 33922, 34264, 34735};
     bool geo = false;
     for (size_t i = 0; i < sizeof geo_tags / sizeof geo_tags[0]; i++) {
@@ -546,7 +549,9 @@ bool vt_input_tiff_wants_gdal(const char *path)
             TIFFGetField(tif, geo_tags[i], &count, &data))
             geo = true;
     }
-    TIFFClose(tif);
-    return geo || spp > 4 || format == SAMPLEFORMAT_INT || (format == SAMPLEFORMAT_UINT && bps == 32) ||
-           (format == SAMPLEFORMAT_IEEEFP && bps == 64);
+    tiff_close(t);
+    *wants = geo || spp > 4 || format == SAMPLEFORMAT_INT ||
+             (format == SAMPLEFORMAT_UINT && bps == 32) ||
+             (format == SAMPLEFORMAT_IEEEFP && bps == 64);
+    return 0;
 }

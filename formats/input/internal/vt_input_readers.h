@@ -24,9 +24,10 @@ struct vt_input_reader {
 };
 
 extern const struct vt_input_reader vt_input_reader_tiff; /* vt_input_tiff.c: libtiff */
-/* vt_input_tiff.c: true when the TIFF at path is better read through GDAL: GeoTIFF tags, more than
- * 4 samples, signed or 32-bit integer or 64-bit float samples. False when it cannot be opened. */
-bool vt_input_tiff_wants_gdal(const char *path);
+/* vt_input_tiff.c: sets *wants when the TIFF at path is better read through GDAL: GeoTIFF tags,
+ * more than 4 samples, signed or 32-bit integer or 64-bit float samples. Returns 0, or a negative
+ * status with err set as the TIFF reader's open would (the file cannot be opened or read). */
+int vt_input_tiff_wants_gdal(const char *path, bool *wants, struct vts_error *err);
 extern const struct vt_input_reader vt_input_reader_png;  /* vt_input_png.c: libpng */
 extern const struct vt_input_reader vt_input_reader_jpeg; /* vt_input_jpeg.c: libjpeg-turbo */
 extern const struct vt_input_reader vt_input_reader_exr;  /* vt_input_exr.c: OpenEXRCore */
