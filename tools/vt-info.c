@@ -248,6 +248,60 @@ static void print_layer(const struct vts_store *s, const struct vt_store_stats *
     print_counts("total", "", tiles, total);
 }
 
+/* ---- georeferencing (docs/geospatial.md): geo.transform, geo.crs_wkt, nodata ---- */
+
+/* Reads geo.transform's six numbers; false when the store has none or it is malformed. */
+static bool georef_transform(const struct vts_store *s, double t[6])
+{
+    const char *v = vts_store_meta_find(s, "geo.transform");
+    if (!v)
+        return false;
+    for (int i = 0; i < 6; i++) {
+        char *end;
+        t[i] = strtod(v, &end);
+        if (end == v || !isfinite(t[i]))
+            return false;
+        v = end;
+    }
+    while (*v == ' ')
+        v++;
+    return *v == '\0';
+}
+
+/* The CRS's name: the first quoted string of its WKT, into buf. */
+static void georef_crs_name(const char *wkt, char *buf, size_t size)
+{
+    const char *q = strchr(wkt, '"');
+    const char *e = q ? strchr(q + 1, '"') : NULL;
+    if (!e)
+        snprintf(buf, size, "(unnamed)");
+    else
+        snprintf(buf, size, "%.*s", (int)(e - q - 1), q + 1);
+}
+
+static void print_georef(const struct vts_store *s)
+{
+    double t[6];
+    const char *wkt = vts_store_meta_find(s, "geo.crs_wkt");
+    const char *nodata = vts_store_meta_find(s, "nodata");
+    if (georef_transform(s, t))
+        printf(
+            "georef:            origin %.17g, %.17g; texel %.17g x %.17g; rotation %.17g, %.17g\n",
+            t[0], t[3], t[1], t[5], t[2], t[4]);
+    if (wkt) {
+        char name[128];
+        georef_crs_name(wkt, name, sizeof name);
+        printf("crs:               ");
+        print_escaped(name);
+        putchar('\n');
+    }
+    if (nodata) {
+        printf("nodata:            ");
+        print_escaped(nodata);
+        putchar('\n');
+    }
+}
+
 static void print_summary(const struct vts_store *s, const struct vt_store_stats *st)
 {
     const struct vts_geometry *g = vts_store_geometry(s);
@@ -262,6 +316,7 @@ static void print_summary(const struct vts_store *s, const struct vt_store_stats
            g->tile_content_px, g->border_px, g->tile_payload_px);
     printf("levels:            %u\nlayers:            %u\nflags:             %s\n", g->level_count,
            g->layer_count, flags[0] ? flags : "none");
+    print_georef(s);
     for (uint32_t layer = 0; layer < g->layer_count; layer++)
         print_layer(s, st, layer);
     printf("tiles:             %llu stored, %llu empty, %llu shared\n",
@@ -345,6 +400,36 @@ static json_t *json_layer(const struct vts_store *s, const struct vt_store_stats
                      json_counts(NULL, vt_store_stats_at(st, layer, g->level_count)));
 }
 
+/* gdalinfo -json's shape: geoTransform [6], coordinateSystem {wkt}, noDataValue; true when the
+ * store has any (the JSON then prints reals with 17 digits). */
+static bool json_georef(const struct vts_store *s, json_t *root)
+{
+    double t[6];
+    bool any = false;
+    if (georef_transform(s, t)) {
+        json_t *a = json_array();
+        for (int i = 0; i < 6; i++)
+            json_array_append_new(a, json_real(t[i]));
+        json_object_set_new(root, "geoTransform", a);
+        any = true;
+    }
+    const char *wkt = vts_store_meta_find(s, "geo.crs_wkt");
+    if (wkt) {
+        json_object_set_new(root, "coordinateSystem", json_pack("{s:o}", "wkt", json_text(wkt)));
+        any = true;
+    }
+    const char *nodata = vts_store_meta_find(s, "nodata");
+    if (nodata) {
+        char *end;
+        double v = strtod(nodata, &end);
+        json_object_set_new(root, "noDataValue",
+                            end != nodata && !*end && isfinite(v) ? json_real(v)
+                                                                  : json_text(nodata));
+        any = true;
+    }
+    return any;
+}
+
 static int print_json(const struct vts_store *s, const struct vt_store_stats *st)
 {
     const struct vts_geometry *g = vts_store_geometry(s);
@@ -369,7 +454,8 @@ static int print_json(const struct vts_store *s, const struct vt_store_stats *st
                   "level_count", (json_int_t)g->level_count, "layer_count",
                   (json_int_t)g->layer_count, "flags", json_flags(g->flags, store_flag_names),
                   "layers", layers, "totals", totals, "metadata", meta);
-    int rc = root ? json_dumpf(root, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(6)) : -1;
+    int digits = root && json_georef(s, root) ? 17 : 6;
+    int rc = root ? json_dumpf(root, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(digits)) : -1;
     json_decref(root);
     if (rc != 0) {
         vt_log(VT_LOG_ERROR, "'%s': cannot write the JSON summary", vts_store_name(s));

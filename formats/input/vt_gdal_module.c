@@ -23,7 +23,7 @@
 
 /* GDAL's default block cache is 5% of the RAM: bounded here so that RSS stays flat in the size of
  * the input (docs/geospatial.md). */
-#define VT_GDAL_CACHE_BYTES (64ll << 20)
+#define VT_GDAL_CACHE_BYTES (16ll << 20)
 
 struct gdal_handle {
     GDALDatasetH ds;
@@ -85,8 +85,8 @@ static bool gdal_photometric(GDALDatasetH ds, uint32_t bands, bool alpha_last)
         return false;
     for (uint32_t b = 1; b <= colour; b++) {
         GDALColorInterp ci = GDALGetRasterColorInterpretation(GDALGetRasterBand(ds, (int)b));
-        bool ok = colour == 1 ? ci == GCI_GrayIndex
-                              : ci == (GDALColorInterp)(GCI_RedBand + (int)(b - 1));
+        bool ok =
+            colour == 1 ? ci == GCI_GrayIndex : ci == (GDALColorInterp)(GCI_RedBand + (int)(b - 1));
         if (!ok)
             return false;
     }
@@ -116,8 +116,8 @@ VT_GDAL_EXPORT void *vt_gdal_open(const char *path, struct vt_gdal_info *info, i
     }
     h->ds = GDALOpenEx(path, GDAL_OF_RASTER | GDAL_OF_READONLY, NULL, NULL, NULL);
     if (!h->ds) {
-        *result = CPLGetLastErrorNo() == CPLE_OpenFailed ? VT_GDAL_UNKNOWN_FORMAT
-                                                         : VT_GDAL_BAD_FILE;
+        *result =
+            CPLGetLastErrorNo() == CPLE_OpenFailed ? VT_GDAL_UNKNOWN_FORMAT : VT_GDAL_BAD_FILE;
         gdal_error(err, "GDAL cannot open it");
         goto out_free;
     }
@@ -136,8 +136,7 @@ VT_GDAL_EXPORT void *vt_gdal_open(const char *path, struct vt_gdal_info *info, i
             goto out_free;
         }
     if (gdal_choose_type(stored, &h->type, &info->sample) < 0) {
-        snprintf(err, VT_GDAL_ERR_MAX, "%s samples are not supported",
-                 GDALGetDataTypeName(stored));
+        snprintf(err, VT_GDAL_ERR_MAX, "%s samples are not supported", GDALGetDataTypeName(stored));
         goto out_free;
     }
     h->bands = (uint32_t)bands;
@@ -148,8 +147,7 @@ VT_GDAL_EXPORT void *vt_gdal_open(const char *path, struct vt_gdal_info *info, i
     GDALGetBlockSize(b1, &bw, &bh);
     info->block_w = bw > 0 ? (uint32_t)bw : 0;
     info->block_h = bh > 0 ? (uint32_t)bh : 0;
-    GDALColorInterp last =
-        GDALGetRasterColorInterpretation(GDALGetRasterBand(h->ds, bands));
+    GDALColorInterp last = GDALGetRasterColorInterpretation(GDALGetRasterBand(h->ds, bands));
     info->alpha_last = bands > 1 && last == GCI_AlphaBand;
     info->photometric = gdal_photometric(h->ds, h->bands, info->alpha_last);
     info->has_geotransform = GDALGetGeoTransform(h->ds, info->geotransform) == CE_None;

@@ -77,9 +77,8 @@ static int input_route(const char *path, const unsigned char *magic, size_t len,
 }
 
 /* Checks the path, resolves the limit and reads the magic bytes. */
-static int input_start(const char *path, const struct vt_input_limits *limits,
-                       uint64_t *max_pixels, unsigned char magic[8], size_t *len,
-                       struct vts_error *err)
+static int input_start(const char *path, const struct vt_input_limits *limits, uint64_t *max_pixels,
+                       unsigned char magic[8], size_t *len, struct vts_error *err)
 {
     if (!path || !path[0])
         return vt_error_set(err, VTS_ERR_ARG, "cannot open an image: empty path");
@@ -145,8 +144,8 @@ int vt_image_input_describe(const char *path, const struct vt_input_limits *limi
         return rc;
     const struct vt_input_reader *reader;
     enum input_route route;
-    rc = input_route(path, magic, len, &reader, &route, &out->geo_unread, out->why,
-                     sizeof out->why, err);
+    rc = input_route(path, magic, len, &reader, &route, &out->geo_unread, out->why, sizeof out->why,
+                     err);
     if (rc < 0)
         return rc;
     if (route == ROUTE_GDAL)

@@ -54,9 +54,9 @@ struct vt_input_raster {
     double geotransform[6]; /* GDAL's: x0, dx/dcol, dx/drow, y0, dy/dcol, dy/drow */
     char *crs_wkt;          /* the CRS as WKT (malloc'ed), or NULL */
     bool has_nodata;
-    double nodata;    /* of the first band, in the file's units */
-    bool geo_unread;  /* a GeoTIFF read natively: the GDAL module could not be loaded */
-    char why[160];    /* with geo_unread: why the module could not be loaded */
+    double nodata;   /* of the first band, in the file's units */
+    bool geo_unread; /* a GeoTIFF read natively: the GDAL module could not be loaded */
+    char why[160];   /* with geo_unread: why the module could not be loaded */
 };
 
 /* Fills *out for the image at path (zeroed first). Native formats: band_count = channels, no

@@ -164,8 +164,8 @@ static int gdal_load_open(const char *path, uint64_t max_pixels, struct gdal_inp
     }
     rc = vt_input_check_size(path, t->info.width, t->info.height, max_pixels, err);
     if (rc == 0 && t->info.bands > VT_INPUT_MAX_BANDS)
-        rc = vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot read '%s': %u bands (at most %u)",
-                          path, t->info.bands, VT_INPUT_MAX_BANDS);
+        rc = vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot read '%s': %u bands (at most %u)", path,
+                          t->info.bands, VT_INPUT_MAX_BANDS);
     if (rc < 0)
         goto out_close;
     *out = t;
@@ -185,16 +185,17 @@ int vt_input_gdal_open(const char *path, uint64_t max_pixels, uint32_t first, ui
         return rc;
     const struct vt_gdal_info *in = &t->info;
     if (count == 0 && in->bands > 4) {
-        rc = vt_error_set(err, VTS_ERR_UNSUPPORTED,
-                          "cannot read '%s': %u channels (1 to 4 per layer: vt-tiles makes one layer per 4 bands)",
-                          path, in->bands);
+        rc = vt_error_set(
+            err, VTS_ERR_UNSUPPORTED,
+            "cannot read '%s': %u channels (1 to 4 per layer: vt-tiles makes one layer per 4 bands)",
+            path, in->bands);
         goto out_close;
     }
     if (count == 0)
         count = in->bands;
     if (count > 4 || first >= in->bands || count > in->bands - first) {
-        rc = vt_error_set(err, VTS_ERR_ARG, "cannot read '%s': bands %u..%u of %u", path,
-                          first + 1, first + count, in->bands);
+        rc = vt_error_set(err, VTS_ERR_ARG, "cannot read '%s': bands %u..%u of %u", path, first + 1,
+                          first + count, in->bands);
         goto out_close;
     }
     t->first = first + 1;

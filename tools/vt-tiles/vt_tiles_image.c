@@ -24,9 +24,9 @@ struct run {
     const struct vt_codec *codec;
     struct vt_codec_params params;
     struct vts_writer *writer;
-    struct vt_tile_sink *sink;     /* every layer; its scratch buffers also pack the carried texels */
-    uint32_t layer;                /* the layer being built (one band group per layer) */
-    bool empty_nodata;             /* tiles whose texels all equal nodata are left empty */
+    struct vt_tile_sink *sink; /* every layer; its scratch buffers also pack the carried texels */
+    uint32_t layer;            /* the layer being built (one band group per layer) */
+    bool empty_nodata;         /* tiles whose texels all equal nodata are left empty */
     double nodata;
     uint32_t carry_level, content; /* shards: the carried level (with wrap), the tiles' content */
     struct vt_progress progress;
@@ -50,8 +50,8 @@ static bool all_nodata(const struct vt_image *img, double nodata)
                 v = ((const float *)(const void *)row)[i];
             else
                 return false;
-            if (nan ? !isnan(v) : v != (img->sample == VTS_SAMPLE_F32 ? (double)(float)nodata
-                                                                       : nodata))
+            if (nan ? !isnan(v)
+                    : v != (img->sample == VTS_SAMPLE_F32 ? (double)(float)nodata : nodata))
                 return false;
         }
     }
@@ -243,8 +243,8 @@ static int set_geo_metadata(struct vts_writer *w, const struct vt_input_raster *
     int rc = 0;
     if (ras->has_geotransform) {
         const double *t = ras->geotransform;
-        snprintf(value, sizeof value, "%.17g %.17g %.17g %.17g %.17g %.17g", t[0], t[1], t[2],
-                 t[3], t[4], t[5]);
+        snprintf(value, sizeof value, "%.17g %.17g %.17g %.17g %.17g %.17g", t[0], t[1], t[2], t[3],
+                 t[4], t[5]);
         rc = vts_writer_set_meta(w, "geo.transform", value, err);
     }
     if (rc == 0 && ras->crs_wkt)
@@ -381,12 +381,12 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
     if ((rc = vt_image_input_describe(o->input, &limits, &ras, &err)) != 0)
         goto out;
     if (ras.geo_unread)
-        vt_log(VT_LOG_WARN, "'%s': its GeoTIFF georeferencing is not kept: %s", o->input_name,
-               ras.why);
+        vt_log(VT_LOG_WARN,
+               "'%s': its GeoTIFF georeferencing is not kept: cannot load the GDAL module (%s)",
+               o->input_name, ras.why);
     uint32_t n_layers = plan_groups(&ras, o->band_layers, plans);
     if (n_layers > 1 && o->shard) {
-        status = vt_usage_error("--shard builds one layer: '%s' makes %u", o->input_name,
-                                n_layers);
+        status = vt_usage_error("--shard builds one layer: '%s' makes %u", o->input_name, n_layers);
         goto out;
     }
     for (uint32_t l = 0; l < n_layers; l++) {
@@ -414,9 +414,12 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
         const struct layer_plan *p = &plans[l];
         if ((rc = p->codec->check(g.tile_payload_px, p->channels, p->out_sample, &err)) != 0)
             goto out;
-        layers[l] = (struct vts_layer){p->codec->fourcc,     (uint8_t)p->channels,
-                                       (uint8_t)p->out_sample, (uint8_t)p->colour,
-                                       0,                    0,
+        layers[l] = (struct vts_layer){p->codec->fourcc,
+                                       (uint8_t)p->channels,
+                                       (uint8_t)p->out_sample,
+                                       (uint8_t)p->colour,
+                                       0,
+                                       0,
                                        {0}};
         layers[l].codec_param = p->codec->fourcc == VTS_CODEC_JPEG ? o->quality : 0;
         if (p->keep_alpha && p->in.premultiplied)
@@ -429,8 +432,9 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
     g.layer_count = n_layers;
     size_t carry = 0;
     if (o->shard) { /* + the carried texels: at most a tile's content of floats (vt_shard.h) */
-        layers[1] = (struct vts_layer){VTS_CODEC_RAW, (uint8_t)in->channels, VTS_SAMPLE_F32,
-                                       (uint8_t)colour, 0, 0, VT_SHARD_LAYER_NAME};
+        layers[1] = (struct vts_layer){
+            VTS_CODEC_RAW,      (uint8_t)in->channels, VTS_SAMPLE_F32, (uint8_t)colour, 0, 0,
+            VT_SHARD_LAYER_NAME};
         g.layer_count = 2;
         carry = (size_t)g.tile_content_px * g.tile_content_px * in->channels * 4;
         r.content = g.tile_content_px;

@@ -46,13 +46,14 @@ typedef char *(*vt_gdal_crs_wkt_fn)(void *handle);
 /* Reads bands [first, first + count) (1-based) of texels [x, x + w) x [y, y + h), interleaved, as
  * info->sample into dst (rows dst_stride bytes apart). Returns enum vt_gdal_result, err set on
  * failure. */
-typedef int (*vt_gdal_read_fn)(void *handle, uint32_t first, uint32_t count, uint32_t x,
-                               uint32_t y, uint32_t w, uint32_t h, void *dst, size_t dst_stride,
+typedef int (*vt_gdal_read_fn)(void *handle, uint32_t first, uint32_t count, uint32_t x, uint32_t y,
+                               uint32_t w, uint32_t h, void *dst, size_t dst_stride,
                                char err[VT_GDAL_ERR_MAX]);
 /* Closes the handle; accepts NULL. */
 typedef void (*vt_gdal_close_fn)(void *handle);
 
-/* The module's entry points (defined in vt_gdal_module.c, found with dlsym()), of the types above. */
+/* The module's entry points (defined in vt_gdal_module.c, found with dlsym()), of the types above.
+ */
 int vt_gdal_abi_version(void);
 void *vt_gdal_open(const char *path, struct vt_gdal_info *info, int *result,
                    char err[VT_GDAL_ERR_MAX]);
