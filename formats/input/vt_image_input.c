@@ -6,7 +6,6 @@
 #include <errno.h>
 #include <stdbool.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "internal/vt_input_gdal.h"
@@ -161,12 +160,4 @@ int vt_image_input_describe(const char *path, const struct vt_input_limits *limi
     out->band_count = src.info.channels;
     vt_source_close(&src);
     return 0;
-}
-
-void vt_input_raster_release(struct vt_input_raster *r)
-{
-    if (!r)
-        return;
-    free(r->crs_wkt);
-    r->crs_wkt = NULL;
 }

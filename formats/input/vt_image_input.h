@@ -9,12 +9,11 @@
 #ifndef VT_IMAGE_INPUT_H
 #define VT_IMAGE_INPUT_H
 
-#include <stdbool.h>
 #include <stdint.h>
 
 #include "vt_error.h"
+#include "vt_input_raster.h"
 #include "vt_source.h"
-#include "vts.h"
 
 /* Default of vt_input_limits.max_pixels: 2^34 texels (128k x 128k). */
 #define VT_INPUT_DEFAULT_MAX_PIXELS (1ull << 34)
@@ -44,30 +43,12 @@ int vt_image_input_open(const char *path, const struct vt_input_limits *limits,
  * met): VRT mosaics, JPEG 2000, and TIFFs with GeoTIFF tags, more than 4 samples or samples the
  * native reader does not take (signed, 32-bit integers, 64-bit floats: read as 32-bit float). */
 
-#define VT_INPUT_MAX_BANDS VTS_MAX_LAYERS
-
-/* What vt_image_input_describe() tells about a file beyond its first source's info. */
-struct vt_input_raster {
-    uint32_t band_count; /* bands (channels) of the file, 1..VT_INPUT_MAX_BANDS */
-    char band_names[VT_INPUT_MAX_BANDS][VTS_LAYER_NAME_BYTES]; /* descriptions; "" for none */
-    bool has_geotransform;
-    double geotransform[6]; /* GDAL's: x0, dx/dcol, dx/drow, y0, dy/dcol, dy/drow */
-    char *crs_wkt;          /* the CRS as WKT (malloc'ed), or NULL */
-    bool has_nodata;
-    double nodata;   /* of the first band, in the file's units */
-    bool geo_unread; /* a GeoTIFF read natively: the GDAL module could not be loaded */
-    char why[160];   /* with geo_unread: why the module could not be loaded */
-};
-
 /* Fills *out for the image at path (zeroed first). Native formats: band_count = channels, no
  * georeferencing; files that go to GDAL: their bands, band descriptions, geotransform, CRS and
  * nodata. Errors as vt_image_input_open(), except that more than 4 bands is not one (more than
- * VT_INPUT_MAX_BANDS is). Release with vt_input_raster_release(). */
+ * VT_INPUT_MAX_BANDS is). Release with vt_input_raster_release() (vt_input_raster.h). */
 int vt_image_input_describe(const char *path, const struct vt_input_limits *limits,
                             struct vt_input_raster *out, struct vts_error *err);
-
-/* Frees what out holds; accepts NULL. */
-void vt_input_raster_release(struct vt_input_raster *r);
 
 /* As vt_image_input_open(), but reads only bands [first, first + count) (0-based; 1 <= count <= 4)
  * of the file: channels = count; has_alpha only when the group ends with an alpha band of a 2- or

@@ -8,7 +8,7 @@
 #include <stdint.h>
 
 #include "vt_error.h"
-#include "vt_image_input.h"
+#include "vt_input_raster.h"
 #include "vt_source.h"
 
 /* True for the magic bytes of the formats sent to GDAL whatever their content: a VRT
