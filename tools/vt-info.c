@@ -11,6 +11,7 @@
 
 #include "tool_common.h"
 #include "vt_atomic_file.h"
+#include "vt_georef_file.h"
 #include "vt_level_stats.h"
 #include "vt_output_path.h"
 #include "vt_shard.h"
@@ -630,6 +631,37 @@ static int check_extract_range(const struct vts_store *s, const struct options *
     return 0;
 }
 
+/* An extract of a georeferenced store gets its position as sidecar files (docs/geospatial.md):
+ * OUT.aux.xml and a world file, with the transform of the level (and tile) written. */
+static int write_georef(const struct vts_store *s, const struct options *o)
+{
+    double t[6];
+    struct vt_georef g = {.has_transform = georef_transform(s, t),
+                          .crs_wkt = vts_store_meta_find(s, "geo.crs_wkt"),
+                          .nodata = vts_store_meta_find(s, "nodata"),
+                          .bands = vts_store_layer(s, o->layer)->channels};
+    if ((!g.has_transform && !g.crs_wkt) || vt_output_path_is_stdio(o->out_path))
+        return VT_EXIT_OK;
+    if (g.has_transform) {
+        const struct vts_geometry *geo = vts_store_geometry(s);
+        int64_t x = 0, y = 0; /* a tile's payload starts at its border */
+        if (o->has_tile) {
+            x = (int64_t)o->tile_x * geo->tile_content_px - geo->border_px;
+            y = (int64_t)o->tile_y * geo->tile_content_px - geo->border_px;
+        }
+        vt_georef_region(t, o->level, x, y, g.transform);
+    }
+    char world[VT_PATH_MAX];
+    struct vts_error err = {0};
+    if (vt_georef_file_write(o->out_path, &g, world, sizeof world, &err) != 0) {
+        vt_log(VT_LOG_ERROR, "%s", err.message);
+        return VT_EXIT_BAD_INPUT;
+    }
+    vt_log(VT_LOG_INFO, "wrote '%s.aux.xml'%s%s%s", o->out_path, world[0] ? " and '" : "", world,
+           world[0] ? "'" : "");
+    return VT_EXIT_OK;
+}
+
 static int run_extract(const struct vts_store *s, const struct options *o)
 {
     struct vt_tile_reader r;
@@ -658,7 +690,7 @@ static int run_extract(const struct vts_store *s, const struct options *o)
         return VT_EXIT_BAD_INPUT;
     }
     vt_log(VT_LOG_INFO, "wrote '%s'", o->out_path);
-    return VT_EXIT_OK;
+    return write_georef(s, o);
 }
 
 /* A store read from standard input: its spooled copy, mapped (vts_open_memory names it). */

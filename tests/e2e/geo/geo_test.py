@@ -137,6 +137,25 @@ def test_bands():
           "georef:            origin 500000, 4000000; texel 10 x -10" in text,
           "vt-info shows the georeferencing")
 
+    # written back: an extract gets .aux.xml and a world file that GDAL reads
+    x1 = os.path.join(WORK, "x1.tif")
+    run(tool("vt-info"), "-q", "--extract", "1", "--layer", "1", "-o", x1, store)
+    got = json.loads(run("gdalinfo", "-json", x1).stdout)
+    level1 = [500000.0, 20.0, 0.0, 4000000.0, 0.0, -20.0]
+    check(same_transform(got.get("geoTransform"), level1) and
+          same_wkt(got["coordinateSystem"]["wkt"], js["coordinateSystem"]["wkt"]) and
+          [b.get("noDataValue") for b in got["bands"]] == [0.0, 0.0],
+          "extract of level 1: GDAL reads its geotransform (20 m texels), CRS and nodata")
+    check(not same_transform(got.get("geoTransform"), gdal["geoTransform"]),
+          "control: level 0's geotransform is not level 1's")
+    check(open(os.path.join(WORK, "x1.tfw")).read().split() ==
+          ["20", "0", "0", "-20", "500010", "3999990"], "the world file holds texel centres")
+    t11 = os.path.join(WORK, "t11.png")
+    run(tool("vt-info"), "-q", "--extract", "0", "--tile", "1,1", "-o", t11, store)
+    got = json.loads(run("gdalinfo", "-json", t11).stdout)
+    check(same_transform(got.get("geoTransform"), [500620.0, 10.0, 0.0, 3999380.0, 0.0, -10.0]),
+          "extract of tile 1,1 (payload from texel 62,62): its origin")
+
     # controls: another geotransform, another CRS
     moved = os.path.join(WORK, "moved.tif")
     run("gdal_translate", "-q", "-a_ullr", "500010", "4000000", "503340", "3997890", six, moved)
@@ -171,6 +190,21 @@ def test_bands():
     jp2_or_rgb_tif = os.path.join(WORK, "rgb.tif")
     run("gdal_translate", "-q", "-a_srs", "EPSG:4326", "-a_ullr", "10", "50", "11.9", "48.5",
         os.path.join(WORK, "rgb.bin"), jp2_or_rgb_tif)
+
+    # an input without georeferencing (a PNG, native): no geo metadata, no sidecars
+    png = os.path.join(WORK, "rgb.png")
+    run("gdal_translate", "-q", "-of", "PNG", os.path.join(WORK, "rgb.bin"), png)
+    for f in (png + ".aux.xml",):
+        if os.path.exists(f):
+            os.remove(f)
+    pstore = os.path.join(WORK, "png.vts")
+    run(tool("vt-tiles"), "-q", png, "-o", pstore)
+    pext = os.path.join(WORK, "png_x.png")
+    run(tool("vt-info"), "-q", "--extract", "0", "-o", pext, pstore)
+    js = json.loads(run(tool("vt-info"), "--json", pstore).stdout)
+    check("geoTransform" not in js and not os.path.exists(pext + ".aux.xml") and
+          not os.path.exists(os.path.join(WORK, "png_x.pgw")),
+          "a PNG input: no georeferencing, no sidecar files")
 
     # JPEG 2000 (lossless) through GDAL's JP2OpenJPEG driver
     drivers = run("gdalinfo", "--formats").stdout
