@@ -1,6 +1,6 @@
 /* vt_image_input_open(): recognises the format by its first bytes (each reader's sniff()) and
- * hands the file to that reader, to GDAL (VRT, JPEG 2000, GeoTIFFs and TIFFs libtiff's reader does
- * not take) or to the OpenImageIO fallback. */
+ * hands the file to that reader, to GDAL (VRT, JPEG 2000, TIFFs libtiff's reader does not take) or
+ * to the OpenImageIO fallback; GeoTIFFs libtiff reads as GDAL would keep their pixels native. */
 #include "vt_image_input.h"
 
 #include <errno.h>
@@ -46,32 +46,39 @@ static int input_read_magic(const char *path, unsigned char magic[8], size_t *le
     return 0;
 }
 
-/* Where a file goes: a native reader, GDAL, or the OpenImageIO fallback. TIFFs go to GDAL when
- * they are GeoTIFFs or hold what libtiff's reader does not take (vt_input_tiff_wants_gdal()) and
- * the module loads; a GeoTIFF of up to 4 bands is read natively without it (*geo_unread). */
-enum input_route { ROUTE_READER, ROUTE_GDAL };
+/* Where a file goes (docs/geospatial.md, "Routing"): its pixels to a native reader, GDAL or the
+ * OpenImageIO fallback; its bands' names and georeferencing to GDAL or nowhere. */
+struct input_plan {
+    const struct vt_input_reader *reader; /* the native reader or the fallback */
+    bool pixels_gdal;                     /* pixels through GDAL */
+    bool describe_gdal;                   /* band names and georeferencing through GDAL */
+    bool geo;                             /* a GeoTIFF */
+    bool gdal_missing;                    /* GDAL wanted, but its module cannot be loaded (why) */
+    char why[160];
+};
 
-static int input_route(const char *path, const unsigned char *magic, size_t len,
-                       const struct vt_input_reader **reader, enum input_route *route,
-                       bool *geo_unread, char *why, size_t why_size, struct vts_error *err)
+static int input_plan(const char *path, const unsigned char *magic, size_t len,
+                      struct input_plan *p, struct vts_error *err)
 {
-    *reader = input_reader_for(magic, len);
-    *route = ROUTE_READER;
-    *geo_unread = false;
-    why[0] = '\0';
-    if (*reader == &vt_input_reader_tiff) {
-        bool wants = false;
-        int rc = vt_input_tiff_wants_gdal(path, &wants, err);
-        if (rc < 0 || !wants)
+    memset(p, 0, sizeof *p);
+    p->reader = input_reader_for(magic, len);
+    enum vt_tiff_route tiff = VT_TIFF_NATIVE;
+    if (p->reader == &vt_input_reader_tiff) {
+        int rc = vt_input_tiff_route(path, &tiff, err);
+        if (rc < 0)
             return rc;
-        if (vt_input_gdal_available(why, why_size))
-            *route = ROUTE_GDAL;
-        else
-            *geo_unread = true;
+        p->geo = tiff != VT_TIFF_NATIVE; /* VT_TIFF_GDAL: at least needs GDAL */
+        if (tiff == VT_TIFF_NATIVE)
+            return 0;
+    } else if (!(p->reader == &vt_input_reader_oiio && vt_input_gdal_sniff(magic, len))) {
         return 0;
     }
-    if (*reader == &vt_input_reader_oiio && vt_input_gdal_sniff(magic, len))
-        *route = ROUTE_GDAL;
+    if (!vt_input_gdal_available(p->why, sizeof p->why)) {
+        p->gdal_missing = true;
+        return 0;
+    }
+    p->describe_gdal = true;
+    p->pixels_gdal = tiff != VT_TIFF_GEO_NATIVE;
     return 0;
 }
 
@@ -103,20 +110,16 @@ int vt_image_input_open_bands(const char *path, const struct vt_input_limits *li
     int rc = input_start(path, limits, &max_pixels, magic, &len, err);
     if (rc < 0)
         return rc;
-    const struct vt_input_reader *reader;
-    enum input_route route;
-    bool geo_unread;
-    char why[160];
-    rc = input_route(path, magic, len, &reader, &route, &geo_unread, why, sizeof why, err);
-    if (rc < 0)
+    struct input_plan plan;
+    if ((rc = input_plan(path, magic, len, &plan, err)) < 0)
         return rc;
-    if (route == ROUTE_GDAL) {
+    if (plan.pixels_gdal) {
         rc = vt_input_gdal_open(path, max_pixels, first, count, out, err);
     } else {
-        rc = reader->open(path, max_pixels, out, err);
-        if (rc < 0 && geo_unread) /* what GDAL would have read */
+        rc = plan.reader->open(path, max_pixels, out, err);
+        if (rc < 0 && plan.gdal_missing) /* what GDAL would have read */
             vt_error_set(err, VTS_ERR_UNSUPPORTED,
-                         "'%s': needs GDAL: cannot load the GDAL module (%s)", path, why);
+                         "'%s': needs GDAL: cannot load the GDAL module (%s)", path, plan.why);
         if (rc == 0 && count && (first != 0 || count != out->info.channels)) {
             vt_source_close(out);
             rc = vt_error_set(err, VTS_ERR_ARG, "cannot read '%s': bands %u..%u of %u", path,
@@ -141,20 +144,23 @@ int vt_image_input_describe(const char *path, const struct vt_input_limits *limi
     int rc = input_start(path, limits, &max_pixels, magic, &len, err);
     if (rc < 0)
         return rc;
-    const struct vt_input_reader *reader;
-    enum input_route route;
-    rc = input_route(path, magic, len, &reader, &route, &out->geo_unread, out->why, sizeof out->why,
-                     err);
-    if (rc < 0)
+    struct input_plan plan;
+    if ((rc = input_plan(path, magic, len, &plan, err)) < 0)
         return rc;
-    if (route == ROUTE_GDAL)
-        return vt_input_gdal_describe(path, max_pixels, out, err);
+    out->geo_unread = plan.geo && plan.gdal_missing;
+    snprintf(out->why, sizeof out->why, "%s", plan.why);
+    if (plan.describe_gdal) {
+        rc = vt_input_gdal_describe(path, max_pixels, out, err);
+        if (rc < 0 || plan.pixels_gdal)
+            return rc;
+    }
+    /* the native reader's channels (a palette becomes 3) */
     struct vt_source src;
     memset(&src, 0, sizeof src);
-    rc = reader->open(path, max_pixels, &src, err);
-    if (rc < 0 && out->geo_unread)
+    rc = plan.reader->open(path, max_pixels, &src, err);
+    if (rc < 0 && plan.gdal_missing)
         return vt_error_set(err, VTS_ERR_UNSUPPORTED,
-                            "'%s': needs GDAL: cannot load the GDAL module (%s)", path, out->why);
+                            "'%s': needs GDAL: cannot load the GDAL module (%s)", path, plan.why);
     if (rc < 0)
         return rc;
     out->band_count = src.info.channels;

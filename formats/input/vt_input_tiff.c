@@ -527,9 +527,9 @@ static bool tiff_sniff(const unsigned char *magic, size_t len)
 
 const struct vt_input_reader vt_input_reader_tiff = {"tiff", tiff_sniff, tiff_open};
 
-int vt_input_tiff_wants_gdal(const char *path, bool *wants, struct vts_error *err)
+int vt_input_tiff_route(const char *path, enum vt_tiff_route *route, struct vts_error *err)
 {
-    *wants = false;
+    *route = VT_TIFF_NATIVE;
     struct tiff_input *t;
     int rc = tiff_open_file(path, &t, err);
     if (rc < 0)
@@ -538,6 +538,12 @@ int vt_input_tiff_wants_gdal(const char *path, bool *wants, struct vts_error *er
     uint16_t spp = tiff_get16(tif, TIFFTAG_SAMPLESPERPIXEL, 1);
     uint16_t format = tiff_get16(tif, TIFFTAG_SAMPLEFORMAT, SAMPLEFORMAT_UINT);
     uint16_t bps = tiff_get16(tif, TIFFTAG_BITSPERSAMPLE, 1);
+    uint16_t photometric =
+        tiff_get16(tif, TIFFTAG_PHOTOMETRIC, spp >= 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK);
+    uint16_t extra_count = 0, *extra = NULL;
+    bool alpha = TIFFGetField(tif, TIFFTAG_EXTRASAMPLES, &extra_count, &extra) && extra_count &&
+                 (extra[extra_count - 1] == EXTRASAMPLE_ASSOCALPHA ||
+                  extra[extra_count - 1] == EXTRASAMPLE_UNASSALPHA);
     /* GeoTIFF: ModelPixelScale, ModelTiepoint, ModelTransformation, GeoKeyDirectory; libtiff
      * keeps them as anonymous fields, known only when this file has them */
     static const uint32_t geo_tags[] = {33550, 33922, 34264, 34735};
@@ -550,8 +556,15 @@ int vt_input_tiff_wants_gdal(const char *path, bool *wants, struct vts_error *er
             geo = true;
     }
     tiff_close(t);
-    *wants = geo || spp > 4 || format == SAMPLEFORMAT_INT ||
-             (format == SAMPLEFORMAT_UINT && bps == 32) ||
-             (format == SAMPLEFORMAT_IEEEFP && bps == 64);
+    /* what this reader refuses but GDAL reads as bands of data */
+    bool gdal = spp > 4 || format == SAMPLEFORMAT_INT ||
+                (format == SAMPLEFORMAT_UINT && bps == 32) ||
+                (format == SAMPLEFORMAT_IEEEFP && bps == 64) ||
+                (spp >= 3 &&
+                 (photometric == PHOTOMETRIC_MINISBLACK || photometric == PHOTOMETRIC_MINISWHITE));
+    /* a GeoTIFF's 2nd / 4th band is alpha only when it says so (else: RGBN, data) */
+    if (geo && (spp == 2 || spp == 4) && !alpha)
+        gdal = true;
+    *route = gdal ? VT_TIFF_GDAL : geo ? VT_TIFF_GEO_NATIVE : VT_TIFF_NATIVE;
     return 0;
 }
