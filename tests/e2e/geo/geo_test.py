@@ -225,6 +225,13 @@ def test_bands():
         if os.path.exists(f):
             os.remove(f)
     pstore = os.path.join(WORK, "png.vts")
+    # GDAL is loaded only when met: not for a PNG, and for a GeoTIFF (LD_DEBUG lists the loads)
+    env = dict(os.environ, LD_DEBUG="files")
+    loads_png = run(tool("vt-tiles"), "-q", png, "-o", pstore, env=env).stderr
+    loads_geo = run(tool("vt-tiles"), "-q", jp2_or_rgb_tif, "-o", pstore, env=env).stderr
+    check("libgdal" not in loads_png and "libvt_gdal" not in loads_png and
+          "libgdal" in loads_geo and "libvt_gdal" in loads_geo,
+          "GDAL is mapped for a GeoTIFF, not for a PNG")
     run(tool("vt-tiles"), "-q", png, "-o", pstore)
     pext = os.path.join(WORK, "png_x.png")
     run(tool("vt-info"), "-q", "--extract", "0", "-o", pext, pstore)
