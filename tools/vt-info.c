@@ -672,6 +672,12 @@ static int run_extract(const struct vts_store *s, const struct options *o)
         return rc;
     bool tiff = wants_tiff(o->out_path);
     rc = vt_tile_reader_init(&r, s, o->layer, &err);
+    const char *nodata = vts_store_meta_find(s, "nodata"); /* empty tiles are nodata */
+    char *end = NULL;
+    if (nodata) {
+        r.fill = strtod(nodata, &end);
+        r.has_fill = end != nodata && !*end;
+    }
     if (rc == 0 && !tiff && (r.img.sample == VTS_SAMPLE_F16 || r.img.sample == VTS_SAMPLE_F32))
         vt_log(VT_LOG_WARN,
                "layer %u holds %s samples: writing a 16-bit PNG clamped to [0,1] (a .tif output "
@@ -679,8 +685,8 @@ static int run_extract(const struct vts_store *s, const struct options *o)
                o->layer, vts_sample_name(r.img.sample));
     if (rc == 0 && o->has_tile &&
         vts_store_tile(s, o->layer, o->level, o->tile_x, o->tile_y, &e, NULL) == 0 && e.length == 0)
-        vt_log(VT_LOG_WARN, "tile %u,%u of level %u is empty: writing zeros", o->tile_x, o->tile_y,
-               o->level);
+        vt_log(VT_LOG_WARN, "tile %u,%u of level %u is empty: writing %s", o->tile_x, o->tile_y,
+               o->level, r.has_fill ? "its nodata value" : "zeros");
     if (rc == 0)
         rc = vt_tile_reader_write_image(&r, o->level, o->has_tile, o->tile_x, o->tile_y,
                                         o->out_path, tiff, &err);

@@ -180,6 +180,23 @@ def test_bands():
     check(ok, "--band-layers: every band round-trips exactly")
     check(js["metadata"].get("layer.4.bands") == "5", "layer.4.bands = 5")
 
+    # nodata 65535: the corner tile is empty and extracts as 65535 again
+    dem = content(1, 211, 333, 21)
+    dem[:, :80, :80] = 65535
+    write_envi(os.path.join(WORK, "dem.bin"), dem)
+    dem_tif = os.path.join(WORK, "dem.tif")
+    run("gdal_translate", "-q", "-a_srs", "EPSG:32633", "-a_ullr", "500000", "4000000", "503330",
+        "3997890", "-a_nodata", "65535", os.path.join(WORK, "dem.bin"), dem_tif)
+    dstore = os.path.join(WORK, "dem.vts")
+    run(tool("vt-tiles"), "-q", "--tile-size", "64", "--codec", "png", dem_tif, "-o", dstore)
+    js = json.loads(run(tool("vt-info"), "--json", dstore).stdout)
+    back = layer_of(dstore, 0, os.path.join(WORK, "dem_x.tif"))
+    zero_filled = back.copy()
+    zero_filled[:, :62, :62] = 0  # what an extract writing zeros for the empty tile would hold
+    check(js["layers"][0]["levels"][0]["empty"] == 1 and np.array_equal(back, dem) and
+          not np.array_equal(zero_filled, dem),
+          "nodata 65535: the corner tile is empty and extracts as 65535 (zeros would fail)")
+
     # without nodata: no empty tile
     plain = os.path.join(WORK, "plain.tif")
     run("gdal_translate", "-q", "-a_nodata", "none", six, plain)
