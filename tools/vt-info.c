@@ -12,6 +12,7 @@
 
 #include "tool_common.h"
 #include "vt_atomic_file.h"
+#include "vt_georef_file.h"
 #include "vt_level_stats.h"
 #include "vt_output_path.h"
 #include "vt_shard.h"
@@ -332,6 +333,60 @@ static json_t *json_wang(const struct vts_store *s)
     return o ? o : json_null();
 }
 
+/* ---- georeferencing (docs/geospatial.md): geo.transform, geo.crs_wkt, nodata ---- */
+
+/* Reads geo.transform's six numbers; false when the store has none or it is malformed. */
+static bool georef_transform(const struct vts_store *s, double t[6])
+{
+    const char *v = vts_store_meta_find(s, "geo.transform");
+    if (!v)
+        return false;
+    for (int i = 0; i < 6; i++) {
+        char *end;
+        t[i] = strtod(v, &end);
+        if (end == v || !isfinite(t[i]))
+            return false;
+        v = end;
+    }
+    while (*v == ' ')
+        v++;
+    return *v == '\0';
+}
+
+/* The CRS's name: the first quoted string of its WKT, into buf. */
+static void georef_crs_name(const char *wkt, char *buf, size_t size)
+{
+    const char *q = strchr(wkt, '"');
+    const char *e = q ? strchr(q + 1, '"') : NULL;
+    if (!e)
+        snprintf(buf, size, "(unnamed)");
+    else
+        snprintf(buf, size, "%.*s", (int)(e - q - 1), q + 1);
+}
+
+static void print_georef(const struct vts_store *s)
+{
+    double t[6];
+    const char *wkt = vts_store_meta_find(s, "geo.crs_wkt");
+    const char *nodata = vts_store_meta_find(s, "nodata");
+    if (georef_transform(s, t))
+        printf(
+            "georef:            origin %.17g, %.17g; texel %.17g x %.17g; rotation %.17g, %.17g\n",
+            t[0], t[3], t[1], t[5], t[2], t[4]);
+    if (wkt) {
+        char name[128];
+        georef_crs_name(wkt, name, sizeof name);
+        printf("crs:               ");
+        print_escaped(name);
+        putchar('\n');
+    }
+    if (nodata) {
+        printf("nodata:            ");
+        print_escaped(nodata);
+        putchar('\n');
+    }
+}
+
 static void print_summary(const struct vts_store *s, const struct vt_store_stats *st)
 {
     const struct vts_geometry *g = vts_store_geometry(s);
@@ -346,6 +401,7 @@ static void print_summary(const struct vts_store *s, const struct vt_store_stats
            g->tile_content_px, g->border_px, g->tile_payload_px);
     printf("levels:            %u\nlayers:            %u\nflags:             %s\n", g->level_count,
            g->layer_count, flags[0] ? flags : "none");
+    print_georef(s);
     for (uint32_t layer = 0; layer < g->layer_count; layer++)
         print_layer(s, st, layer);
     printf("tiles:             %llu stored, %llu empty, %llu shared\n",
@@ -431,6 +487,36 @@ static json_t *json_layer(const struct vts_store *s, const struct vt_store_stats
                      json_counts(NULL, vt_store_stats_at(st, layer, g->level_count)));
 }
 
+/* gdalinfo -json's shape: geoTransform [6], coordinateSystem {wkt}, noDataValue; true when the
+ * store has any (the JSON then prints reals with 17 digits). */
+static bool json_georef(const struct vts_store *s, json_t *root)
+{
+    double t[6];
+    bool any = false;
+    if (georef_transform(s, t)) {
+        json_t *a = json_array();
+        for (int i = 0; i < 6; i++)
+            json_array_append_new(a, json_real(t[i]));
+        json_object_set_new(root, "geoTransform", a);
+        any = true;
+    }
+    const char *wkt = vts_store_meta_find(s, "geo.crs_wkt");
+    if (wkt) {
+        json_object_set_new(root, "coordinateSystem", json_pack("{s:o}", "wkt", json_text(wkt)));
+        any = true;
+    }
+    const char *nodata = vts_store_meta_find(s, "nodata");
+    if (nodata) {
+        char *end;
+        double v = strtod(nodata, &end);
+        json_object_set_new(root, "noDataValue",
+                            end != nodata && !*end && isfinite(v) ? json_real(v)
+                                                                  : json_text(nodata));
+        any = true;
+    }
+    return any;
+}
+
 static int print_json(const struct vts_store *s, const struct vt_store_stats *st)
 {
     const struct vts_geometry *g = vts_store_geometry(s);
@@ -457,7 +543,8 @@ static int print_json(const struct vts_store *s, const struct vt_store_stats *st
                   "layers", layers, "totals", totals, "metadata", meta);
     if (root && vt_wang_pack_is(s))
         json_object_set_new(root, "wang", json_wang(s));
-    int rc = root ? json_dumpf(root, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(6)) : -1;
+    int digits = root && json_georef(s, root) ? 17 : 6;
+    int rc = root ? json_dumpf(root, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(digits)) : -1;
     json_decref(root);
     if (rc != 0) {
         vt_log(VT_LOG_ERROR, "'%s': cannot write the JSON summary", vts_store_name(s));
@@ -655,6 +742,37 @@ static int run_wang_region(const struct vts_store *s, const struct options *o)
     return VT_EXIT_OK;
 }
 
+/* An extract of a georeferenced store gets its position as sidecar files (docs/geospatial.md):
+ * OUT.aux.xml and a world file, with the transform of the level (and tile) written. */
+static int write_georef(const struct vts_store *s, const struct options *o)
+{
+    double t[6];
+    struct vt_georef g = {.has_transform = georef_transform(s, t),
+                          .crs_wkt = vts_store_meta_find(s, "geo.crs_wkt"),
+                          .nodata = vts_store_meta_find(s, "nodata"),
+                          .bands = vts_store_layer(s, o->layer)->channels};
+    if ((!g.has_transform && !g.crs_wkt) || vt_output_path_is_stdio(o->out_path))
+        return VT_EXIT_OK;
+    if (g.has_transform) {
+        const struct vts_geometry *geo = vts_store_geometry(s);
+        int64_t x = 0, y = 0; /* a tile's payload starts at its border */
+        if (o->has_tile) {
+            x = (int64_t)o->tile_x * geo->tile_content_px - geo->border_px;
+            y = (int64_t)o->tile_y * geo->tile_content_px - geo->border_px;
+        }
+        vt_georef_region(t, o->level, x, y, g.transform);
+    }
+    char world[VT_PATH_MAX];
+    struct vts_error err = {0};
+    if (vt_georef_file_write(o->out_path, &g, world, sizeof world, &err) != 0) {
+        vt_log(VT_LOG_ERROR, "%s", err.message);
+        return VT_EXIT_BAD_INPUT;
+    }
+    vt_log(VT_LOG_INFO, "wrote '%s.aux.xml'%s%s%s", o->out_path, world[0] ? " and '" : "", world,
+           world[0] ? "'" : "");
+    return VT_EXIT_OK;
+}
+
 static int run_extract(const struct vts_store *s, const struct options *o)
 {
     if (o->wang_region)
@@ -667,6 +785,12 @@ static int run_extract(const struct vts_store *s, const struct options *o)
         return rc;
     bool tiff = wants_tiff(o->out_path);
     rc = vt_tile_reader_init(&r, s, o->layer, &err);
+    const char *nodata = vts_store_meta_find(s, "nodata"); /* empty tiles are nodata */
+    char *end = NULL;
+    if (nodata) {
+        r.fill = strtod(nodata, &end);
+        r.has_fill = end != nodata && !*end;
+    }
     if (rc == 0 && !tiff && (r.img.sample == VTS_SAMPLE_F16 || r.img.sample == VTS_SAMPLE_F32))
         vt_log(VT_LOG_WARN,
                "layer %u holds %s samples: writing a 16-bit PNG clamped to [0,1] (a .tif output "
@@ -674,8 +798,8 @@ static int run_extract(const struct vts_store *s, const struct options *o)
                o->layer, vts_sample_name(r.img.sample));
     if (rc == 0 && o->has_tile &&
         vts_store_tile(s, o->layer, o->level, o->tile_x, o->tile_y, &e, NULL) == 0 && e.length == 0)
-        vt_log(VT_LOG_WARN, "tile %u,%u of level %u is empty: writing zeros", o->tile_x, o->tile_y,
-               o->level);
+        vt_log(VT_LOG_WARN, "tile %u,%u of level %u is empty: writing %s", o->tile_x, o->tile_y,
+               o->level, r.has_fill ? "its nodata value" : "zeros");
     if (rc == 0)
         rc = vt_tile_reader_write_image(&r, o->level, o->has_tile, o->tile_x, o->tile_y,
                                         o->out_path, tiff, &err);
@@ -685,7 +809,7 @@ static int run_extract(const struct vts_store *s, const struct options *o)
         return VT_EXIT_BAD_INPUT;
     }
     vt_log(VT_LOG_INFO, "wrote '%s'", o->out_path);
-    return VT_EXIT_OK;
+    return write_georef(s, o);
 }
 
 /* A store read from standard input: its spooled copy, mapped (vts_open_memory names it). */

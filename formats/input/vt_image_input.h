@@ -12,6 +12,7 @@
 #include <stdint.h>
 
 #include "vt_error.h"
+#include "vt_input_raster.h"
 #include "vt_source.h"
 
 /* Default of vt_input_limits.max_pixels: 2^34 texels (128k x 128k). */
@@ -36,5 +37,24 @@ struct vt_input_limits {
  * increasing y; a PNG or JPEG region above the previous one restarts the decode from the top. */
 int vt_image_input_open(const char *path, const struct vt_input_limits *limits,
                         struct vt_source *out, struct vts_error *err);
+
+/* ---- Multi-band and georeferenced rasters (GDAL input, docs/geospatial.md) ----
+ * Files that need GDAL go to libvt_gdal.so (vt_gdal_module.c, dlopen()ed when such a file is
+ * met): VRT mosaics, JPEG 2000, and TIFFs with GeoTIFF tags, more than 4 samples or samples the
+ * native reader does not take (signed, 32-bit integers, 64-bit floats: read as 32-bit float). */
+
+/* Fills *out for the image at path (zeroed first). Native formats: band_count = channels, no
+ * georeferencing; files that go to GDAL: their bands, band descriptions, geotransform, CRS and
+ * nodata. Errors as vt_image_input_open(), except that more than 4 bands is not one (more than
+ * VT_INPUT_MAX_BANDS is). Release with vt_input_raster_release() (vt_input_raster.h). */
+int vt_image_input_describe(const char *path, const struct vt_input_limits *limits,
+                            struct vt_input_raster *out, struct vts_error *err);
+
+/* As vt_image_input_open(), but reads only bands [first, first + count) (0-based; 1 <= count <= 4)
+ * of the file: channels = count; has_alpha only when the group ends with an alpha band of a 2- or
+ * 4-band group; colour data for bands that are not grey or RGB. count 0: every band (at most 4). */
+int vt_image_input_open_bands(const char *path, const struct vt_input_limits *limits,
+                              uint32_t first, uint32_t count, struct vt_source *out,
+                              struct vts_error *err);
 
 #endif

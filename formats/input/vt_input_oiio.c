@@ -1,19 +1,16 @@
 /* The OpenImageIO fallback for formats without a native reader (TGA, HDR, PSD, DDS, WebP...):
  * loads libvt_oiio.so (vt_oiio_shim.cpp) with dlopen() when the first such file is opened, so that
  * a process that reads only TIFF/PNG/JPEG/EXR never maps OpenImageIO (~0.4 s and ~130 MB).
- * The module is searched at $VT_OIIO_MODULE, then: for an executable inside the build tree, at
- * its build-tree path only; for any other (installed, or moved with its prefix) at
- * <dir of the executable>/../<libdir>/vtpipe/, then at the install path. An installed tool never
- * loads a module from the build tree, and a build-tree tool never loads an older installed one.
- * It is opened with RTLD_NODELETE: each
- * source holds a reference, and closing the last one does not unload OpenImageIO (whose static
- * state does not survive unloading, and reloading costs the start-up again). No global state. */
-#define _XOPEN_SOURCE 700 /* realpath */
+ * The module is searched at $VT_OIIO_MODULE, then where internal/vt_input_module.h says. It is
+ * opened with RTLD_NODELETE: each source holds a reference, and closing the last one does not
+ * unload OpenImageIO (whose static state does not survive unloading, and reloading costs the
+ * start-up again). No global state. */
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "internal/vt_input_module.h"
 #include "internal/vt_input_readers.h"
 #include "internal/vt_input_util.h"
 #include "internal/vt_oiio_abi.h"
@@ -33,8 +30,6 @@ static int oiio_open(const char *path, uint64_t max_pixels, struct vt_source *ou
 #else
 
 #include <dlfcn.h>
-#include <limits.h>
-#include <unistd.h>
 
 struct oiio_input {
     void *module; /* dlopen() reference */
@@ -44,74 +39,11 @@ struct oiio_input {
     char name[256];
 };
 
-/* dlsym() into a function pointer without the object-to-function pointer cast. */
-static bool oiio_symbol(void *module, const char *symbol, void *fn, size_t fn_size)
-{
-    void *p = dlsym(module, symbol);
-    if (!p)
-        return false;
-    memcpy(fn, &p, fn_size);
-    return true;
-}
-
-/* Tries one candidate path; on failure appends dlerror() to why. */
-static void *oiio_try(const char *path, char *why, size_t why_size)
-{
-    if (!path || !path[0])
-        return NULL;
-    void *m = dlopen(path, RTLD_NOW | RTLD_LOCAL | RTLD_NODELETE);
-    if (!m) {
-        const char *e = dlerror();
-        size_t used = strlen(why);
-        if (used == 0) /* the first failure is the most telling (usually $VT_OIIO_MODULE) */
-            snprintf(why + used, why_size - used, "%s", e ? e : path);
-    }
-    return m;
-}
-
-/* The directory of the executable, or "" if unknown. */
-static void oiio_exe_dir(char *buf, size_t size)
-{
-    buf[0] = '\0';
-    ssize_t n = readlink("/proc/self/exe", buf, size - 1);
-    if (n <= 0)
-        return;
-    buf[n] = '\0';
-    char *slash = strrchr(buf, '/');
-    if (slash)
-        *slash = '\0';
-    else
-        buf[0] = '\0';
-}
-
-/* True when dir is VT_BUILD_DIR or below it (both resolved: the build directory may be reached
- * through a link). */
-static bool oiio_in_build_tree(const char *dir)
-{
-    char build[PATH_MAX];
-    if (!dir[0] || !realpath(VT_BUILD_DIR, build))
-        return false;
-    size_t n = strlen(build);
-    return strncmp(dir, build, n) == 0 && (dir[n] == '/' || dir[n] == '\0');
-}
-
 static void *oiio_load(char *why, size_t why_size)
 {
-    char dir[PATH_MAX], relative[PATH_MAX + 64];
-    oiio_exe_dir(dir, sizeof dir);
-    bool in_build = oiio_in_build_tree(dir);
-    relative[0] = '\0';
-    if (dir[0] && !in_build)
-        snprintf(relative, sizeof relative, "%s/../%s", dir, VT_OIIO_RELATIVE_PATH);
-    const char *candidates[] = {getenv("VT_OIIO_MODULE"), in_build ? VT_OIIO_BUILD_PATH : relative,
-                                in_build ? NULL : VT_OIIO_INSTALL_PATH};
-    why[0] = '\0';
-    for (size_t i = 0; i < sizeof candidates / sizeof candidates[0]; i++) {
-        void *m = oiio_try(candidates[i], why, why_size);
-        if (m)
-            return m;
-    }
-    return NULL;
+    const struct vt_input_module_paths paths = {"VT_OIIO_MODULE", VT_OIIO_BUILD_PATH,
+                                                VT_OIIO_RELATIVE_PATH, VT_OIIO_INSTALL_PATH};
+    return vt_input_module_load(&paths, why, why_size);
 }
 
 static int oiio_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst,
@@ -159,10 +91,10 @@ static int oiio_open_with(struct oiio_input *t, const char *path, uint64_t max_p
 {
     vt_oiio_abi_version_fn version;
     vt_oiio_open_fn open_fn;
-    if (!oiio_symbol(t->module, "vt_oiio_abi_version", &version, sizeof version) ||
-        !oiio_symbol(t->module, "vt_oiio_open", &open_fn, sizeof open_fn) ||
-        !oiio_symbol(t->module, "vt_oiio_read", &t->read, sizeof t->read) ||
-        !oiio_symbol(t->module, "vt_oiio_close", &t->close, sizeof t->close) ||
+    if (!vt_input_module_symbol(t->module, "vt_oiio_abi_version", &version, sizeof version) ||
+        !vt_input_module_symbol(t->module, "vt_oiio_open", &open_fn, sizeof open_fn) ||
+        !vt_input_module_symbol(t->module, "vt_oiio_read", &t->read, sizeof t->read) ||
+        !vt_input_module_symbol(t->module, "vt_oiio_close", &t->close, sizeof t->close) ||
         version() != VT_OIIO_ABI_VERSION)
         return vt_error_set(
             err, VTS_ERR_UNSUPPORTED,

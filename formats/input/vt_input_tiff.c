@@ -309,9 +309,11 @@ static int tiff_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *
 
 static const struct vt_source_ops tiff_ops = {tiff_read_region, tiff_close};
 
-static int tiff_open(const char *path, uint64_t max_pixels, struct vt_source *out,
-                     struct vts_error *err)
+/* Opens path through libtiff (the first directory read): *out to tiff_close(), or a negative
+ * status with err set ("cannot read 'x.tif': Input/output error"). */
+static int tiff_open_file(const char *path, struct tiff_input **out, struct vts_error *err)
 {
+    *out = NULL;
     struct tiff_input *t = calloc(1, sizeof *t);
     if (!t)
         return vt_error_set(err, VTS_ERR_NOMEM, "cannot read '%s': out of memory", path);
@@ -340,6 +342,21 @@ static int tiff_open(const char *path, uint64_t max_pixels, struct vt_source *ou
         rc = vt_error_set(err, tiff_status(t), "cannot read '%s': %s", path, tiff_message(t));
         goto out_free;
     }
+    *out = t;
+    return 0;
+
+out_free:
+    tiff_close(t);
+    return rc;
+}
+
+static int tiff_open(const char *path, uint64_t max_pixels, struct vt_source *out,
+                     struct vts_error *err)
+{
+    struct tiff_input *t;
+    int rc = tiff_open_file(path, &t, err);
+    if (rc < 0)
+        return rc;
     uint32_t sample = 0;
     if (!TIFFGetField(t->tif, TIFFTAG_IMAGEWIDTH, &t->width) ||
         !TIFFGetField(t->tif, TIFFTAG_IMAGELENGTH, &t->height)) {
@@ -509,3 +526,45 @@ static bool tiff_sniff(const unsigned char *magic, size_t len)
 }
 
 const struct vt_input_reader vt_input_reader_tiff = {"tiff", tiff_sniff, tiff_open};
+
+int vt_input_tiff_route(const char *path, enum vt_tiff_route *route, struct vts_error *err)
+{
+    *route = VT_TIFF_NATIVE;
+    struct tiff_input *t;
+    int rc = tiff_open_file(path, &t, err);
+    if (rc < 0)
+        return rc;
+    TIFF *tif = t->tif;
+    uint16_t spp = tiff_get16(tif, TIFFTAG_SAMPLESPERPIXEL, 1);
+    uint16_t format = tiff_get16(tif, TIFFTAG_SAMPLEFORMAT, SAMPLEFORMAT_UINT);
+    uint16_t bps = tiff_get16(tif, TIFFTAG_BITSPERSAMPLE, 1);
+    uint16_t photometric =
+        tiff_get16(tif, TIFFTAG_PHOTOMETRIC, spp >= 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK);
+    uint16_t extra_count = 0, *extra = NULL;
+    bool alpha = TIFFGetField(tif, TIFFTAG_EXTRASAMPLES, &extra_count, &extra) && extra_count &&
+                 (extra[extra_count - 1] == EXTRASAMPLE_ASSOCALPHA ||
+                  extra[extra_count - 1] == EXTRASAMPLE_UNASSALPHA);
+    /* GeoTIFF: ModelPixelScale, ModelTiepoint, ModelTransformation, GeoKeyDirectory; libtiff
+     * keeps them as anonymous fields, known only when this file has them */
+    static const uint32_t geo_tags[] = {33550, 33922, 34264, 34735};
+    bool geo = false;
+    for (size_t i = 0; i < sizeof geo_tags / sizeof geo_tags[0]; i++) {
+        uint32_t count = 0;
+        void *data = NULL;
+        if (TIFFFindField(tif, geo_tags[i], TIFF_ANY) &&
+            TIFFGetField(tif, geo_tags[i], &count, &data))
+            geo = true;
+    }
+    tiff_close(t);
+    /* what this reader refuses but GDAL reads as bands of data */
+    bool gdal = spp > 4 || format == SAMPLEFORMAT_INT ||
+                (format == SAMPLEFORMAT_UINT && bps == 32) ||
+                (format == SAMPLEFORMAT_IEEEFP && bps == 64) ||
+                (spp >= 3 &&
+                 (photometric == PHOTOMETRIC_MINISBLACK || photometric == PHOTOMETRIC_MINISWHITE));
+    /* a GeoTIFF's 2nd / 4th band is alpha only when it says so (else: RGBN, data) */
+    if (geo && (spp == 2 || spp == 4) && !alpha)
+        gdal = true;
+    *route = gdal ? VT_TIFF_GDAL : geo ? VT_TIFF_GEO_NATIVE : VT_TIFF_NATIVE;
+    return 0;
+}

@@ -188,6 +188,7 @@ static void first_pass(const struct vt_pyramid_options *o, const struct vt_sourc
                                   .h = o->height,
                                   .channels = in->channels,
                                   .sample = in->sample,
+                                  .has_alpha = in->has_alpha,
                                   .block = (uint64_t)o->tile_content_px << k,
                                   .done = done};
     /* premultiply while filtering, unless the input already is (then it is filtered and stored

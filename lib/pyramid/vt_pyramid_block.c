@@ -118,7 +118,9 @@ static int emit_tile(const struct vt_pyramid_pass *p, unsigned worker,
     const struct vt_pyramid_options *o = p->o;
     if (!t)
         t = o->out_channels == p->channels ? &s->tile_full : &s->tile;
-    int rc = o->emit(o->user, worker, level, tx, ty, all_transparent(t) ? NULL : t, err);
+    /* a data layer of 2 or 4 bands (GDAL input) has no alpha: its zeros are texels */
+    bool empty = p->has_alpha && all_transparent(t);
+    int rc = o->emit(o->user, worker, level, tx, ty, empty ? NULL : t, err);
     if (rc == 0)
         __atomic_add_fetch(p->done, 1, __ATOMIC_RELAXED);
     return rc;

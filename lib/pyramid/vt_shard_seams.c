@@ -43,6 +43,7 @@ struct vt_seams {
     struct vt_kernel kernel;
     struct vt_pixel_mode mode;
     uint32_t k, levels, c, border, channels;
+    bool has_alpha;    /* tiles of alpha 0 are left empty only then (as vt_pyramid_block.c) */
     size_t mem_max;    /* bytes of a level held in memory, else in a file (LEVEL_MEM_MAX) */
     struct axis ax[2]; /* x, y */
 };
@@ -209,6 +210,7 @@ struct vt_seams *vt_seams_create(const struct vt_pyramid_options *o,
     s->c = o->tile_content_px;
     s->border = o->border_px;
     s->channels = in->channels;
+    s->has_alpha = in->has_alpha;
     s->mem_max = LEVEL_MEM_MAX;
     vt_kernel_init(&s->kernel, o->filter);
     s->mode =
@@ -514,7 +516,8 @@ static int emit(struct vt_seams *s, unsigned worker, struct tile_buf *t, struct 
                        sb * o->out_channels);
         payload = &t->out;
     }
-    return o->emit(o->user, worker, l, tx, ty, transparent(payload) ? NULL : payload, err);
+    bool empty = s->has_alpha && transparent(payload);
+    return o->emit(o->user, worker, l, tx, ty, empty ? NULL : payload, err);
 }
 
 static bool work_next(void *ctx, uint64_t *job)

@@ -43,6 +43,29 @@ void vt_tile_reader_release(struct vt_tile_reader *r)
     vt_image_release(&r->img);
 }
 
+/* An empty tile: zeros, or r->fill where the sample type holds it. */
+static void tile_reader_fill_empty(struct vt_tile_reader *r)
+{
+    struct vt_image *img = &r->img;
+    memset(img->pixels, 0, img->stride * img->height);
+    double v = r->fill;
+    bool integral = v == floor(v);
+    if (!r->has_fill || v == 0)
+        return;
+    size_t n = (size_t)img->width * img->channels;
+    for (uint32_t y = 0; y < img->height; y++) {
+        unsigned char *row = (unsigned char *)img->pixels + y * img->stride;
+        for (size_t i = 0; i < n; i++) {
+            if (img->sample == VTS_SAMPLE_U8 && integral && v >= 0 && v <= 255)
+                row[i] = (unsigned char)v;
+            else if (img->sample == VTS_SAMPLE_U16 && integral && v >= 0 && v <= 65535)
+                ((uint16_t *)(void *)row)[i] = (uint16_t)v;
+            else if (img->sample == VTS_SAMPLE_F32)
+                ((float *)(void *)row)[i] = (float)v;
+        }
+    }
+}
+
 int vt_tile_reader_read(struct vt_tile_reader *r, uint32_t level, uint32_t tx, uint32_t ty,
                         bool *stored, struct vts_error *err)
 {
@@ -51,7 +74,7 @@ int vt_tile_reader_read(struct vt_tile_reader *r, uint32_t level, uint32_t tx, u
     int rc = vts_store_read(r->store, r->layer, level, tx, ty, r->payload,
                             vts_store_max_payload(r->store), &len, 0, &why);
     if (rc == 0 && len == 0)
-        memset(r->img.pixels, 0, r->img.stride * r->img.height);
+        tile_reader_fill_empty(r);
     else if (rc == 0 && !r->crc_only)
         rc = r->codec->decode(r->payload, len, &r->img, &why);
     *stored = len > 0;

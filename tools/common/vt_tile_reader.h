@@ -20,6 +20,11 @@ struct vt_tile_reader {
     unsigned char *payload; /* vts_store_max_payload() bytes */
     struct vt_image img;    /* the last tile read: payload edge square, the layer's shape */
     bool crc_only;          /* set by the caller: reads check the CRC and do not decode */
+    /* Set by the caller: empty tiles hold `fill` in every sample (a store's nodata,
+     * docs/geospatial.md) instead of zeros: u8/u16 when it is an integer in range, f32 always,
+     * f16 never (zeros). */
+    bool has_fill;
+    double fill;
 };
 
 /* Prepares to read tiles of layer (< layer count) of store. Returns 0, or VTS_ERR_UNSUPPORTED (no
@@ -31,9 +36,10 @@ int vt_tile_reader_init(struct vt_tile_reader *r, const struct vts_store *store,
 /* Frees the buffers. Accepts NULL and a reader whose init failed; may be called twice. */
 void vt_tile_reader_release(struct vt_tile_reader *r);
 
-/* Reads tile (tx, ty) of level into r->img: decoded, or all zero when the tile is empty (*stored
- * false). Returns 0, or the status of the read (VTS_ERR_CHECKSUM, VTS_ERR_IO...) or of the decoder
- * (VTS_ERR_BAD_INPUT) with the message "'<store>': layer L level V tile X,Y: <reason>". */
+/* Reads tile (tx, ty) of level into r->img: decoded, or all zero (or r->fill) when the tile is
+ * empty (*stored false). Returns 0, or the status of the read (VTS_ERR_CHECKSUM, VTS_ERR_IO...) or
+ * of the decoder (VTS_ERR_BAD_INPUT) with the message "'<store>': layer L level V tile X,Y:
+ * <reason>". */
 int vt_tile_reader_read(struct vt_tile_reader *r, uint32_t level, uint32_t tx, uint32_t ty,
                         bool *stored, struct vts_error *err);
 

@@ -29,6 +29,7 @@ struct options {
     const char *filtering; /* bilinear, trilinear, anisoN */
     uint64_t max_pixels, max_store, cache_bytes;
     uint32_t shard, shard_count; /* --shard I/N (docs/sharding.md); 0 = whole build */
+    bool band_layers;            /* --band-layers (docs/geospatial.md) */
 };
 
 static void usage(FILE *f)
@@ -66,6 +67,8 @@ static void usage(FILE *f)
         "      --subsampling S      jpeg chroma subsampling 420 | 444 (default 420)\n"
         "      --mode fast|best     bc1..bc5 encoder, png compression (default fast)\n"
         "      --name NAME          layer name (default diffuse)\n"
+        "      --band-layers        one layer per band of the input (default: one per 4 bands,\n"
+        "                           named from the band descriptions; docs/geospatial.md)\n"
         "      --max-pixels N       refuse inputs with more texels (default 2^34)\n"
         "      --max-store-size S   refuse to write more tile bytes than S (suffix K, M, G, T;\n"
         "                           default 2T)\n"
@@ -94,6 +97,7 @@ static const struct option long_options[] = {{"output", required_argument, 0, 'o
                                              {"subsampling", required_argument, 0, 'S'},
                                              {"mode", required_argument, 0, 'M'},
                                              {"name", required_argument, 0, 'N'},
+                                             {"band-layers", no_argument, 0, 'B'},
                                              {"max-pixels", required_argument, 0, 'P'},
                                              {"temp-dir", required_argument, 0, 'T'},
                                              {"max-store-size", required_argument, 0, 'Z'},
@@ -237,6 +241,9 @@ static int parse_options(int argc, char **argv, struct options *o)
                 return vt_usage_error("--name must have 1..%u bytes", VTS_LAYER_NAME_BYTES - 1);
             o->name = optarg;
             break;
+        case 'B':
+            o->band_layers = true;
+            break;
         case 'P': {
             char *end;
             unsigned long long n = strtoull(optarg, &end, 10);
@@ -292,6 +299,8 @@ static int parse_options(int argc, char **argv, struct options *o)
             return vt_usage_error("--wrap and --colour do not apply to --layout");
         if (o->shard && o->export_atlas)
             return vt_usage_error("--shard and --export-atlas do not go together");
+        if (o->band_layers)
+            return vt_usage_error("--band-layers does not apply to --layout");
         if (vt_output_path_is_stdio(o->export_atlas))
             return vt_usage_error("--export-atlas cannot be standard output ('-'): its name "
                                   "(.png, .tif) gives the format");
@@ -360,7 +369,8 @@ static int run_image(const struct options *o)
                                         .max_pixels = o->max_pixels,
                                         .max_store = o->max_store,
                                         .shard = o->shard,
-                                        .shard_count = o->shard_count};
+                                        .shard_count = o->shard_count,
+                                        .band_layers = o->band_layers};
     int status = vt_tiles_image_run(&io);
     vt_stdin_spool_release(&spool);
     return status;

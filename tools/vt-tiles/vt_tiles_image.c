@@ -1,6 +1,7 @@
 /* vt-tiles INPUT -o OUT.vts: the single-image build (see vt_tiles_image.h). */
 #include "vt_tiles_image.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,16 +24,47 @@ struct run {
     const struct vt_codec *codec;
     struct vt_codec_params params;
     struct vts_writer *writer;
-    struct vt_tile_sink *sink;     /* layer 0; its scratch buffers also pack the carried texels */
+    struct vt_tile_sink *sink; /* every layer; its scratch buffers also pack the carried texels */
+    uint32_t layer;            /* the layer being built (one band group per layer) */
+    bool empty_nodata;         /* tiles whose texels all equal nodata are left empty */
+    double nodata;
     uint32_t carry_level, content; /* shards: the carried level (with wrap), the tiles' content */
     struct vt_progress progress;
 };
+
+/* True when every sample of img equals nodata (NaN matches NaN); u8/u16 with a nodata outside
+ * their range or not an integer never match. f16 tiles are never empty. */
+static bool all_nodata(const struct vt_image *img, double nodata)
+{
+    size_t n = (size_t)img->width * img->channels;
+    bool nan = isnan(nodata);
+    for (uint32_t y = 0; y < img->height; y++) {
+        const unsigned char *row = (const unsigned char *)img->pixels + y * img->stride;
+        for (size_t i = 0; i < n; i++) {
+            double v;
+            if (img->sample == VTS_SAMPLE_U8)
+                v = row[i];
+            else if (img->sample == VTS_SAMPLE_U16)
+                v = ((const uint16_t *)(const void *)row)[i];
+            else if (img->sample == VTS_SAMPLE_F32)
+                v = ((const float *)(const void *)row)[i];
+            else
+                return false;
+            if (nan ? !isnan(v)
+                    : v != (img->sample == VTS_SAMPLE_F32 ? (double)(float)nodata : nodata))
+                return false;
+        }
+    }
+    return true;
+}
 
 static int emit_tile(void *user, unsigned worker, uint32_t level, uint32_t tx, uint32_t ty,
                      const struct vt_image *payload, struct vts_error *err)
 {
     struct run *r = user;
-    return vt_tile_sink_put(r->sink, worker, 0, level, tx, ty, payload, err);
+    if (payload && r->empty_nodata && all_nodata(payload, r->nodata))
+        return 0; /* never put: an empty tile */
+    return vt_tile_sink_put(r->sink, worker, r->layer, level, tx, ty, payload, err);
 }
 
 /* A shard's carried texels (vt_shard.h): one payload of the extra layer per rectangle, in the
@@ -128,13 +160,126 @@ static const struct vt_codec *choose_codec(const struct vt_tiles_image_options *
     return codec;
 }
 
-static int open_sources(const struct vt_tiles_image_options *o, struct vt_source *src, unsigned n,
-                        struct vts_error *err)
+/* One layer of the store: a group of up to 4 bands of the input (docs/geospatial.md). */
+struct layer_plan {
+    uint32_t first, count; /* 0-based first band and bands; count 0: every band (at most 4) */
+    struct vt_source_info in;
+    uint32_t colour, channels, out_sample;
+    bool keep_alpha;
+    const struct vt_codec *codec;
+};
+
+/* One layer for an input of up to 4 bands (unless --band-layers), else one per 4 bands (the last
+ * one holds the rest) or one per band. Returns the layer count. */
+static uint32_t plan_groups(const struct vt_input_raster *ras, bool band_layers,
+                            struct layer_plan *plans)
+{
+    if (ras->band_count <= 4 && !band_layers) {
+        plans[0].first = plans[0].count = 0;
+        return 1;
+    }
+    uint32_t per = band_layers ? 1 : 4, n = 0;
+    for (uint32_t b = 0; b < ras->band_count; b += per, n++) {
+        plans[n].first = b;
+        plans[n].count = ras->band_count - b < per ? ras->band_count - b : per;
+    }
+    return n;
+}
+
+/* A layer's name: --name for a single layer; else the group's band descriptions joined by '+'
+ * when every band has one and they fit, else "band3" / "bands1-4" (1-based, as GDAL counts). */
+static void layer_name(const struct vt_tiles_image_options *o, const struct vt_input_raster *ras,
+                       uint32_t n_layers, const struct layer_plan *p,
+                       char name[VTS_LAYER_NAME_BYTES])
+{
+    if (n_layers == 1) {
+        snprintf(name, VTS_LAYER_NAME_BYTES, "%s", o->name);
+        return;
+    }
+    char joined[4 * VTS_LAYER_NAME_BYTES + 4] = "";
+    bool all = true;
+    for (uint32_t b = p->first; b < p->first + p->count; b++) {
+        all = all && ras->band_names[b][0];
+        if (joined[0])
+            strcat(joined, "+");
+        strcat(joined, ras->band_names[b]);
+    }
+    size_t len = strlen(joined);
+    if (all && len < VTS_LAYER_NAME_BYTES)
+        memcpy(name, joined, len + 1);
+    else if (p->count == 1)
+        snprintf(name, VTS_LAYER_NAME_BYTES, "band%u", p->first + 1);
+    else
+        snprintf(name, VTS_LAYER_NAME_BYTES, "bands%u-%u", p->first + 1, p->first + p->count);
+}
+
+static int open_sources(const struct vt_tiles_image_options *o, const struct layer_plan *p,
+                        struct vt_source *src, unsigned n, struct vts_error *err)
 {
     struct vt_input_limits limits = {o->max_pixels};
-    int rc = vt_image_input_open(o->input, &limits, &src[0], err);
+    int rc = vt_image_input_open_bands(o->input, &limits, p->first, p->count, &src[0], err);
     for (unsigned i = 1; rc == 0 && !src[0].info.sequential && i < n; i++)
-        rc = vt_image_input_open(o->input, &limits, &src[i], err);
+        rc = vt_image_input_open_bands(o->input, &limits, p->first, p->count, &src[i], err);
+    return rc;
+}
+
+/* Opens the layer's bands once to settle colour, alpha, codec and output sample. Returns 0, a
+ * negative status (err set) or VT_EXIT_USAGE (an unavailable codec, reported). */
+static int plan_layer(const struct vt_tiles_image_options *o, struct layer_plan *p,
+                      struct vts_error *err)
+{
+    struct vt_source src;
+    int rc = open_sources(o, p, &src, 1, err);
+    if (rc)
+        return rc;
+    p->in = src.info;
+    p->colour = o->colour_set ? o->colour : p->in.colour;
+    bool opaque = true;
+    if (p->in.has_alpha && (rc = vt_source_alpha_opaque(&src, &opaque, err)) != 0)
+        goto out_close;
+    p->keep_alpha = p->in.has_alpha && !opaque;
+    p->codec = choose_codec(o, &p->in, p->colour, p->keep_alpha, &p->out_sample);
+    if (!p->codec)
+        rc = VT_EXIT_USAGE;
+    p->channels = p->in.channels - (p->in.has_alpha && !p->keep_alpha);
+out_close:
+    vt_source_close(&src);
+    return rc;
+}
+
+/* Georeferencing and bands (docs/geospatial.md): geo.transform (GDAL's six numbers), geo.crs_wkt,
+ * nodata, source.bands and, with several layers, layer.N.bands (1-based, "5-6"). */
+static int set_geo_metadata(struct vts_writer *w, const struct vt_input_raster *ras,
+                            const struct layer_plan *plans, uint32_t n_layers,
+                            struct vts_error *err)
+{
+    char key[32], value[512];
+    int rc = 0;
+    if (ras->has_geotransform) {
+        const double *t = ras->geotransform;
+        snprintf(value, sizeof value, "%.17g %.17g %.17g %.17g %.17g %.17g", t[0], t[1], t[2], t[3],
+                 t[4], t[5]);
+        rc = vts_writer_set_meta(w, "geo.transform", value, err);
+    }
+    if (rc == 0 && ras->crs_wkt)
+        rc = vts_writer_set_meta(w, "geo.crs_wkt", ras->crs_wkt, err);
+    if (rc == 0 && ras->has_nodata) {
+        snprintf(value, sizeof value, "%.17g", ras->nodata);
+        rc = vts_writer_set_meta(w, "nodata", value, err);
+    }
+    if (rc == 0 && (ras->band_count > 4 || n_layers > 1)) {
+        snprintf(value, sizeof value, "%u", ras->band_count);
+        rc = vts_writer_set_meta(w, "source.bands", value, err);
+    }
+    for (uint32_t l = 0; rc == 0 && n_layers > 1 && l < n_layers; l++) {
+        snprintf(key, sizeof key, "layer.%u.bands", l);
+        const struct layer_plan *p = &plans[l];
+        if (p->count == 1)
+            snprintf(value, sizeof value, "%u", p->first + 1);
+        else
+            snprintf(value, sizeof value, "%u-%u", p->first + 1, p->first + p->count);
+        rc = vts_writer_set_meta(w, key, value, err);
+    }
     return rc;
 }
 
@@ -204,6 +349,29 @@ static int build(struct run *r, struct vt_source *src, const struct vt_pyramid_o
     return rc;
 }
 
+/* Builds every layer: each one's band group opened (one source per worker), its pyramid run. */
+static int build_layers(struct run *r, struct vt_source *src, struct vt_pyramid_options *po,
+                        const struct layer_plan *plans, uint32_t n_layers,
+                        const struct vt_input_raster *ras, struct vts_error *err)
+{
+    int rc = 0;
+    for (uint32_t l = 0; rc == 0 && l < n_layers; l++) {
+        const struct layer_plan *p = &plans[l];
+        if ((rc = open_sources(r->o, p, src, po->threads, err)) == 0) {
+            r->layer = l;
+            r->empty_nodata = ras->has_nodata && p->out_sample == p->in.sample;
+            r->nodata = ras->nodata;
+            po->colour = p->colour;
+            po->out_channels = p->channels;
+            po->out_sample = p->out_sample;
+            rc = build(r, src, po, err);
+        }
+        for (unsigned i = 0; i < po->threads; i++)
+            vt_source_close(&src[i]);
+    }
+    return rc;
+}
+
 int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
 {
     struct vt_tiles_image_options copy = *opt; /* make_geometry() settles the border */
@@ -213,6 +381,10 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
     struct vts_error err = {0};
     struct run r = {.o = o};
     struct vts_geometry g;
+    struct vt_input_raster ras;
+    memset(&ras, 0, sizeof ras);
+    struct layer_plan plans[VTS_MAX_LAYERS];
+    memset(plans, 0, sizeof plans);
     int status = VT_EXIT_BAD_INPUT, rc = 0;
     struct stat in_stat;
     if (o->shard && (stat(o->input, &in_stat) != 0 || !S_ISREG(in_stat.st_mode))) {
@@ -221,42 +393,64 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
                           o->input);
         goto out;
     }
-    rc = open_sources(o, src, o->threads, &err);
-    if (rc)
+    struct vt_input_limits limits = {o->max_pixels};
+    if ((rc = vt_image_input_describe(o->input, &limits, &ras, &err)) != 0)
         goto out;
-    const struct vt_source_info *in = &src[0].info;
-    uint32_t colour = o->colour_set ? o->colour : in->colour;
-    bool opaque = true;
-    if (in->has_alpha && (rc = vt_source_alpha_opaque(&src[0], &opaque, &err)) != 0)
-        goto out;
-    bool keep_alpha = in->has_alpha && !opaque;
-    uint32_t out_sample;
-    r.codec = choose_codec(o, in, colour, keep_alpha, &out_sample);
-    if (!r.codec) {
-        status = VT_EXIT_USAGE;
+    if (ras.geo_unread)
+        vt_log(VT_LOG_WARN,
+               "'%s': its GeoTIFF georeferencing is not kept: cannot load the GDAL module (%s)",
+               o->input_name, ras.why);
+    uint32_t n_layers = plan_groups(&ras, o->band_layers, plans);
+    if (n_layers > 1 && o->shard) {
+        status = vt_usage_error("--shard builds one layer: '%s' makes %u", o->input_name, n_layers);
         goto out;
     }
+    for (uint32_t l = 0; l < n_layers; l++) {
+        if ((rc = plan_layer(o, &plans[l], &err)) == VT_EXIT_USAGE) {
+            rc = 0;
+            status = VT_EXIT_USAGE;
+            goto out;
+        }
+        if (rc)
+            goto out;
+    }
+    const struct vt_source_info *in = &plans[0].in;
+    uint32_t colour = plans[0].colour;
+    r.codec = plans[0].codec;
     status = make_geometry(o, in, r.codec, &g);
     if (status != 0)
         goto out;
     status = VT_EXIT_BAD_INPUT;
-    uint32_t channels = in->channels - (in->has_alpha && !keep_alpha);
-    if ((rc = r.codec->check(g.tile_payload_px, channels, out_sample, &err)) != 0)
-        goto out;
-    struct vts_layer layer = {
-        r.codec->fourcc, (uint8_t)channels, (uint8_t)out_sample, (uint8_t)colour, 0, 0, {0}};
-    layer.codec_param = r.codec->fourcc == VTS_CODEC_JPEG ? o->quality : 0;
-    if (keep_alpha && in->premultiplied)
-        layer.flags |= VTS_LAYER_PREMULTIPLIED;
-    snprintf(layer.name, sizeof layer.name, "%s", o->name);
     r.params = (struct vt_codec_params){(int)o->quality, vt_tile_sink_effort(r.codec, o->best),
                                         (int)o->subsampling};
-    struct vt_tile_sink_layer sink_layers[2] = {{r.codec, r.params, channels, out_sample}, {0}};
+    struct vts_layer layers[VTS_MAX_LAYERS];
+    struct vt_tile_sink_layer sink_layers[VTS_MAX_LAYERS];
+    memset(sink_layers, 0, sizeof sink_layers);
+    for (uint32_t l = 0; l < n_layers; l++) {
+        const struct layer_plan *p = &plans[l];
+        if ((rc = p->codec->check(g.tile_payload_px, p->channels, p->out_sample, &err)) != 0)
+            goto out;
+        layers[l] = (struct vts_layer){p->codec->fourcc,
+                                       (uint8_t)p->channels,
+                                       (uint8_t)p->out_sample,
+                                       (uint8_t)p->colour,
+                                       0,
+                                       0,
+                                       {0}};
+        layers[l].codec_param = p->codec->fourcc == VTS_CODEC_JPEG ? o->quality : 0;
+        if (p->keep_alpha && p->in.premultiplied)
+            layers[l].flags |= VTS_LAYER_PREMULTIPLIED;
+        layer_name(o, &ras, n_layers, p, layers[l].name);
+        struct vt_codec_params params = {(int)o->quality, vt_tile_sink_effort(p->codec, o->best),
+                                         (int)o->subsampling};
+        sink_layers[l] = (struct vt_tile_sink_layer){p->codec, params, p->channels, p->out_sample};
+    }
+    g.layer_count = n_layers;
     size_t carry = 0;
-    struct vts_layer layers[2] = {layer,
-                                  {VTS_CODEC_RAW, (uint8_t)in->channels, VTS_SAMPLE_F32,
-                                   (uint8_t)colour, 0, 0, VT_SHARD_LAYER_NAME}};
     if (o->shard) { /* + the carried texels: at most a tile's content of floats (vt_shard.h) */
+        layers[1] = (struct vts_layer){
+            VTS_CODEC_RAW,      (uint8_t)in->channels, VTS_SAMPLE_F32, (uint8_t)colour, 0, 0,
+            VT_SHARD_LAYER_NAME};
         g.layer_count = 2;
         carry = (size_t)g.tile_content_px * g.tile_content_px * in->channels * 4;
         r.content = g.tile_content_px;
@@ -276,8 +470,8 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
                                     .filter = o->filter,
                                     .colour = colour,
                                     .wrap = o->wrap,
-                                    .out_channels = channels,
-                                    .out_sample = out_sample,
+                                    .out_channels = plans[0].channels,
+                                    .out_sample = plans[0].out_sample,
                                     .threads = o->threads,
                                     .temp_dir = o->temp_dir,
                                     .emit = emit_tile,
@@ -308,7 +502,7 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
                o->shard_count, po.part_x0, po.part_x1, po.part_y0, po.part_y1, plan.blocks_x,
                plan.blocks_y, po.part_x0 < po.part_x1 && po.part_y0 < po.part_y1 ? "" : " (empty)");
     }
-    rc = build(&r, src, &po, &err);
+    rc = build_layers(&r, src, &po, plans, n_layers, &ras, &err);
     if (rc == VTS_ERR_IO && !strstr(err.message, o->output)) { /* a temporary file: say whose */
         char m[sizeof err.message];
         snprintf(m, sizeof m, "%s", err.message);
@@ -316,6 +510,8 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
     }
     if (rc == 0)
         rc = set_metadata(r.writer, o, r.codec->name, &err);
+    if (rc == 0)
+        rc = set_geo_metadata(r.writer, &ras, plans, n_layers, &err);
     if (rc == 0 && o->shard)
         rc = set_shard_metadata(r.writer, o, &sb, &err);
     if (rc == 0)
@@ -338,5 +534,6 @@ out:
     vts_writer_destroy(r.writer);
     for (unsigned i = 0; i < o->threads; i++)
         vt_source_close(&src[i]);
+    vt_input_raster_release(&ras);
     return status;
 }

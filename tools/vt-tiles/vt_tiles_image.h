@@ -22,6 +22,7 @@ struct vt_tiles_image_options {
     uint32_t tile_size, border, quality, threads, colour, aniso, subsampling;
     bool border_set, colour_set, keep_content, wrap, best;
     bool index; /* --colour index: colour data, filter mode or nearest ("colour" metadata) */
+    bool band_layers; /* --band-layers: one layer per band of the input (docs/geospatial.md) */
     enum vt_filter_kind filter;
     const char *filtering; /* bilinear, trilinear, anisoN (aniso holds 0, 1 or N) */
     uint64_t max_pixels, max_store;

@@ -24,6 +24,17 @@ struct vt_input_reader {
 };
 
 extern const struct vt_input_reader vt_input_reader_tiff; /* vt_input_tiff.c: libtiff */
+/* How a TIFF is read (vt_input_tiff_route()). */
+enum vt_tiff_route {
+    VT_TIFF_NATIVE,     /* by vt_input_reader_tiff */
+    VT_TIFF_GEO_NATIVE, /* a GeoTIFF this reader reads as GDAL would: pixels here, the rest GDAL */
+    VT_TIFF_GDAL, /* GDAL: more than 4 samples, signed or 32-bit integer or 64-bit float samples,
+                     3+ grey samples (bands of data), or a GeoTIFF of 2 or 4 samples whose last
+                     one is not alpha */
+};
+/* vt_input_tiff.c: sets *route for the TIFF at path. Returns 0, or a negative status with err set
+ * as the TIFF reader's open would (the file cannot be opened or read). */
+int vt_input_tiff_route(const char *path, enum vt_tiff_route *route, struct vts_error *err);
 extern const struct vt_input_reader vt_input_reader_png;  /* vt_input_png.c: libpng */
 extern const struct vt_input_reader vt_input_reader_jpeg; /* vt_input_jpeg.c: libjpeg-turbo */
 extern const struct vt_input_reader vt_input_reader_exr;  /* vt_input_exr.c: OpenEXRCore */

@@ -34,6 +34,7 @@ struct vt_pyramid_pass {
     bool source_is_working;          /* the source holds working-space floats (pass images) */
     bool emit_base;                  /* emit the base level's tiles (the first pass only) */
     bool carry;                      /* a shard: the last level goes to o->carry, not to next */
+    bool has_alpha;                  /* last channel alpha: alpha-0 tiles are left empty */
     uint32_t base, depth;            /* base level, levels reduced in this pass */
     uint32_t w, h, channels, sample; /* the base level's size; the source's channels and sample */
     uint64_t block;                  /* block edge at the base level: content << levels per pass */
