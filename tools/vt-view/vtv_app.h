@@ -12,6 +12,8 @@ struct vtv_options {
     bool headless, sync, reference, trilinear, no_bc_upload, prefetch;
     int debug;
     uint32_t aniso; /* --filtering anisoN: N (implies trilinear), else 1 */
+    int nearest;    /* --filtering nearest: 1; another --filtering: 0 (filtered as asked); none:
+                       -1 (nearest for a selection store, vtv_select.h, else bilinear) */
     uint32_t width, height, orbit, frames, feedback_div, cache_tiles, uploads, threads;
     uint32_t ram_tiles; /* --ram-cache (UINT32_MAX: as --cache) */
     uint32_t reads;     /* --reads: --sync reads per frame (0: no limit) */

@@ -28,7 +28,9 @@ static const char usage_text[] =
     "  --stats OUT.json      write per-frame statistics (- for standard output)\n"
     "  --feedback-scale 1/K  resolution of the tile-determination pass (default 1/4)\n"
     "  --filtering MODE      bilinear (default), trilinear or anisoN (N = 2..16 taps along the\n"
-    "                        footprint, trilinear between levels; at most twice the store's border)\n"
+    "                        footprint, trilinear between levels; at most twice the store's border),\n"
+    "                        or nearest (nearest level, nearest texel: the default for a store\n"
+    "                        built with a selection, filter=nearest|mode|min|max or colour=index)\n"
     "  --debug MODE          none (default), levels (colour by level used), tiles (outlines)\n"
     "  --cache N             physical cache size in tiles (default 256)\n"
     "  --uploads N           tile uploads per frame at most (default 32)\n"
@@ -250,7 +252,8 @@ int main(int argc, char **argv)
             break;
         case OPT_FILTERING:
             o.aniso = 1;
-            if (strcmp(optarg, "bilinear") == 0)
+            o.nearest = strcmp(optarg, "nearest") == 0;
+            if (strcmp(optarg, "bilinear") == 0 || o.nearest)
                 o.trilinear = false;
             else if (strcmp(optarg, "trilinear") == 0)
                 o.trilinear = true;
@@ -258,7 +261,7 @@ int main(int argc, char **argv)
                 o.trilinear = true;
             else
                 return vt_usage_error(
-                    "--filtering '%s': expected bilinear, trilinear or anisoN (N in 2..16)",
+                    "--filtering '%s': expected nearest, bilinear, trilinear or anisoN (N in 2..16)",
                     optarg);
             break;
         case OPT_DEBUG:

@@ -1,0 +1,24 @@
+/* vt-view: whether a store's layers are sampled without filtering (docs/viewer.md, "Categorical
+ * and min/max layers"). A store whose mip levels are selections (metadata filter=nearest, mode,
+ * min or max: every texel of every level is a value of level 0) or whose layers are categorical
+ * (colour=index) must not be interpolated: a filtered class map shows class IDs that are not in
+ * the data. */
+#ifndef VTV_SELECT_H
+#define VTV_SELECT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vts.h"
+
+/* The metadata entry that makes s a selection store, written into why ("filter=mode",
+ * "colour=index"; at most cap bytes, NUL-terminated): 1, or 0 (why empty) for a filtered store. */
+int vtv_select_store(const struct vts_store *s, char *why, size_t cap);
+
+/* The colour of class value v on the index display (--ramp index): h = v * 0x9E3779B1, h ^= h >>
+ * 16, h *= 0x85EBCA6B, h ^= h >> 13 (32-bit unsigned), then R, G, B = bytes 0, 1, 2 of h, each
+ * raised to at least 48 (no class is near black, the background). The shader computes the same
+ * (vtv_shaders.c, F_INDEX); distinct values almost always get distinct colours. */
+void vtv_index_colour(uint32_t v, uint8_t rgb[3]);
+
+#endif
