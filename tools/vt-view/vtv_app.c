@@ -35,6 +35,7 @@ void vtv_options_default(struct vtv_options *o)
     o->prefetch = true;
     o->auto_lod = true;
     o->ramp = -1;
+    o->index = -1;
     const float dir[3] = {0.3f, 0.8f, 0.5f}, colour[3] = {0.85f, 0.85f, 0.85f},
                 ambient[3] = {0.15f, 0.15f, 0.15f};
     memcpy(o->light_dir, dir, sizeof(dir));
@@ -305,6 +306,9 @@ static int setup(struct app *a, struct vts_error *err)
         o->has_range ? o->range : NULL, o->ramp, &a->render.display, err);
     if (st != 0)
         return st;
+    vtv_select_display(
+        a->store, a->layers[VTV_MAP_DIFFUSE] != UINT32_MAX ? a->layers[VTV_MAP_DIFFUSE] : layer,
+        o->index, &a->render.display);
     if (!o->reference_scene) {
         st = vtv_render_set_mesh(&a->render, &a->mesh,
                                  o->reference ? 1u << VTV_PROG_REFERENCE

@@ -58,7 +58,9 @@ static const char usage_text[] =
     "                        range metadata, else 0..1 for u8 and u16 layers and the range of\n"
     "                        the coarsest level for float layers)\n"
     "  --ramp NAME|none      one-channel layers through a colour ramp: dusk, heat, grey, or none\n"
-    "                        (default: dusk for one-channel u16/f16/f32 layers, else none)\n"
+    "                        (default: dusk for one-channel u16/f16/f32 layers, else none); index:\n"
+    "                        a distinct colour per value of a one-channel u8/u16 layer (default\n"
+    "                        for a colour=index store)\n"
     "  --bc-upload auto|off  BC1..BC5 tiles: upload the blocks compressed when the GL has S3TC\n"
     "                        or RGTC (auto, default) or decode them on the CPU (off)\n"
     "  --wang PACK.vts       draw a Wang pack (vt-wang) with TileTex: an output of --extent\n"
@@ -261,7 +263,7 @@ int main(int argc, char **argv)
                 o.trilinear = true;
             else
                 return vt_usage_error(
-                    "--filtering '%s': expected nearest, bilinear, trilinear or anisoN (N in 2..16)",
+                    "--filtering '%s': expected bilinear, trilinear or anisoN (N in 2..16), or nearest",
                     optarg);
             break;
         case OPT_DEBUG:
@@ -362,8 +364,12 @@ int main(int argc, char **argv)
         }
         case OPT_RAMP: {
             enum vtv_ramp_kind k;
+            o.index = strcmp(optarg, "index") == 0;
+            if (o.index)
+                break;
             if (!vtv_ramp_parse(optarg, &k))
-                return vt_usage_error("--ramp '%s': expected dusk, heat, grey or none", optarg);
+                return vt_usage_error("--ramp '%s': expected dusk, heat, grey, index or none",
+                                      optarg);
             o.ramp = (int)k;
             break;
         }

@@ -265,6 +265,8 @@ void vtv_render_material_uniforms(const struct vtv_render *r, GLuint p,
         float span = d->max - d->min;
         glUniform2f(glGetUniformLocation(p, "u_range"), d->min, span != 0.0f ? 1.0f / span : 0.0f);
     }
+    if (d->features & VTV_F_INDEX)
+        glUniform1f(glGetUniformLocation(p, "u_index_scale"), d->index_scale);
     const float(*tab)[3] = vtv_ramp_table((enum vtv_ramp_kind)d->ramp);
     if ((d->features & VTV_F_RAMP) && tab) {
         float ramp[VTV_RAMP_POINTS][3]; /* sRGB-encoded colours: linear when the frame encodes */

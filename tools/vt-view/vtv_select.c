@@ -4,6 +4,9 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "tool_common.h"
+#include "vtv_material.h"
+
 int vtv_select_store(const struct vts_store *s, char *why, size_t cap)
 {
     static const char *const selections[] = {"nearest", "mode", "min", "max"};
@@ -33,4 +36,21 @@ void vtv_index_colour(uint32_t v, uint8_t rgb[3])
         uint32_t b = (h >> (8 * c)) & 255u;
         rgb[c] = (uint8_t)(b < 48 ? 48 : b);
     }
+}
+
+void vtv_select_display(const struct vts_store *s, uint32_t layer, int index, struct vtv_display *d)
+{
+    const char *colour = vts_store_meta_find(s, "colour");
+    if (index == 0 || (index < 0 && !(colour && strcmp(colour, "index") == 0)))
+        return;
+    const struct vts_layer *l = vts_store_layer(s, layer);
+    if (l->channels != 1 || (l->sample != VTS_SAMPLE_U8 && l->sample != VTS_SAMPLE_U16)) {
+        vt_log(VT_LOG_WARN,
+               "layer '%s' is %u-channel %s: no index colours (one-channel u8 or u16 only)",
+               l->name, l->channels, vts_sample_name(l->sample));
+        return;
+    }
+    d->features = (d->features & ~(unsigned)(VTV_F_RANGE | VTV_F_RAMP)) | VTV_F_INDEX;
+    d->index_scale = l->sample == VTS_SAMPLE_U8 ? 255.0f : 65535.0f;
+    vt_log(VT_LOG_INFO, "layer '%s' (%s): index colours", l->name, vts_sample_name(l->sample));
 }

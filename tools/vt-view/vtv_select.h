@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "vts.h"
+#include "vtv_display.h"
 
 /* The metadata entry that makes s a selection store, written into why ("filter=mode",
  * "colour=index"; at most cap bytes, NUL-terminated): 1, or 0 (why empty) for a filtered store. */
@@ -20,5 +21,11 @@ int vtv_select_store(const struct vts_store *s, char *why, size_t cap);
  * raised to at least 48 (no class is near black, the background). The shader computes the same
  * (vtv_shaders.c, F_INDEX); distinct values almost always get distinct colours. */
 void vtv_index_colour(uint32_t v, uint8_t rgb[3]);
+
+/* The index display (VTV_F_INDEX, replacing range and ramp) for store layer `layer` when index
+ * is 1 (--ramp index), or -1 (default) and the store is colour=index; only for a one-channel u8
+ * or u16 layer (otherwise a warning, and d is left as it is). */
+void vtv_select_display(const struct vts_store *s, uint32_t layer, int index,
+                        struct vtv_display *d);
 
 #endif
