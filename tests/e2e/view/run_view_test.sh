@@ -342,6 +342,11 @@ select)
     shot max.vts max_$cam --camera $cam.cam
     "$check" palette max_$cam.png grey --max 0 || fail "max $cam: values not of the map"
   done
+  # the reference (level 0 as one GL texture): GL_NEAREST, level 0 only
+  for cam in mag far; do
+    vt idx.vts --camera $cam.cam --frames 1 --reference --screenshot ref_$cam.png
+    "$check" palette ref_$cam.png index --max 0 || fail "reference $cam: colours not of a class"
+  done
   # --filtering asked for anyway: it wins, with a warning, and mixes classes (the control)
   for cam in mid min; do
     shot idx.vts tri_$cam --camera $cam.cam --filtering trilinear 2>tri.err
