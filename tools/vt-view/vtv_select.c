@@ -28,14 +28,12 @@ int vtv_select_store(const struct vts_store *s, char *why, size_t cap)
 
 void vtv_index_colour(uint32_t v, uint8_t rgb[3])
 {
-    uint32_t h = v * 0x9E3779B1u;
+    uint32_t h = (v + 1u) * 0x9E3779B1u;
     h ^= h >> 16;
     h *= 0x85EBCA6Bu;
     h ^= h >> 13;
-    for (int c = 0; c < 3; c++) {
-        uint32_t b = (h >> (8 * c)) & 255u;
-        rgb[c] = (uint8_t)(b < 48 ? 48 : b);
-    }
+    for (int c = 0; c < 3; c++)
+        rgb[c] = (uint8_t)(48u + ((((h >> (8 * c)) & 255u) * 208u) >> 8));
 }
 
 void vtv_select_display(const struct vts_store *s, uint32_t layer, int index, struct vtv_display *d)

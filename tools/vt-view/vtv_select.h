@@ -16,10 +16,11 @@
  * "colour=index"; at most cap bytes, NUL-terminated): 1, or 0 (why empty) for a filtered store. */
 int vtv_select_store(const struct vts_store *s, char *why, size_t cap);
 
-/* The colour of class value v on the index display (--ramp index): h = v * 0x9E3779B1, h ^= h >>
- * 16, h *= 0x85EBCA6B, h ^= h >> 13 (32-bit unsigned), then R, G, B = bytes 0, 1, 2 of h, each
- * raised to at least 48 (no class is near black, the background). The shader computes the same
- * (vtv_shaders.c, F_INDEX); distinct values almost always get distinct colours. */
+/* The colour of class value v on the index display (--ramp index): h = (v + 1) * 0x9E3779B1,
+ * h ^= h >> 16, h *= 0x85EBCA6B, h ^= h >> 13 (32-bit unsigned), then with b0, b1, b2 the bytes
+ * 0, 1, 2 of h: R, G, B = 48 + (bk * 208 >> 8), in 48..255 (no class near the background's dark
+ * grey). The shader computes the same (vtv_shaders.c, F_INDEX). The 256 values of a u8 layer get
+ * 256 distinct colours (view_unit); u16 values may share one (2 pairs among 0..4095). */
 void vtv_index_colour(uint32_t v, uint8_t rgb[3]);
 
 /* The index display (VTV_F_INDEX, replacing range and ramp) for store layer `layer` when index

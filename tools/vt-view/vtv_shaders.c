@@ -205,11 +205,11 @@ static const char display[] =
     "    c.rgb = mix(u_ramp[i], u_ramp[i + 1], s - float(i));\n"
     "#endif\n"
     "#ifdef F_INDEX\n" /* as vtv_index_colour() */
-    "    uint h = uint(c.r * u_index_scale + 0.5) * 0x9E3779B1u;\n"
+    "    uint h = (uint(c.r * u_index_scale + 0.5) + 1u) * 0x9E3779B1u;\n"
     "    h ^= h >> 16u;\n"
     "    h *= 0x85EBCA6Bu;\n"
     "    h ^= h >> 13u;\n"
-    "    c.rgb = max(vec3(uvec3(h, h >> 8u, h >> 16u) & 255u), 48.0) / 255.0;\n"
+    "    c.rgb = vec3(48u + (((uvec3(h, h >> 8u, h >> 16u) & 255u) * 208u) >> 8u)) / 255.0;\n"
     "#endif\n"
     "    return c;\n"
     "}\n";
