@@ -1,6 +1,6 @@
 /* Checks of vt-view's material rules and tangent frames without GL (tools/vt-view/vtv_material.c,
  * vtv_tangent.c; docs/viewer.md, "Materials and shading"), its colour ramps and the formats of
- * 16-bit and float layers (vtv_ramp.c, vtv_wide.c; "Ranges and ramps"), the index colours
+ * 16-bit and float layers (vtv_ramp.c, vtv_wide.c; "Ranges and ramps"), and the index colours
  * (vtv_select.c; "Categorical and min/max layers"). Prints one line per failed check and exits 1
  * when any failed. */
 #include <math.h>
