@@ -370,6 +370,14 @@ select)
   shot box.vts box_bil --camera mag.cam
   "$check" palette box_bil.png grey --min 1000 || fail "box store bilinear: no mixed values"
   grep -q '"filtering": "bilinear"' box_bil.json || fail "box store: not bilinear by default"
+  # a u16 class map (classes 40000 and 65535 among them): index colours of the u16 values
+  "$check" classes cls16.png 512 u16
+  "$vt_tiles" cls16.png -o idx16.vts --colour index --codec png --tile-size 64 --border 4 -q
+  for cam in mag min; do
+    shot idx16.vts idx16_$cam --camera $cam.cam
+    "$check" palette idx16_$cam.png index16 --max 0 || fail "u16 $cam: colours not of a class"
+  done
+  "$check" palette idx16_mag.png index --min 1000 || fail "u16: the u8 classes' colours (control)"
   # --ramp none shows the classes as grey values
   shot idx.vts grey_mid --camera mid.cam --ramp none
   "$check" palette grey_mid.png grey --max 0 || fail "--ramp none: not the class values"
