@@ -17,6 +17,7 @@
 #include "vtv_output.h"
 #include "vtv_reference.h"
 #include "vtv_render.h"
+#include "vtv_select.h"
 #include "vtv_stream.h"
 
 void vtv_options_default(struct vtv_options *o)
@@ -26,6 +27,7 @@ void vtv_options_default(struct vtv_options *o)
     o->height = 768;
     o->feedback_div = 4;
     o->aniso = 1;
+    o->nearest = -1;
     o->cache_tiles = 256;
     o->uploads = 32;
     o->threads = 2;
@@ -33,6 +35,7 @@ void vtv_options_default(struct vtv_options *o)
     o->prefetch = true;
     o->auto_lod = true;
     o->ramp = -1;
+    o->index = -1;
     const float dir[3] = {0.3f, 0.8f, 0.5f}, colour[3] = {0.85f, 0.85f, 0.85f},
                 ambient[3] = {0.15f, 0.15f, 0.15f};
     memcpy(o->light_dir, dir, sizeof(dir));
@@ -86,6 +89,8 @@ struct app {
     uint8_t *shot;
     bool three_d, trilinear;
     uint32_t aniso; /* 1: off */
+    bool nearest;   /* no filtering (--filtering nearest, or a selection store) */
+    bool select;    /* the store is a selection store and is shown unfiltered at start (key F) */
     char filtering[16];
     int debug;
     uint32_t layers[VTV_MAP_COUNT]; /* store layer per map kind, UINT32_MAX: none */
@@ -136,6 +141,8 @@ static void set_light(struct vtv_render *r, const struct vtv_options *o)
 
 static const char *filtering_name(struct app *a)
 {
+    if (a->nearest)
+        return "nearest";
     if (!a->trilinear)
         return "bilinear";
     if (a->aniso <= 1)
@@ -202,6 +209,7 @@ static void frame_view(struct app *a, uint64_t frame, struct vtv_view *v)
     }
     v->trilinear = a->trilinear;
     v->aniso = a->trilinear ? (int)a->aniso : 1;
+    v->nearest = a->nearest;
     v->debug = a->debug;
     for (int k = 0; k < 3; k++)
         v->eye[k] = a->three_d ? (float)cam.v[k] : 0.0f;
@@ -209,7 +217,9 @@ static void frame_view(struct app *a, uint64_t frame, struct vtv_view *v)
 
 static void apply_input(struct app *a, const struct vtv_input *in)
 {
-    if (in->toggle_filter)
+    if (in->toggle_filter && a->select)
+        a->nearest = !a->nearest; /* a selection store: unfiltered and --filtering's default */
+    else if (in->toggle_filter)
         a->trilinear = !a->trilinear;
     if (in->cycle_debug)
         a->debug = (a->debug + 1) % 3;
@@ -239,6 +249,20 @@ static int setup(struct app *a, struct vts_error *err)
         return vt_error_set(err, VTS_ERR_ARG, "%s: no layer '%s'", o->store_path, o->layer_name);
     const struct vts_geometry *g = vts_store_geometry(a->store);
     a->three_d = o->obj_path != NULL;
+    /* a selection store is sampled unfiltered unless --filtering asks otherwise */
+    char why[64];
+    bool sel = vtv_select_store(a->store, why, sizeof(why)) != 0;
+    a->nearest = o->nearest > 0 || (o->nearest < 0 && sel);
+    a->select = sel && a->nearest;
+    if (a->select)
+        vt_log(VT_LOG_INFO, "%s: %s: sampled without filtering (nearest level, nearest texel)",
+               o->store_path, why);
+    else if (sel)
+        vt_log(VT_LOG_WARN, "%s: %s: its values are not to be mixed, but --filtering %s mixes them",
+               o->store_path, why,
+               !o->trilinear  ? "bilinear"
+               : o->aniso > 1 ? "anisoN"
+                              : "trilinear");
     /* anisoN's taps reach N/2 texels past the footprint's centre: the border must hold them */
     a->aniso = o->aniso;
     if (a->aniso > 1 && a->aniso > 2 * g->border_px) {
@@ -282,6 +306,9 @@ static int setup(struct app *a, struct vts_error *err)
         o->has_range ? o->range : NULL, o->ramp, &a->render.display, err);
     if (st != 0)
         return st;
+    vtv_select_display(
+        a->store, a->layers[VTV_MAP_DIFFUSE] != UINT32_MAX ? a->layers[VTV_MAP_DIFFUSE] : layer,
+        o->index, &a->render.display);
     if (!o->reference_scene) {
         st = vtv_render_set_mesh(&a->render, &a->mesh,
                                  o->reference ? 1u << VTV_PROG_REFERENCE

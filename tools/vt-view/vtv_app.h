@@ -12,6 +12,8 @@ struct vtv_options {
     bool headless, sync, reference, trilinear, no_bc_upload, prefetch;
     int debug;
     uint32_t aniso; /* --filtering anisoN: N (implies trilinear), else 1 */
+    int nearest;    /* --filtering nearest: 1; another --filtering: 0 (filtered as asked); none:
+                       -1 (nearest for a selection store, vtv_select.h, else bilinear) */
     uint32_t width, height, orbit, frames, feedback_div, cache_tiles, uploads, threads;
     uint32_t ram_tiles; /* --ram-cache (UINT32_MAX: as --cache) */
     uint32_t reads;     /* --reads: --sync reads per frame (0: no limit) */
@@ -20,7 +22,8 @@ struct vtv_options {
     float lod_bias;                                  /* --lod-bias N */
     bool has_range;                                  /* --range MIN:MAX given */
     float range[2];                                  /* its MIN, MAX (MIN < MAX) */
-    int ramp; /* --ramp: enum vtv_ramp_kind, or -1 (default: a ramp for one-channel wide layers) */
+    int ramp;  /* --ramp: enum vtv_ramp_kind, or -1 (default: a ramp for one-channel wide layers) */
+    int index; /* --ramp index: 1; another --ramp: 0; none: -1 (index for a colour=index store) */
     const char *wang_path;       /* --wang PACK.vts: vtv_wang.h draws it instead */
     uint32_t extent_x, extent_y; /* --extent MxN: tiles of the Wang output in the frame */
     uint32_t origin_x, origin_y; /* --origin X,Y: its top-left tile */

@@ -40,7 +40,7 @@ int vtv_display_choose(const struct vts_store *s, uint32_t layer, const float *r
 {
     const struct vts_layer *l = vts_store_layer(s, layer);
     bool is_float = l->sample == VTS_SAMPLE_F16 || l->sample == VTS_SAMPLE_F32;
-    *out = (struct vtv_display){0, 0.0f, 1.0f, VTV_RAMP_NONE};
+    *out = (struct vtv_display){0, 0.0f, 1.0f, VTV_RAMP_NONE, 0.0f};
     const char *how = "given";
     if (range) {
         out->features |= VTV_F_RANGE;

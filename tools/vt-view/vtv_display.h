@@ -12,6 +12,8 @@ struct vtv_display {
     unsigned features; /* VTV_F_RANGE | VTV_F_RAMP bits, added to every shader variant */
     float min, max;    /* with VTV_F_RANGE */
     int ramp;          /* enum vtv_ramp_kind, with VTV_F_RAMP */
+    float
+        index_scale; /* with VTV_F_INDEX: the shader's value times this is the class (255, 65535) */
 };
 
 /* The display of store layer `layer`: range = the given [min, max], else (NULL) the layer's

@@ -28,7 +28,9 @@ static const char usage_text[] =
     "  --stats OUT.json      write per-frame statistics (- for standard output)\n"
     "  --feedback-scale 1/K  resolution of the tile-determination pass (default 1/4)\n"
     "  --filtering MODE      bilinear (default), trilinear or anisoN (N = 2..16 taps along the\n"
-    "                        footprint, trilinear between levels; at most twice the store's border)\n"
+    "                        footprint, trilinear between levels; at most twice the store's border),\n"
+    "                        or nearest (nearest level, nearest texel: the default for a store\n"
+    "                        built with a selection, filter=nearest|mode|min|max or colour=index)\n"
     "  --debug MODE          none (default), levels (colour by level used), tiles (outlines)\n"
     "  --cache N             physical cache size in tiles (default 256)\n"
     "  --uploads N           tile uploads per frame at most (default 32)\n"
@@ -56,7 +58,9 @@ static const char usage_text[] =
     "                        range metadata, else 0..1 for u8 and u16 layers and the range of\n"
     "                        the coarsest level for float layers)\n"
     "  --ramp NAME|none      one-channel layers through a colour ramp: dusk, heat, grey, or none\n"
-    "                        (default: dusk for one-channel u16/f16/f32 layers, else none)\n"
+    "                        (default: dusk for one-channel u16/f16/f32 layers, else none); index:\n"
+    "                        a distinct colour per value of a one-channel u8/u16 layer (default\n"
+    "                        for a colour=index store)\n"
     "  --bc-upload auto|off  BC1..BC5 tiles: upload the blocks compressed when the GL has S3TC\n"
     "                        or RGTC (auto, default) or decode them on the CPU (off)\n"
     "  --wang PACK.vts       draw a Wang pack (vt-wang) with TileTex: an output of --extent\n"
@@ -250,7 +254,8 @@ int main(int argc, char **argv)
             break;
         case OPT_FILTERING:
             o.aniso = 1;
-            if (strcmp(optarg, "bilinear") == 0)
+            o.nearest = strcmp(optarg, "nearest") == 0;
+            if (strcmp(optarg, "bilinear") == 0 || o.nearest)
                 o.trilinear = false;
             else if (strcmp(optarg, "trilinear") == 0)
                 o.trilinear = true;
@@ -258,7 +263,7 @@ int main(int argc, char **argv)
                 o.trilinear = true;
             else
                 return vt_usage_error(
-                    "--filtering '%s': expected bilinear, trilinear or anisoN (N in 2..16)",
+                    "--filtering '%s': expected bilinear, trilinear or anisoN (N in 2..16), or nearest",
                     optarg);
             break;
         case OPT_DEBUG:
@@ -359,8 +364,12 @@ int main(int argc, char **argv)
         }
         case OPT_RAMP: {
             enum vtv_ramp_kind k;
+            o.index = strcmp(optarg, "index") == 0;
+            if (o.index)
+                break;
             if (!vtv_ramp_parse(optarg, &k))
-                return vt_usage_error("--ramp '%s': expected dusk, heat, grey or none", optarg);
+                return vt_usage_error("--ramp '%s': expected dusk, heat, grey, index or none",
+                                      optarg);
             o.ramp = (int)k;
             break;
         }

@@ -5,11 +5,11 @@
 #include <string.h>
 
 static const char *const feature_names[VTV_F_COUNT] = {
-    "diffuse_map",  "alpha_test", "alpha_blend", "alpha_map", "lit", "normal_map",
-    "specular_map", "specular",   "emissive",    "range",     "ramp"};
+    "diffuse_map",  "alpha_test", "alpha_blend", "alpha_map", "lit",  "normal_map",
+    "specular_map", "specular",   "emissive",    "range",     "ramp", "index"};
 static const char *const feature_defines[VTV_F_COUNT] = {
-    "F_DIFFUSE_MAP",  "F_ALPHA_TEST", "F_ALPHA_BLEND", "F_ALPHA_MAP", "F_LIT", "F_NORMAL_MAP",
-    "F_SPECULAR_MAP", "F_SPECULAR",   "F_EMISSIVE",    "F_RANGE",     "F_RAMP"};
+    "F_DIFFUSE_MAP",  "F_ALPHA_TEST", "F_ALPHA_BLEND", "F_ALPHA_MAP", "F_LIT",  "F_NORMAL_MAP",
+    "F_SPECULAR_MAP", "F_SPECULAR",   "F_EMISSIVE",    "F_RANGE",     "F_RAMP", "F_INDEX"};
 
 static void copy3(float *dst, const double *src)
 {

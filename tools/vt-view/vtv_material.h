@@ -37,7 +37,8 @@ enum vtv_feature {
     VTV_F_EMISSIVE = 1u << 8,     /* Ke added */
     VTV_F_RANGE = 1u << 9,        /* map_Kd's values mapped from --range to [0,1] (the view's) */
     VTV_F_RAMP = 1u << 10,        /* map_Kd's first channel through a colour ramp (the view's) */
-    VTV_F_COUNT = 11
+    VTV_F_INDEX = 1u << 11,       /* map_Kd's first channel as a class: its colour (vtv_select.h) */
+    VTV_F_COUNT = 12
 };
 
 /* Alpha below this is cut out (a renderer's usual alpha test; vt-atlas's cut-out rule counts

@@ -265,6 +265,8 @@ void vtv_render_material_uniforms(const struct vtv_render *r, GLuint p,
         float span = d->max - d->min;
         glUniform2f(glGetUniformLocation(p, "u_range"), d->min, span != 0.0f ? 1.0f / span : 0.0f);
     }
+    if (d->features & VTV_F_INDEX)
+        glUniform1f(glGetUniformLocation(p, "u_index_scale"), d->index_scale);
     const float(*tab)[3] = vtv_ramp_table((enum vtv_ramp_kind)d->ramp);
     if ((d->features & VTV_F_RAMP) && tab) {
         float ramp[VTV_RAMP_POINTS][3]; /* sRGB-encoded colours: linear when the frame encodes */
@@ -470,8 +472,8 @@ static void common_uniforms(const struct vtv_render *r, GLuint p, const struct v
     glUniform1i(glGetUniformLocation(p, "u_max_level"), r->max_level);
     glUniform2iv(glGetUniformLocation(p, "u_pt_tiles"), r->max_level + 1, r->pt_tiles);
     glUniform1iv(glGetUniformLocation(p, "u_pt_row"), r->max_level + 1, r->pt_row);
-    glUniform1i(glGetUniformLocation(p, "u_trilinear"), v->trilinear ? 1 : 0);
-    glUniform1i(glGetUniformLocation(p, "u_aniso"), v->aniso > 1 ? v->aniso : 1);
+    glUniform1i(glGetUniformLocation(p, "u_trilinear"), v->trilinear && !v->nearest ? 1 : 0);
+    glUniform1i(glGetUniformLocation(p, "u_aniso"), v->aniso > 1 && !v->nearest ? v->aniso : 1);
     glUniform1i(glGetUniformLocation(p, "u_rel"), v->rel ? 1 : 0);
     glUniform2i(glGetUniformLocation(p, "u_origin"), v->rel ? v->origin[0] : 0,
                 v->rel ? v->origin[1] : 0);
@@ -493,6 +495,20 @@ static void bind_textures(const struct vtv_render *r)
         glBindTexture(GL_TEXTURE_2D, r->tex_phys[k]);
     }
     glActiveTexture(GL_TEXTURE0);
+}
+
+/* The physical textures' sampling: GL_NEAREST for a view without filtering (docs/viewer.md,
+ * "Categorical and min/max layers"), GL_LINEAR otherwise. */
+static void phys_filter(const struct vtv_render *r, bool nearest)
+{
+    GLint f = nearest ? GL_NEAREST : GL_LINEAR;
+    for (int k = 0; k < VTV_MAP_COUNT; k++) {
+        if (!r->tex_phys[k])
+            continue;
+        glBindTexture(GL_TEXTURE_2D, r->tex_phys[k]);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, f);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, f);
+    }
 }
 
 /* Blended groups: over what is drawn, without writing depth (not sorted among themselves). */
@@ -566,6 +582,7 @@ static void setup_vt(struct vtv_render *r, GLuint p, const struct vtv_view *v, v
 uint64_t vtv_render_vt(struct vtv_render *r, const struct vtv_view *v)
 {
     begin_main(r);
+    phys_filter(r, v->nearest);
     bind_textures(r);
     draw_groups(r, VTV_PROG_VT, v, setup_vt, NULL);
     glDisable(GL_FRAMEBUFFER_SRGB);
@@ -658,9 +675,14 @@ void vtv_render_reference(struct vtv_render *r, const struct vtv_view *v)
     vtv_render_reference_begin(r);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, r->tex_reference);
+    /* without filtering: level 0 only (GL's mip levels are averages, not the store's selections) */
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
-                    v->trilinear ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR_MIPMAP_NEAREST);
-    glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MAX_ANISOTROPY, (float)(v->aniso > 1 ? v->aniso : 1));
+                    v->nearest     ? GL_NEAREST
+                    : v->trilinear ? GL_LINEAR_MIPMAP_LINEAR
+                                   : GL_LINEAR_MIPMAP_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, v->nearest ? GL_NEAREST : GL_LINEAR);
+    glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MAX_ANISOTROPY,
+                    (float)(v->aniso > 1 && !v->nearest ? v->aniso : 1));
     glBindVertexArray(r->vao);
     for (uint32_t i = 0; i < r->group_count; i++) {
         const struct vtv_mesh_group *g = &r->groups[i];

@@ -89,6 +89,7 @@ struct vtv_view {
     float eye[3];  /* camera position (specular highlights) */
     bool trilinear;
     int aniso;     /* taps at most along the footprint (1: off) */
+    bool nearest;  /* no filtering: nearest level, nearest texel (a selection store's layers) */
     bool rel;      /* texcoords are level-0 texels relative to tile origin (the 2D view) */
     int origin[2]; /* with rel: that level-0 tile */
     int debug;     /* 0 none, 1 levels, 2 tiles */

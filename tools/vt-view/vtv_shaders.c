@@ -191,19 +191,28 @@ static const char shading[] =
  * [min, max] to [0,1] (u_range: min, 1 / (max - min)), then its first channel through the ramp
  * (u_ramp: VTV_RAMP_POINTS colours at 0, 1/8, ..., 1, linear in between; as vtv_ramp_at()).
  * Without F_RANGE and F_RAMP it is the identity. */
-static const char display[] = "uniform vec2 u_range;\n"
-                              "uniform vec3 u_ramp[9];\n"
-                              "vec4 vt_display(vec4 c) {\n"
-                              "#ifdef F_RANGE\n"
-                              "    c.rgb = (c.rgb - u_range.x) * u_range.y;\n"
-                              "#endif\n"
-                              "#ifdef F_RAMP\n"
-                              "    float s = clamp(c.r, 0.0, 1.0) * 8.0;\n"
-                              "    int i = min(int(s), 7);\n"
-                              "    c.rgb = mix(u_ramp[i], u_ramp[i + 1], s - float(i));\n"
-                              "#endif\n"
-                              "    return c;\n"
-                              "}\n";
+static const char display[] =
+    "uniform vec2 u_range;\n"
+    "uniform float u_index_scale;\n"
+    "uniform vec3 u_ramp[9];\n"
+    "vec4 vt_display(vec4 c) {\n"
+    "#ifdef F_RANGE\n"
+    "    c.rgb = (c.rgb - u_range.x) * u_range.y;\n"
+    "#endif\n"
+    "#ifdef F_RAMP\n"
+    "    float s = clamp(c.r, 0.0, 1.0) * 8.0;\n"
+    "    int i = min(int(s), 7);\n"
+    "    c.rgb = mix(u_ramp[i], u_ramp[i + 1], s - float(i));\n"
+    "#endif\n"
+    "#ifdef F_INDEX\n" /* as vtv_index_colour() */
+    "    uint h = (uint(c.r * u_index_scale + 0.5) + 1u) * 0x9E3779B1u;\n"
+    "    h ^= h >> 16u;\n"
+    "    h *= 0x85EBCA6Bu;\n"
+    "    h ^= h >> 13u;\n"
+    "    c.rgb = vec3(48u + (((uvec3(h, h >> 8u, h >> 16u) & 255u) * 208u) >> 8u)) / 255.0;\n"
+    "#endif\n"
+    "    return c;\n"
+    "}\n";
 
 static const char vt_body[] =
     "uniform int u_debug;\n"

@@ -314,6 +314,75 @@ aniso)
     grep -q "expected bilinear, trilinear or anisoN" bad.err || fail "--filtering $bad: message"
   done
   ;;
+select)
+  # Categorical and min/max stores (docs/viewer.md, "Categorical and min/max layers"): a land-class
+  # map (values 3, 7, 12 in patches, 1-texel roads of 200, specks of 40) built with --colour index
+  # (mode) and with --filter max is drawn unfiltered by default, at every zoom and on a plane seen
+  # at a grazing angle: every pixel is the colour of a class (index colours, or grey for the max
+  # store) or the background. The same stores with --filtering forced (the negative control)
+  # show mixed values.
+  "$check" classes cls.png 512
+  "$vt_tiles" cls.png -o idx.vts --colour index --codec png --tile-size 64 --border 4 -q
+  "$vt_tiles" cls.png -o max.vts --colour data --filter max --codec png --tile-size 64 --border 4 -q
+  echo "256 256 0.06" >far.cam # level 3 (64 x 64) and coarser wanted
+  printf 'v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\nf 1/1 2/2 3/3 4/4\n' \
+    >plane.vt.obj
+  echo "0 0.12 1.3 0 0 -0.6 50" >graze.cam
+  shot() { # STORE TAG ARGS...: a converged frame
+    local s=$1 tag=$2
+    shift 2
+    vt "$s" --frames 16 --sync --screenshot "$tag.png" --stats "$tag.json" "$@"
+    "$check" stat "$tag.json" fallback_pixels == 0 || fail "$tag: fallback after convergence"
+  }
+  for cam in mag mid min far; do
+    shot idx.vts idx_$cam --camera $cam.cam
+    "$check" palette idx_$cam.png index --max 0 || fail "idx $cam: colours not of a class"
+    grep -q '"filtering": "nearest"' idx_$cam.json || fail "idx $cam: stats do not name nearest"
+    grep -q '"index"' idx_$cam.json || fail "idx $cam: no index variant"
+    shot max.vts max_$cam --camera $cam.cam
+    "$check" palette max_$cam.png grey --max 0 || fail "max $cam: values not of the map"
+  done
+  # the reference (level 0 as one GL texture): GL_NEAREST, level 0 only
+  for cam in mag far; do
+    vt idx.vts --camera $cam.cam --frames 1 --reference --screenshot ref_$cam.png
+    "$check" palette ref_$cam.png index --max 0 || fail "reference $cam: colours not of a class"
+  done
+  # --filtering asked for anyway: it wins, with a warning, and mixes classes (the control)
+  for cam in mid min; do
+    shot idx.vts tri_$cam --camera $cam.cam --filtering trilinear 2>tri.err
+    grep -q "idx.vts: colour=index: its values are not to be mixed" tri.err || fail "no warning"
+    "$check" palette tri_$cam.png index --min 1000 || fail "trilinear $cam: no mixed colours"
+    shot max.vts maxtri_$cam --camera $cam.cam --filtering bilinear 2>/dev/null
+    "$check" palette maxtri_$cam.png grey --min 1000 || fail "bilinear max $cam: no mixed values"
+  done
+  # a grazing plane: aniso asked for by the user mixes, the default does not
+  shot idx.vts idx_graze plane.vt.obj --camera graze.cam --feedback-scale 1/1
+  "$check" palette idx_graze.png index --max 0 || fail "grazing plane: colours not of a class"
+  shot idx.vts aniso_graze plane.vt.obj --camera graze.cam --feedback-scale 1/1 \
+    --filtering aniso8 2>/dev/null
+  "$check" palette aniso_graze.png index --min 1000 || fail "aniso8: no mixed colours"
+  # --filtering nearest on a box-filtered store: level 0 magnified shows only its values, which
+  # the default bilinear mixes; the stats name the filtering
+  "$vt_tiles" cls.png -o box.vts --colour data --codec png --tile-size 64 --border 4 -q
+  shot box.vts box_near --camera mag.cam --filtering nearest
+  "$check" palette box_near.png grey --max 0 || fail "--filtering nearest: values not of the map"
+  grep -q '"filtering": "nearest"' box_near.json || fail "stats do not name nearest"
+  shot box.vts box_bil --camera mag.cam
+  "$check" palette box_bil.png grey --min 1000 || fail "box store bilinear: no mixed values"
+  grep -q '"filtering": "bilinear"' box_bil.json || fail "box store: not bilinear by default"
+  # a u16 class map (classes 40000 and 65535 among them): index colours of the u16 values
+  "$check" classes cls16.png 512 u16
+  "$vt_tiles" cls16.png -o idx16.vts --colour index --codec png --tile-size 64 --border 4 -q
+  for cam in mag min; do
+    shot idx16.vts idx16_$cam --camera $cam.cam
+    "$check" palette idx16_$cam.png index16 --max 0 || fail "u16 $cam: colours not of a class"
+  done
+  "$check" palette idx16_mag.png index --min 1000 || fail "u16: the u8 classes' colours (control)"
+  # --ramp none shows the classes as grey values
+  shot idx.vts grey_mid --camera mid.cam --ramp none
+  "$check" palette grey_mid.png grey --max 0 || fail "--ramp none: not the class values"
+  "$check" palette grey_mid.png index --min 10000 || fail "--ramp none: index colours"
+  ;;
 float_range)
   # 16-bit and float layers (stores made by vt-tiles from generated TIFF/PNG files): uploaded in
   # their own format (GL_R32F, GL_R16), shown through --range and a ramp; the 1:1 frame equals a

@@ -19,6 +19,17 @@
  *                                                     an RGB PNG of vtv_ramp_at((v - MIN) /
  *                                                     (MAX - MIN)), rounded; prints the
  *                                                     image's smallest and largest value
+ *   vtv_check classes OUT.png N [u16]                 an N x N u8 land-class map (values 3, 7,
+ *                                                     12, 40, 200: patches, 1-texel roads of
+ *                                                     200, single-texel specks of 40); u16: the
+ *                                                     same map as u16 with 40000 for 40 and
+ *                                                     65535 for 200
+ *   vtv_check palette A.png grey|index|index16 --max K | --min K  pixels whose RGB is not the
+ *                                                     colour of one of those classes (grey: v,
+ *                                                     v, v; index: vtv_index_colour; index16:
+ *                                                     that of the u16 classes) nor the background
+ *                                                     (26, 26, 26) number at most (at least) K
+ *                                                     (prints the count)
  * Exit 0 when the check holds, 1 when it does not, 2 on bad use or unreadable files. */
 #include <jansson.h>
 #include <math.h>
@@ -31,6 +42,7 @@
 #include "vt_image_input.h"
 #include "vt_png_file.h"
 #include "vtv_ramp.h"
+#include "vtv_select.h"
 
 static int load(const char *path, struct vt_image *img)
 {
@@ -324,6 +336,91 @@ static int ramp(int argc, char **argv)
     return rc;
 }
 
+static const uint8_t classes[] = {3, 7, 12, 40, 200};
+static const uint16_t classes16[] = {3, 7, 12, 40000, 65535}; /* the u16 map's */
+
+/* Land classes in irregular patches (one class per 17 x 13 cell of a hashed grid), crossed by
+ * 1-texel roads (200) every 37 rows and 29 columns, with single-texel specks (40) every 11th
+ * texel of some rows: thin features that any filtering mixes with their neighbours. */
+static int make_classes(int argc, char **argv)
+{
+    bool u16 = argc == 5 && !strcmp(argv[4], "u16");
+    if (argc != 4 && !u16)
+        return 2;
+    uint32_t n = (uint32_t)atoi(argv[3]);
+    struct vts_error err = {0};
+    struct vt_image img = {0};
+    struct vt_png_file_writer *w = NULL;
+    if (n < 8 || n > 8192 ||
+        vt_image_alloc(&img, n, n, 1, u16 ? VTS_SAMPLE_U16 : VTS_SAMPLE_U8, &err))
+        return 2;
+    for (uint32_t y = 0; y < n; y++)
+        for (uint32_t x = 0; x < n; x++) {
+            uint32_t h = (x / 17) * 0x9E3779B1u ^ (y / 13) * 0x85EBCA77u;
+            h ^= h >> 13;
+            h *= 0xC2B2AE3Du;
+            h ^= h >> 16;
+            size_t c = h % 3;
+            if (x % 29 == 5 || y % 37 == 9)
+                c = 4;
+            else if (y % 7 == 3 && x % 11 == 2)
+                c = 3;
+            if (u16)
+                *(uint16_t *)vt_image_at(&img, x, y) = classes16[c];
+            else
+                *(uint8_t *)vt_image_at(&img, x, y) = classes[c];
+        }
+    int rc = 0;
+    if (!(w = vt_png_file_writer_create(argv[2], n, n, 1, u16 ? 16 : 8, &err)) ||
+        vt_png_file_writer_rows(w, img.pixels, n, img.stride, &err) ||
+        vt_png_file_writer_finish(w, &err)) {
+        fprintf(stderr, "vtv_check: %s\n", err.message);
+        rc = 2;
+    }
+    vt_png_file_writer_destroy(w);
+    vt_image_release(&img);
+    return rc;
+}
+
+static int palette(int argc, char **argv)
+{
+    struct vt_image a = {0};
+    bool index16 = argc == 6 && !strcmp(argv[3], "index16");
+    bool index = index16 || (argc == 6 && !strcmp(argv[3], "index"));
+    if (argc != 6 || (!index && strcmp(argv[3], "grey")) ||
+        (strcmp(argv[4], "--max") && strcmp(argv[4], "--min")) || load(argv[2], &a))
+        return 2;
+    uint8_t colour[sizeof(classes)][3];
+    for (size_t i = 0; i < sizeof(classes); i++) {
+        if (index)
+            vtv_index_colour(index16 ? classes16[i] : classes[i], colour[i]);
+        else
+            memset(colour[i], classes[i], 3);
+    }
+    uint64_t off = 0;
+    unsigned seen = 0, classes_seen = 0;
+    for (uint32_t y = 0; y < a.height; y++)
+        for (uint32_t x = 0; x < a.width; x++) {
+            const uint8_t *p = vt_image_at(&a, x, y);
+            bool found = p[0] == 26 && p[1] == 26 && p[2] == 26; /* the background, 0.1 grey */
+            for (size_t i = 0; i < sizeof(classes) && !found; i++)
+                if (!memcmp(p, colour[i], 3)) {
+                    found = true;
+                    seen |= 1u << i;
+                }
+            off += !found;
+        }
+    for (size_t i = 0; i < sizeof(classes); i++)
+        classes_seen += (seen >> i) & 1;
+    uint64_t k = strtoull(argv[5], NULL, 10);
+    printf("%s: %llu of %u pixels not a class colour; %u of %zu classes seen\n", argv[2],
+           (unsigned long long)off, a.width * a.height, classes_seen, sizeof(classes));
+    vt_image_release(&a);
+    if (strcmp(argv[4], "--max") == 0) /* a frame without the map (all background) fails too */
+        return off > k || classes_seen < 3;
+    return off < k;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2)
@@ -344,5 +441,9 @@ int main(int argc, char **argv)
         return mean(argc, argv);
     if (!strcmp(argv[1], "ramp"))
         return ramp(argc, argv);
+    if (!strcmp(argv[1], "classes"))
+        return make_classes(argc, argv);
+    if (!strcmp(argv[1], "palette"))
+        return palette(argc, argv);
     return 2;
 }

@@ -1,13 +1,15 @@
 /* Checks of vt-view's material rules and tangent frames without GL (tools/vt-view/vtv_material.c,
  * vtv_tangent.c; docs/viewer.md, "Materials and shading"), its colour ramps and the formats of
- * 16-bit and float layers (vtv_ramp.c, vtv_wide.c; "Ranges and ramps"). Prints one line per failed
- * check and exits 1 when any failed. */
+ * 16-bit and float layers (vtv_ramp.c, vtv_wide.c; "Ranges and ramps"), and the index colours
+ * (vtv_select.c; "Categorical and min/max layers"). Prints one line per failed check and exits 1
+ * when any failed. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "vtv_material.h"
 #include "vtv_ramp.h"
+#include "vtv_select.h"
 #include "vtv_tangent.h"
 #include "vtv_wide.h"
 
@@ -227,12 +229,32 @@ static void wide_formats(void)
     CHECK(f.sample == VTS_SAMPLE_F16 && f.channels == 4 && vtv_wide_texel_bytes(&f) == 8);
 }
 
+/* The index colours (vtv_select.h): pinned values, as documented; all 256 u8 values distinct. */
+static void index_colours(void)
+{
+    uint8_t c[256][3];
+    for (uint32_t v = 0; v < 256; v++) {
+        vtv_index_colour(v, c[v]);
+        for (int k = 0; k < 3; k++)
+            CHECK(c[v][k] >= 48);
+        for (uint32_t u = 0; u < v; u++)
+            CHECK(memcmp(c[u], c[v], 3) != 0);
+    }
+    CHECK(c[0][0] == 150 && c[0][1] == 178 && c[0][2] == 57);
+    CHECK(c[3][0] == 240 && c[3][1] == 207 && c[3][2] == 118);
+    CHECK(c[200][0] == 78 && c[200][1] == 61 && c[200][2] == 191);
+    uint8_t top[3];
+    vtv_index_colour(65535, top);
+    CHECK(top[0] == 164 && top[1] == 56 && top[2] == 186);
+}
+
 int main(void)
 {
     material_rules();
     tangents();
     ramps();
     wide_formats();
+    index_colours();
     printf("%s\n", failures ? "vtv_unit: failures" : "vtv_unit: all checks passed");
     return failures ? 1 : 0;
 }
