@@ -188,6 +188,21 @@ static int use_layer(struct vtv_mesh *m, unsigned k, const char *layer, const ch
     return 0;
 }
 
+/* 1 + the index of pack path in m->wang_paths, added when new; 0 when out of memory. */
+static uint32_t use_wang(struct vtv_mesh *m, const char *path)
+{
+    for (uint32_t i = 0; i < m->wang_count; i++)
+        if (strcmp(m->wang_paths[i], path) == 0)
+            return i + 1;
+    char **p = realloc(m->wang_paths, (m->wang_count + 1) * sizeof(*p));
+    if (!p)
+        return 0;
+    m->wang_paths = p;
+    if (!(p[m->wang_count] = strdup(path)))
+        return 0;
+    return ++m->wang_count;
+}
+
 /* The material of bucket b from the MTL files (the first that defines it, as vt-atlas reads). */
 static int resolve(struct obj_ctx *c, const struct vt_mtl *mtls, struct vtv_mesh_group *g,
                    const struct bucket *b, struct vts_error *err)
@@ -215,6 +230,13 @@ static int resolve(struct obj_ctx *c, const struct vt_mtl *mtls, struct vtv_mesh
         maps |= 1u << kinds[i][1];
     }
     vtv_material_from_mtl(mm, maps, false, &g->mat);
+    if (mm->wang_path) { /* vt_wang: the diffuse from a pack (docs/wang.md, "Packs in scenes") */
+        if (!(g->mat.wang = use_wang(c->m, mm->wang_path)))
+            return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
+        g->mat.wang_scale = (float)mm->wang_scale;
+        if (!(mm->flags & VT_MTL_HAS_KD))
+            g->mat.kd[0] = g->mat.kd[1] = g->mat.kd[2] = 1.0f;
+    }
     return 0;
 }
 
@@ -359,5 +381,8 @@ void vtv_mesh_free(struct vtv_mesh *m)
     free(m->groups);
     for (int k = 0; k < VTV_MAP_COUNT; k++)
         free(m->layers[k]);
+    for (uint32_t i = 0; i < m->wang_count; i++)
+        free(m->wang_paths[i]);
+    free(m->wang_paths);
     memset(m, 0, sizeof(*m));
 }

@@ -27,14 +27,20 @@ struct wang_view {
     GLuint program, vao, fbo, rb, pack, perm, order, image, tilemap;
 };
 
-static GLuint compile_program(const char *fragment, const char *what, struct vts_error *err)
+static GLuint compile_program(bool tiletex, const char *what, struct vts_error *err)
 {
-    const char *src[2] = {vtv_wang_vertex_glsl, fragment};
+    static const char version[] = "#version 330 core\n";
+    const char *fragment[3] = {version, vtv_wang_hash_glsl, vtv_wang_tiletex_glsl};
     GLuint p = glCreateProgram();
     for (int i = 0; i < 2; i++) {
         GLuint s = glCreateShader(i ? GL_FRAGMENT_SHADER : GL_VERTEX_SHADER);
         GLint ok = 0;
-        glShaderSource(s, 1, &src[i], NULL);
+        if (i == 0)
+            glShaderSource(s, 1, (const char *const[]){vtv_wang_vertex_glsl}, NULL);
+        else if (tiletex)
+            glShaderSource(s, 3, fragment, NULL);
+        else
+            glShaderSource(s, 1, (const char *const[]){vtv_wang_reference_glsl}, NULL);
         glCompileShader(s);
         glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
         if (!ok) {
@@ -139,21 +145,23 @@ static int reduce_level(const struct vt_image *in, struct vt_image *out, struct 
  * section 5) coarser ones made here down to one texel per Wang tile, where the store stopped at
  * the level that fits in one of its tiles. Coarser than that a texel would mix tiles the hash
  * puts apart: the level of detail stops there. */
-static int load_pack(struct wang_view *w, struct vts_error *err)
+int vtv_wang_load_pack(struct vts_store *store, const struct vt_wang_info *info,
+                       struct vtv_wang_gl *out, struct vts_error *err)
 {
-    const struct vts_geometry *g = vts_store_geometry(w->store);
+    struct vtv_wang_gl *w = out;
+    const struct vts_geometry *g = vts_store_geometry(store);
     GLint max_size = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
     if (g->width > (uint32_t)max_size || g->height > (uint32_t)max_size)
         return vt_error_set(err, VTS_ERR_LIMIT,
                             "'%s': the pack (%ux%u texels) is larger than this GL's textures (%d)",
-                            vts_store_name(w->store), g->width, g->height, max_size);
+                            vts_store_name(store), g->width, g->height, max_size);
     w->levels = 0;
     glGenTextures(1, &w->pack);
     glBindTexture(GL_TEXTURE_2D, w->pack);
     struct vt_image img = {0}, next;
-    for (uint32_t level = 0; (w->info.tile_px >> level) > 0; level++) {
-        int rc = level < g->level_count ? vt_wang_pack_read_level(w->store, level, &next, err)
+    for (uint32_t level = 0; (info->tile_px >> level) > 0; level++) {
+        int rc = level < g->level_count ? vt_wang_pack_read_level(store, level, &next, err)
                                         : reduce_level(&img, &next, err);
         vt_image_release(&img);
         img = next;
@@ -171,11 +179,22 @@ static int load_pack(struct wang_view *w, struct vts_error *err)
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    w->perm = uint_texture(w->info.hash, w->info.hash_n, err);
+    w->perm = uint_texture(info->hash, info->hash_n, err);
     uint32_t none = 0;
-    w->order = w->info.order ? uint_texture(w->info.order, w->info.cols * w->info.rows, err)
-                             : uint_texture(&none, 1, err);
+    w->order = info->order ? uint_texture(info->order, info->cols * info->rows, err)
+                           : uint_texture(&none, 1, err);
     return w->perm && w->order ? 0 : err->status;
+}
+
+static int load_pack(struct wang_view *w, struct vts_error *err)
+{
+    struct vtv_wang_gl t = {0};
+    int rc = vtv_wang_load_pack(w->store, &w->info, &t, err);
+    w->pack = t.pack;
+    w->perm = t.perm;
+    w->order = t.order;
+    w->levels = t.levels;
+    return rc;
 }
 
 /* --tilemap (Wei's second implementation): the pack slot of every tile of one period of the hash
@@ -261,8 +280,7 @@ static int setup(struct wang_view *w, struct vts_error *err)
         rc = load_tilemap(w, err);
     if (rc)
         return rc;
-    w->program = compile_program(o->reference ? vtv_wang_reference_glsl : vtv_wang_tiletex_glsl,
-                                 o->reference ? "reference" : "TileTex", err);
+    w->program = compile_program(!o->reference, o->reference ? "reference" : "TileTex", err);
     if (!w->program)
         return err->status;
     glGenVertexArrays(1, &w->vao);
@@ -282,13 +300,13 @@ static int setup(struct wang_view *w, struct vts_error *err)
         return 0;
     }
     glUniform1i(glGetUniformLocation(p, "pack"), 0);
-    glUniform1i(glGetUniformLocation(p, "perm"), 1);
+    glUniform1i(glGetUniformLocation(p, "wang_perm"), 1);
     glUniform1i(glGetUniformLocation(p, "order"), 2);
     glUniform1i(glGetUniformLocation(p, "tilemap"), 3);
     glUniform1i(glGetUniformLocation(p, "use_map"), w->tilemap != 0);
-    glUniform1ui(glGetUniformLocation(p, "n"), w->info.hash_n);
-    glUniform1ui(glGetUniformLocation(p, "kh"), w->info.kh);
-    glUniform1ui(glGetUniformLocation(p, "kv"), w->info.kv);
+    glUniform1ui(glGetUniformLocation(p, "wang_n"), w->info.hash_n);
+    glUniform1ui(glGetUniformLocation(p, "wang_kh"), w->info.kh);
+    glUniform1ui(glGetUniformLocation(p, "wang_kv"), w->info.kv);
     glUniform1ui(glGetUniformLocation(p, "cols"), w->info.cols);
     glUniform1ui(glGetUniformLocation(p, "rows"), w->info.rows);
     glUniform1i(glGetUniformLocation(p, "corners"), w->info.corners);
