@@ -6,6 +6,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "tool_common.h"
 #include "vt_error.h"
 #include "vt_obj.h"
 
@@ -263,8 +264,11 @@ static int build(struct obj_ctx *c, struct vts_error *err)
     }
     int st = 0;
     for (size_t i = 0; c->materials && i < c->mtl_count && st == 0; i++)
-        if (vt_mtl_read(c->mtls[i], NULL, &mtls[i], err) != 0) /* unreadable: as vt-atlas, */
-            vt_mtl_release(&mtls[i]);                          /* the materials it lacks */
+        if (vt_mtl_read(c->mtls[i], NULL, &mtls[i], err) != 0) { /* unreadable: as vt-atlas, */
+            vt_log(VT_LOG_WARN, "%s (its materials are drawn plain)", err->message);
+            vt_mtl_release(&mtls[i]); /* the materials it lacks */
+            *err = (struct vts_error){0};
+        }
     size_t total = 0;
     for (uint32_t i = 0; i < c->bucket_count && st == 0; i++) {
         struct vtv_mesh_group *g = &m->groups[m->group_count++];
