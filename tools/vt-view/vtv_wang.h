@@ -6,21 +6,7 @@
 #ifndef VTV_WANG_H
 #define VTV_WANG_H
 
-#include "vt_wang_pack.h"
 #include "vtv_app.h"
-
-/* A pack as GL textures: the pack (sRGB, repeat, trilinear, its levels down to one texel per Wang
- * tile), the hash permutation and the shuffled order (R32UI, 256 columns; one 0 when unshuffled).
- */
-struct vtv_wang_gl {
-    unsigned pack, perm, order; /* GLuint */
-    uint32_t levels;
-};
-
-/* Uploads the pack of store (its info read with vt_wang_pack_open) into *out (textures created even
- * on failure are in *out: delete them). Needs a current GL context. */
-int vtv_wang_load_pack(struct vts_store *store, const struct vt_wang_info *info,
-                       struct vtv_wang_gl *out, struct vts_error *err);
 
 /* Runs the viewer on o->wang_path; returns the process exit status. */
 int vtv_wang_run(const struct vtv_options *o);

@@ -9,7 +9,7 @@
 
 #include "vt_error.h"
 #include "vtv_material.h"
-#include "vtv_wang.h"
+#include "vtv_wang_gl.h"
 
 #define VTV_WANG_UNIT 5 /* pack, permutation, order (after the page table and 4 physical maps) */
 
