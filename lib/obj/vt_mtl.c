@@ -139,6 +139,35 @@ static int mtl_alpha(struct mtl_parse *p, struct vt_mtl_material *m, char *cur,
     return mtl_bad(p, "vt_alpha must be none, test or blend, not", tok, err);
 }
 
+/* vt_wang PACK.vts [scale S]: the file name is one token (no spaces), S a finite number > 0. */
+static int mtl_wang(struct mtl_parse *p, struct vt_mtl_material *m, char *cur,
+                    struct vts_error *err)
+{
+    char *file = vt_text_token(&cur);
+    if (!file)
+        return mtl_bad(p, "missing pack after", "vt_wang", err);
+    double scale = 1.0;
+    char *opt = vt_text_token(&cur);
+    if (opt) {
+        char *num = strcmp(opt, "scale") == 0 ? vt_text_token(&cur) : NULL;
+        char *end = NULL;
+        if (!num)
+            return mtl_bad(p, "vt_wang takes 'scale S' after the pack, not", opt, err);
+        scale = strtod(num, &end);
+        if (*end || !isfinite(scale) || scale <= 0.0)
+            return mtl_bad(p, "vt_wang scale must be a number > 0, not", num, err);
+        if ((opt = vt_text_token(&cur)) != NULL)
+            return mtl_bad(p, "unexpected after vt_wang scale", opt, err);
+    }
+    char *path = vt_obj_resolve_path(p->src->name, file);
+    if (!path)
+        return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory", p->src->name);
+    free(m->wang_path); /* a repeated statement replaces the earlier one */
+    m->wang_path = path;
+    m->wang_scale = scale;
+    return 0;
+}
+
 static int map_kind(const char *kw)
 {
     static const char *const names[] = {"map_Kd", "map_Ka",   "map_Ks", "map_d", "map_Bump",
@@ -295,6 +324,8 @@ static int mtl_statement(struct mtl_parse *p, struct vts_error *err)
         return mtl_scalar(p, m, kw, cur, err);
     if (strcmp(kw, "vt_alpha") == 0)
         return mtl_alpha(p, m, cur, err);
+    if (strcmp(kw, "vt_wang") == 0)
+        return mtl_wang(p, m, cur, err);
     p->mtl->unknown_statements++;
     return 0;
 }
@@ -353,6 +384,7 @@ void vt_mtl_release(struct vt_mtl *mtl)
         return;
     for (size_t i = 0; i < mtl->material_count; i++) {
         free(mtl->materials[i].name);
+        free(mtl->materials[i].wang_path);
         for (int k = 0; k < VT_MTL_MAP_COUNT; k++)
             map_release(&mtl->materials[i].maps[k]);
     }

@@ -190,6 +190,11 @@ struct vt_mtl_material {
     int illum;
     unsigned alpha; /* enum vt_mtl_alpha (vt_alpha statement) */
     struct vt_mtl_map maps[VT_MTL_MAP_COUNT];
+    /* vtpipe's own statement "vt_wang PACK.vts [scale S]": the diffuse comes from the virtual
+     * output of a Wang pack (vt-wang) at output tile (u * S, -v * S) (docs/wang.md, "Packs in
+     * scenes"). wang_path: resolved like a map's (NULL without the statement); scale > 0. */
+    char *wang_path;
+    double wang_scale;
 };
 
 /* A parsed MTL file; caller-owned, freed with vt_mtl_release(). */

@@ -21,7 +21,7 @@ struct vt_tiles_image_options {
     const char *temp_dir;       /* pass images; NULL: the output's directory */
     uint32_t tile_size, border, quality, threads, colour, aniso, subsampling;
     bool border_set, colour_set, keep_content, wrap, best;
-    bool index; /* --colour index: colour data, filter mode or nearest ("colour" metadata) */
+    bool index;       /* --colour index: colour data, filter mode or nearest ("colour" metadata) */
     bool band_layers; /* --band-layers: one layer per band of the input (docs/geospatial.md) */
     enum vt_filter_kind filter;
     const char *filtering; /* bilinear, trilinear, anisoN (aniso holds 0, 1 or N) */

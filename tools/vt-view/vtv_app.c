@@ -19,6 +19,7 @@
 #include "vtv_render.h"
 #include "vtv_select.h"
 #include "vtv_stream.h"
+#include "vtv_wang_scene.h"
 
 void vtv_options_default(struct vtv_options *o)
 {
@@ -82,6 +83,7 @@ struct app {
     struct vtv_stream stream;
     struct vtv_mesh mesh;
     struct vtv_reference_scene ref_scene;
+    struct vtv_wang_scene wang; /* packs named by vt_wang materials */
     struct vtv_camera_path path;
     struct vtv_camera cam; /* interactive / default */
     struct vtv_frame_stats *stats;
@@ -277,6 +279,8 @@ static int setup(struct app *a, struct vts_error *err)
     bool materials = a->three_d && !o->layer_name && !(o->reference && !o->reference_scene);
     int st = a->three_d ? vtv_mesh_read_obj(&a->mesh, o->obj_path, materials, err)
                         : vtv_mesh_quad(&a->mesh, g->width, g->height, err);
+    if (st == 0)
+        st = vtv_wang_scene_open(&a->wang, a->mesh.wang_paths, a->mesh.wang_count, err);
     if (st != 0)
         return st;
     st = map_layers(a, layer, err);
@@ -298,8 +302,11 @@ static int setup(struct app *a, struct vts_error *err)
     uint32_t fw = (o->width + o->feedback_div - 1) / o->feedback_div;
     uint32_t fh = (o->height + o->feedback_div - 1) / o->feedback_div;
     st = vtv_render_init(&a->render, o->width, o->height, fw, fh, err);
+    if (st == 0)
+        st = vtv_wang_scene_upload(&a->wang, err);
     if (st != 0)
         return st;
+    a->render.wang = &a->wang;
     set_light(&a->render, o);
     st = vtv_display_choose(
         a->store, a->layers[VTV_MAP_DIFFUSE] != UINT32_MAX ? a->layers[VTV_MAP_DIFFUSE] : layer,
@@ -494,9 +501,12 @@ int vtv_app_run(const struct vtv_options *o)
         if (!o->reference)
             vtv_stream_free(&a.stream);
         vtv_reference_scene_free(&a.ref_scene);
+        vtv_wang_scene_free(&a.wang);
         vtv_render_free(&a.render);
         vtv_context_destroy(a.ctx);
     }
+    if (!a.ctx)
+        vtv_wang_scene_free(&a.wang);
     vtv_mesh_free(&a.mesh);
     vtv_camera_path_free(&a.path);
     vts_close(a.store);

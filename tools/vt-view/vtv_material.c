@@ -5,11 +5,12 @@
 #include <string.h>
 
 static const char *const feature_names[VTV_F_COUNT] = {
-    "diffuse_map",  "alpha_test", "alpha_blend", "alpha_map", "lit",  "normal_map",
-    "specular_map", "specular",   "emissive",    "range",     "ramp", "index"};
+    "diffuse_map", "alpha_test", "alpha_blend", "alpha_map", "lit",   "normal_map", "specular_map",
+    "specular",    "emissive",   "range",       "ramp",      "index", "wang"};
 static const char *const feature_defines[VTV_F_COUNT] = {
-    "F_DIFFUSE_MAP",  "F_ALPHA_TEST", "F_ALPHA_BLEND", "F_ALPHA_MAP", "F_LIT",  "F_NORMAL_MAP",
-    "F_SPECULAR_MAP", "F_SPECULAR",   "F_EMISSIVE",    "F_RANGE",     "F_RAMP", "F_INDEX"};
+    "F_DIFFUSE_MAP", "F_ALPHA_TEST",   "F_ALPHA_BLEND", "F_ALPHA_MAP", "F_LIT",
+    "F_NORMAL_MAP",  "F_SPECULAR_MAP", "F_SPECULAR",    "F_EMISSIVE",  "F_RANGE",
+    "F_RAMP",        "F_INDEX",        "F_WANG"};
 
 static void copy3(float *dst, const double *src)
 {
@@ -78,7 +79,9 @@ unsigned vtv_material_features(const struct vtv_material *m)
 {
     unsigned f = 0;
     bool has_alpha_map = m->maps & (1u << VTV_MAP_ALPHA);
-    if (m->maps & (1u << VTV_MAP_DIFFUSE))
+    if (m->wang)
+        f |= VTV_F_WANG;
+    else if (m->maps & (1u << VTV_MAP_DIFFUSE))
         f |= VTV_F_DIFFUSE_MAP;
     /* a test needs coverage: map_d, else map_Kd's alpha */
     if (m->alpha == VTV_ALPHA_TEST && (has_alpha_map || (f & VTV_F_DIFFUSE_MAP)))

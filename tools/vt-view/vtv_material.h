@@ -38,7 +38,8 @@ enum vtv_feature {
     VTV_F_RANGE = 1u << 9,        /* map_Kd's values mapped from --range to [0,1] (the view's) */
     VTV_F_RAMP = 1u << 10,        /* map_Kd's first channel through a colour ramp (the view's) */
     VTV_F_INDEX = 1u << 11,       /* map_Kd's first channel as a class: its colour (vtv_select.h) */
-    VTV_F_COUNT = 12
+    VTV_F_WANG = 1u << 12, /* diffuse from a Wang pack through TileTex (vt_wang), not map_Kd */
+    VTV_F_COUNT = 13
 };
 
 /* Alpha below this is cut out (a renderer's usual alpha test; vt-atlas's cut-out rule counts
@@ -50,8 +51,10 @@ struct vtv_material {
     float kd[3], ks[3], ke[3]; /* as in the MTL (sRGB-encoded values) */
     float ns, d;
     int illum;
-    unsigned alpha; /* enum vtv_alpha */
-    unsigned maps;  /* bit (1 << enum vtv_map): the material has that map */
+    unsigned alpha;   /* enum vtv_alpha */
+    unsigned maps;    /* bit (1 << enum vtv_map): the material has that map */
+    uint32_t wang;    /* 1 + the scene's pack (struct vtv_mesh wang_paths) of vt_wang, 0: none */
+    float wang_scale; /* vt_wang's scale: output tiles per unit of texture coordinate */
 };
 
 /* The material's constants and alpha mode from an MTL block, with vt-atlas's defaults (Kd 1 with
@@ -65,7 +68,8 @@ void vtv_material_from_mtl(const struct vt_mtl_material *m, unsigned maps, bool 
 /* The plain material: the shown layer as it is (no lighting, no alpha). */
 void vtv_material_plain(struct vtv_material *out);
 
-/* The features of a material (enum vtv_feature bits). */
+/* The features of a material (enum vtv_feature bits). A material with a pack (wang != 0) draws its
+ * diffuse through TileTex (VTV_F_WANG) instead of map_Kd. */
 unsigned vtv_material_features(const struct vtv_material *m);
 
 /* The name of feature bit k ("diffuse_map", "alpha_test", ...). */

@@ -6,6 +6,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "tool_common.h"
 #include "vt_error.h"
 #include "vt_obj.h"
 
@@ -188,6 +189,21 @@ static int use_layer(struct vtv_mesh *m, unsigned k, const char *layer, const ch
     return 0;
 }
 
+/* 1 + the index of pack path in m->wang_paths, added when new; 0 when out of memory. */
+static uint32_t use_wang(struct vtv_mesh *m, const char *path)
+{
+    for (uint32_t i = 0; i < m->wang_count; i++)
+        if (strcmp(m->wang_paths[i], path) == 0)
+            return i + 1;
+    char **p = realloc(m->wang_paths, (m->wang_count + 1) * sizeof(*p));
+    if (!p)
+        return 0;
+    m->wang_paths = p;
+    if (!(p[m->wang_count] = strdup(path)))
+        return 0;
+    return ++m->wang_count;
+}
+
 /* The material of bucket b from the MTL files (the first that defines it, as vt-atlas reads). */
 static int resolve(struct obj_ctx *c, const struct vt_mtl *mtls, struct vtv_mesh_group *g,
                    const struct bucket *b, struct vts_error *err)
@@ -215,6 +231,13 @@ static int resolve(struct obj_ctx *c, const struct vt_mtl *mtls, struct vtv_mesh
         maps |= 1u << kinds[i][1];
     }
     vtv_material_from_mtl(mm, maps, false, &g->mat);
+    if (mm->wang_path) { /* vt_wang: the diffuse from a pack (docs/wang.md, "Packs in scenes") */
+        if (!(g->mat.wang = use_wang(c->m, mm->wang_path)))
+            return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
+        g->mat.wang_scale = (float)mm->wang_scale;
+        if (!(mm->flags & VT_MTL_HAS_KD))
+            g->mat.kd[0] = g->mat.kd[1] = g->mat.kd[2] = 1.0f;
+    }
     return 0;
 }
 
@@ -241,8 +264,11 @@ static int build(struct obj_ctx *c, struct vts_error *err)
     }
     int st = 0;
     for (size_t i = 0; c->materials && i < c->mtl_count && st == 0; i++)
-        if (vt_mtl_read(c->mtls[i], NULL, &mtls[i], err) != 0) /* unreadable: as vt-atlas, */
-            vt_mtl_release(&mtls[i]);                          /* the materials it lacks */
+        if (vt_mtl_read(c->mtls[i], NULL, &mtls[i], err) != 0) { /* unreadable: as vt-atlas, */
+            vt_log(VT_LOG_WARN, "%s (its materials are drawn plain)", err->message);
+            vt_mtl_release(&mtls[i]); /* the materials it lacks */
+            *err = (struct vts_error){0};
+        }
     size_t total = 0;
     for (uint32_t i = 0; i < c->bucket_count && st == 0; i++) {
         struct vtv_mesh_group *g = &m->groups[m->group_count++];
@@ -359,5 +385,8 @@ void vtv_mesh_free(struct vtv_mesh *m)
     free(m->groups);
     for (int k = 0; k < VTV_MAP_COUNT; k++)
         free(m->layers[k]);
+    for (uint32_t i = 0; i < m->wang_count; i++)
+        free(m->wang_paths[i]);
+    free(m->wang_paths);
     memset(m, 0, sizeof(*m));
 }

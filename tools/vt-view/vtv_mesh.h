@@ -28,6 +28,9 @@ struct vtv_mesh {
     /* The store layer each map kind is drawn from (by name; NULL: no material maps it; "": the
      * shown layer, for a map that names the store without a layer). */
     char *layers[VTV_MAP_COUNT];
+    /* The Wang packs its materials name (vt_wang), each once (a material's wang is 1 + index). */
+    char **wang_paths;
+    uint32_t wang_count;
     double lo[3], hi[3]; /* bounding box */
 };
 

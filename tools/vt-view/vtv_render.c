@@ -10,6 +10,7 @@
 
 #include "vt_error.h"
 #include "vtv_shaders.h"
+#include "vtv_wang_scene.h"
 
 static GLuint compile(GLenum type, const char *const *src, int pieces, const char *what,
                       struct vts_error *err)
@@ -544,6 +545,8 @@ static void draw_groups(struct vtv_render *r, enum vtv_program_kind kind, const 
         }
         if (kind == VTV_PROG_VT)
             vtv_render_material_uniforms(r, p, &g->mat, v);
+        if (kind == VTV_PROG_VT && (g->features & VTV_F_WANG))
+            vtv_wang_scene_bind(r->wang, p, &g->mat);
         /* blended groups come last; they write no depth (the tile-determination pass: their
            requests replace those of what is behind them, a constant one asks for nothing) */
         bool blend = g->features & VTV_F_ALPHA_BLEND;

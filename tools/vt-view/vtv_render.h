@@ -44,6 +44,8 @@ struct vtv_light {
     float ambient[3];
 };
 
+struct vtv_wang_scene;
+
 struct vtv_render {
     uint32_t width, height;       /* main pass */
     uint32_t fb_width, fb_height; /* tile-determination pass */
@@ -82,6 +84,7 @@ struct vtv_render {
     GLenum bc_format; /* the diffuse physical texture's compressed format, or 0 */
     struct vtv_light light;
     float lod_bias; /* levels added to the level of detail of both passes (vtv_stream's) */
+    const struct vtv_wang_scene *wang; /* the packs of vt_wang materials (the app's), or NULL */
 };
 
 struct vtv_view {

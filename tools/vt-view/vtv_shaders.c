@@ -9,6 +9,7 @@
 #include "vtv_shaders.h"
 
 #include "vtv_material.h"
+#include "vtv_wang_glsl.h"
 
 const char vtv_vs_source[] = "#version 330 core\n"
                              "layout(location = 0) in vec3 a_pos;\n"
@@ -131,6 +132,9 @@ static const char shading[] =
     "uniform float u_ns, u_d;\n"
     "uniform vec3 u_light_dir, u_light_colour, u_ambient, u_eye;\n"
     "vec4 map_sample(int k);\n"
+    "#ifdef F_WANG\n"
+    "vec4 wang_sample();\n"
+    "#endif\n"
     "vec3 vt_shade(vec3 diffuse, vec3 ntex, vec3 spec) {\n"
     "    vec3 c = diffuse;\n"
     "#ifdef F_LIT\n"
@@ -158,7 +162,10 @@ static const char shading[] =
     "}\n"
     "vec4 vt_material() {\n"
     "    vec4 base = vec4(u_kd, 1.0);\n"
-    "#ifdef F_DIFFUSE_MAP\n"
+    "#if defined(F_WANG)\n"
+    "    vec4 dt = wang_sample();\n"
+    "    base = vec4(u_kd * dt.rgb, dt.a);\n"
+    "#elif defined(F_DIFFUSE_MAP)\n"
     "    vec4 dt = map_sample(0);\n"
     "    base = vec4(u_kd * dt.rgb, dt.a);\n"
     "#endif\n"
@@ -347,6 +354,10 @@ int vtv_shader_fragment(enum vtv_program_kind kind, unsigned features, char *def
     switch (kind) {
     case VTV_PROG_VT:
         pieces[n++] = vt_common;
+        if (features & VTV_F_WANG) { /* a material names a Wang pack (vt_wang) */
+            pieces[n++] = vtv_wang_hash_glsl;
+            pieces[n++] = vtv_wang_material_glsl;
+        }
         pieces[n++] = shading;
         pieces[n++] = display;
         pieces[n++] = vt_body;

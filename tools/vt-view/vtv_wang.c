@@ -9,11 +9,11 @@
 #include <time.h>
 
 #include "tool_common.h"
-#include "vt_filter.h"
 #include "vt_wang_pack.h"
 #include "vtv_context.h"
 #include "vtv_mipmap.h"
 #include "vtv_output.h"
+#include "vtv_wang_gl.h"
 #include "vtv_wang_glsl.h"
 
 struct wang_view {
@@ -27,14 +27,20 @@ struct wang_view {
     GLuint program, vao, fbo, rb, pack, perm, order, image, tilemap;
 };
 
-static GLuint compile_program(const char *fragment, const char *what, struct vts_error *err)
+static GLuint compile_program(bool tiletex, const char *what, struct vts_error *err)
 {
-    const char *src[2] = {vtv_wang_vertex_glsl, fragment};
+    static const char version[] = "#version 330 core\n";
+    const char *fragment[3] = {version, vtv_wang_hash_glsl, vtv_wang_tiletex_glsl};
     GLuint p = glCreateProgram();
     for (int i = 0; i < 2; i++) {
         GLuint s = glCreateShader(i ? GL_FRAGMENT_SHADER : GL_VERTEX_SHADER);
         GLint ok = 0;
-        glShaderSource(s, 1, &src[i], NULL);
+        if (i == 0)
+            glShaderSource(s, 1, (const char *const[]){vtv_wang_vertex_glsl}, NULL);
+        else if (tiletex)
+            glShaderSource(s, 3, fragment, NULL);
+        else
+            glShaderSource(s, 1, (const char *const[]){vtv_wang_reference_glsl}, NULL);
         glCompileShader(s);
         glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
         if (!ok) {
@@ -59,123 +65,15 @@ static GLuint compile_program(const char *fragment, const char *what, struct vts
     return p;
 }
 
-/* n entries as an R32UI texture of 256 columns. */
-static GLuint uint_texture(const uint32_t *v, uint32_t n, struct vts_error *err)
-{
-    uint32_t rows = (n + 255) / 256;
-    uint32_t *buf = calloc((size_t)rows * 256, sizeof *buf);
-    if (!buf) {
-        vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
-        return 0;
-    }
-    memcpy(buf, v, n * sizeof *v);
-    GLuint t;
-    glGenTextures(1, &t);
-    glBindTexture(GL_TEXTURE_2D, t);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, 256, (GLsizei)rows, 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                 buf);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    free(buf);
-    return t;
-}
-
-/* A level as an sRGB texture level: grey (and grey + alpha) expanded to RGB (RGBA). Returns 0 or
- * VTS_ERR_NOMEM. */
-static int upload_level(uint32_t level, const struct vt_image *img, struct vts_error *err)
-{
-    uint32_t ch = img->channels, out_ch = ch < 3 ? ch + 2 : ch;
-    uint8_t *buf = malloc((size_t)img->width * img->height * out_ch);
-    if (!buf)
-        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
-    for (uint32_t y = 0; y < img->height; y++) {
-        const uint8_t *src = vt_image_at(img, 0, y);
-        uint8_t *dst = buf + (size_t)y * img->width * out_ch;
-        for (uint32_t x = 0; x < img->width; x++)
-            for (uint32_t c = 0; c < out_ch; c++)
-                dst[x * out_ch + c] = src[x * ch + (ch >= 3 ? c : c < 3 ? 0 : 1)];
-    }
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTexImage2D(GL_TEXTURE_2D, (GLint)level, out_ch == 4 ? GL_SRGB8_ALPHA8 : GL_SRGB8,
-                 (GLsizei)img->width, (GLsizei)img->height, 0, out_ch == 4 ? GL_RGBA : GL_RGB,
-                 GL_UNSIGNED_BYTE, buf);
-    free(buf);
-    return 0;
-}
-
-/* The next coarser level of a pack level: the store's 2:1 box in linear light (lib/filter), with
- * wrap. A level of even size (tile_px a power of two) keeps every texel inside its Wang tile. */
-static int reduce_level(const struct vt_image *in, struct vt_image *out, struct vts_error *err)
-{
-    uint32_t ch = in->channels, w = in->width / 2 ? in->width / 2 : 1;
-    uint32_t h = in->height / 2 ? in->height / 2 : 1;
-    struct vt_pixel_mode mode = {ch, VTS_COLOUR_SRGB, ch % 2 == 0};
-    struct vt_kernel k;
-    vt_kernel_init(&k, VT_FILTER_BOX);
-    struct vt_edges edges = {in->width, in->height, true, true};
-    struct vt_fregion src = {0, 0, in->width, in->height, ch, NULL};
-    struct vt_fregion dst = {0, 0, w, h, ch, NULL};
-    size_t scratch_n = vt_filter_reduce_scratch(&k, &src, &dst);
-    src.px = malloc((size_t)in->width * in->height * ch * sizeof(float));
-    dst.px = malloc((size_t)w * h * ch * sizeof(float));
-    float *scratch = malloc(scratch_n * sizeof(float));
-    int rc = src.px && dst.px && scratch ? 0 : vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
-    for (uint32_t y = 0; rc == 0 && y < in->height; y++)
-        vt_filter_to_working(&mode, VTS_SAMPLE_U8, vt_image_at(in, 0, y),
-                             src.px + (size_t)y * in->width * ch, in->width);
-    if (rc == 0)
-        rc = vt_filter_reduce(&k, &edges, &src, &dst, scratch, scratch_n, err);
-    if (rc == 0)
-        rc = vt_image_alloc(out, w, h, ch, VTS_SAMPLE_U8, err);
-    if (rc == 0)
-        vt_filter_from_working(&mode, VTS_SAMPLE_U8, dst.px, out->pixels, (size_t)w * h);
-    free(src.px);
-    free(dst.px);
-    free(scratch);
-    return rc;
-}
-
-/* The pack's levels into a repeating, mipmapped sRGB texture: those of the store, then (Wei,
- * section 5) coarser ones made here down to one texel per Wang tile, where the store stopped at
- * the level that fits in one of its tiles. Coarser than that a texel would mix tiles the hash
- * puts apart: the level of detail stops there. */
 static int load_pack(struct wang_view *w, struct vts_error *err)
 {
-    const struct vts_geometry *g = vts_store_geometry(w->store);
-    GLint max_size = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
-    if (g->width > (uint32_t)max_size || g->height > (uint32_t)max_size)
-        return vt_error_set(err, VTS_ERR_LIMIT,
-                            "'%s': the pack (%ux%u texels) is larger than this GL's textures (%d)",
-                            vts_store_name(w->store), g->width, g->height, max_size);
-    w->levels = 0;
-    glGenTextures(1, &w->pack);
-    glBindTexture(GL_TEXTURE_2D, w->pack);
-    struct vt_image img = {0}, next;
-    for (uint32_t level = 0; (w->info.tile_px >> level) > 0; level++) {
-        int rc = level < g->level_count ? vt_wang_pack_read_level(w->store, level, &next, err)
-                                        : reduce_level(&img, &next, err);
-        vt_image_release(&img);
-        img = next;
-        if (rc == 0)
-            rc = upload_level(level, &img, err);
-        if (rc) {
-            vt_image_release(&img);
-            return rc;
-        }
-        w->levels = level + 1;
-    }
-    vt_image_release(&img);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, (GLint)w->levels - 1);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    w->perm = uint_texture(w->info.hash, w->info.hash_n, err);
-    uint32_t none = 0;
-    w->order = w->info.order ? uint_texture(w->info.order, w->info.cols * w->info.rows, err)
-                             : uint_texture(&none, 1, err);
-    return w->perm && w->order ? 0 : err->status;
+    struct vtv_wang_gl t = {0};
+    int rc = vtv_wang_load_pack(w->store, &w->info, &t, err);
+    w->pack = t.pack;
+    w->perm = t.perm;
+    w->order = t.order;
+    w->levels = t.levels;
+    return rc;
 }
 
 /* --tilemap (Wei's second implementation): the pack slot of every tile of one period of the hash
@@ -261,8 +159,7 @@ static int setup(struct wang_view *w, struct vts_error *err)
         rc = load_tilemap(w, err);
     if (rc)
         return rc;
-    w->program = compile_program(o->reference ? vtv_wang_reference_glsl : vtv_wang_tiletex_glsl,
-                                 o->reference ? "reference" : "TileTex", err);
+    w->program = compile_program(!o->reference, o->reference ? "reference" : "TileTex", err);
     if (!w->program)
         return err->status;
     glGenVertexArrays(1, &w->vao);
@@ -282,13 +179,13 @@ static int setup(struct wang_view *w, struct vts_error *err)
         return 0;
     }
     glUniform1i(glGetUniformLocation(p, "pack"), 0);
-    glUniform1i(glGetUniformLocation(p, "perm"), 1);
+    glUniform1i(glGetUniformLocation(p, "wang_perm"), 1);
     glUniform1i(glGetUniformLocation(p, "order"), 2);
     glUniform1i(glGetUniformLocation(p, "tilemap"), 3);
     glUniform1i(glGetUniformLocation(p, "use_map"), w->tilemap != 0);
-    glUniform1ui(glGetUniformLocation(p, "n"), w->info.hash_n);
-    glUniform1ui(glGetUniformLocation(p, "kh"), w->info.kh);
-    glUniform1ui(glGetUniformLocation(p, "kv"), w->info.kv);
+    glUniform1ui(glGetUniformLocation(p, "wang_n"), w->info.hash_n);
+    glUniform1ui(glGetUniformLocation(p, "wang_kh"), w->info.kh);
+    glUniform1ui(glGetUniformLocation(p, "wang_kv"), w->info.kv);
     glUniform1ui(glGetUniformLocation(p, "cols"), w->info.cols);
     glUniform1ui(glGetUniformLocation(p, "rows"), w->info.rows);
     glUniform1i(glGetUniformLocation(p, "corners"), w->info.corners);

@@ -7,9 +7,13 @@
 #ifndef VTV_WANG_GLSL_H
 #define VTV_WANG_GLSL_H
 
-/* The vertex shader (a full-screen triangle from gl_VertexID) and the two fragment shaders. */
+/* The vertex shader (a full-screen triangle from gl_VertexID) and the two fragment shaders: TileTex
+ * is "#version 330 core\n", vtv_wang_hash_glsl, then vtv_wang_tiletex_glsl. */
 extern const char vtv_wang_vertex_glsl[];
+extern const char vtv_wang_hash_glsl[];      /* the hash and TileIndex / CornerIndex; uniforms */
 extern const char vtv_wang_tiletex_glsl[];   /* uniforms: see the source */
 extern const char vtv_wang_reference_glsl[]; /* one texture over the extent */
+/* A scene material's TileTex, wang_sample() (after vtv_wang_hash_glsl and a v_uv input). */
+extern const char vtv_wang_material_glsl[];
 
 #endif

@@ -92,6 +92,65 @@ wang_hash_agrees)
   vt --wang p2x2.vts --extent 64x64 --origin 8,3 --tilemap --screenshot m.png
   if "$vcheck" psnr t.png m.png --min 30; then fail "a tile off gives the same frame"; fi
   ;;
+wang_scene)
+  # A scene material that names a pack (.vt.mtl "vt_wang PACK.vts scale S", docs/wang.md "Packs
+  # in scenes"): a 6 x 6 quad with UVs 0..6 drawn with TileTex from the pack, beside a quad whose
+  # map_Kd streams from a store. Seen square-on filling the frame (fovy 90 from 3 units), the pack
+  # quad shows output tiles (u, -v) = x 0..5, y -6..-1, i.e. --origin 0,58 of the 64-entry hash:
+  # compared with that region assembled on the CPU (--reference: lib/wang through libvts's
+  # vts_wang API) and with the 2D TileTex view. A wrong scale, a region one tile off and a pack
+  # of another seed fail the comparison; the streamed quad draws byte-identically with and
+  # without the pack material. A third quad above, UVs 0..12, names another pack at scale 0.5:
+  # the same 6 x 6 tiles of that pack (two packs, one program).
+  pack -o pack.vts
+  pack -o other.vts --seed 11
+  "$synth" wall.png --format png --size 256x256 --channels 3 --photo --seed 3
+  "$wang" wall.png -o store.vts --tile 32 --hash 64 --codec png --store-tile 64 --border 2
+  {
+    echo "mtllib scene.vt.mtl"
+    printf 'v %s\n' "-3 -3 0" "3 -3 0" "3 3 0" "-3 3 0" "5 -3 0" "11 -3 0" "11 3 0" "5 3 0"
+    printf 'v %s\n' "-3 5 0" "3 5 0" "3 11 0" "-3 11 0"
+    printf 'vt %s\n' "0 0" "6 0" "6 6" "0 6" "0 0" "1 0" "1 1" "0 1" "0 0" "12 0" "12 12" "0 12"
+    printf 'usemtl ground\nf 1/1 2/2 3/3 4/4\nusemtl wall\nf 5/5 6/6 7/7 8/8\n'
+    printf 'usemtl sand\nf 9/9 10/10 11/11 12/12\n'
+  } >scene.vt.obj
+  mtl() { # the ground material's vt_wang statement (none: empty)
+    printf 'newmtl ground\nKd 1 1 1\nillum 0\n%s\n\nnewmtl wall\nKd 1 1 1\nillum 0\n' "$1"
+    printf 'map_Kd store.vts#diffuse\n\nnewmtl sand\nillum 0\nvt_wang other.vts scale 0.5\n'
+  }
+  echo "0 0 3 0 0 0 90" >pack.cam
+  echo "4 0 9 4 0 0 90" >both.cam
+  scene() { vt store.vts scene.vt.obj --frames 2 --sync "$@"; }
+  mtl "vt_wang pack.vts scale 1" >scene.vt.mtl
+  scene --camera pack.cam --screenshot s.png
+  scene --camera both.cam --screenshot both.png --stats both.json
+  echo "0 8 3 0 8 0 90" >sand.cam
+  scene --camera sand.cam --screenshot sand.png
+  grep -q '{"features": \["wang"\], "faces": 2}' both.json || fail "one wang variant: $(cat both.json)"
+  vt --wang pack.vts --extent 6x6 --origin 0,58 --reference --screenshot ref.png
+  vt --wang pack.vts --extent 6x6 --origin 0,58 --screenshot tiletex.png
+  "$vcheck" psnr s.png ref.png --min 40 || fail "the pack material against the CPU assembly"
+  "$check" edges s.png ref.png 6 2
+  "$vcheck" psnr s.png tiletex.png --min 60 || fail "the pack material against the 2D TileTex"
+  vt --wang pack.vts --extent 6x6 --origin 0,57 --reference --screenshot off.png
+  if "$vcheck" psnr s.png off.png --min 30; then fail "a region one tile off passes"; fi
+  vt --wang other.vts --extent 6x6 --origin 0,58 --reference --screenshot seed.png
+  if "$vcheck" psnr s.png seed.png --min 30; then fail "a pack of another seed passes"; fi
+  "$vcheck" psnr sand.png seed.png --min 40 || fail "the second pack at scale 0.5"
+  mtl "vt_wang pack.vts scale 2" >scene.vt.mtl
+  scene --camera pack.cam --screenshot s2.png
+  if "$vcheck" psnr s2.png ref.png --min 30; then fail "scale 2 passes"; fi
+  # without the statement: the ground is its Kd; the streamed quad (right half) is unchanged
+  mtl "" >scene.vt.mtl
+  scene --camera both.cam --screenshot plain.png
+  "$vcheck" maxdiff both.png plain.png 128 0 128 256 --max 0 || fail "the streamed quad changed"
+  if "$vcheck" maxdiff both.png plain.png 0 0 128 256 --max 8; then fail "no pack drawn"; fi
+  # a statement naming a file that is not a pack: one line naming it, exit 1
+  mtl "vt_wang wall.png" >scene.vt.mtl
+  rc=0
+  scene --camera pack.cam --screenshot x.png 2>err.txt || rc=$?
+  [ $rc = 1 ] && grep -q "wall.png" err.txt || fail "a pack that is not one: rc $rc, $(cat err.txt)"
+  ;;
 wang_window)
   # The GLFW window (under xvfb-run) draws what the headless run draws. LeakSanitizer is off for
   # the window (the window case of run_view_test.sh says why).

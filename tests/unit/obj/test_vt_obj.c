@@ -477,6 +477,26 @@ static void check_mtl_error(const char *text, const struct vt_obj_limits *limits
     vt_mtl_release(&mtl);
 }
 
+/* vtpipe's vt_wang PACK [scale S] (docs/wang.md, "Packs in scenes"): the path resolved like a
+ * map's, scale 1 by default, a repeated statement replaces the earlier one. */
+static void mtl_reads_vt_wang(void)
+{
+    const char *text = "newmtl grass\nKd 1 1 1\nvt_wang packs/grass.vts scale 0.25\n"
+                       "newmtl sand\nvt_wang a.vts\nvt_wang /abs/sand.vts\nnewmtl plain\n";
+    struct vt_mtl mtl;
+    struct vts_error err;
+    VT_CHECK_INT_EQ(vt_mtl_parse_memory(text, strlen(text), "scene/w.mtl", NULL, &mtl, &err), 0);
+    const struct vt_mtl_material *g = vt_mtl_find(&mtl, "grass");
+    VT_CHECK(g && g->wang_path && strcmp(g->wang_path, "scene/packs/grass.vts") == 0);
+    VT_CHECK(g && g->wang_scale == 0.25 && g->kd[0] == 1);
+    const struct vt_mtl_material *s = vt_mtl_find(&mtl, "sand");
+    VT_CHECK(s && s->wang_path && strcmp(s->wang_path, "/abs/sand.vts") == 0 && s->wang_scale == 1);
+    const struct vt_mtl_material *p = vt_mtl_find(&mtl, "plain");
+    VT_CHECK(p && p->wang_path == NULL);
+    VT_CHECK_INT_EQ(mtl.unknown_statements, 0);
+    vt_mtl_release(&mtl);
+}
+
 static void mtl_errors_name_file_and_line(void)
 {
     check_mtl_error("newmtl a\nKd 1 x 0\n", NULL, VTS_ERR_BAD_INPUT, "'x.mtl':2: bad number 'x'");
@@ -487,6 +507,16 @@ static void mtl_errors_name_file_and_line(void)
                     "'x.mtl':3: vt_alpha must be none, test or blend, not 'cutout'");
     check_mtl_error("newmtl a\nvt_alpha test blend\n", NULL, VTS_ERR_BAD_INPUT,
                     "'x.mtl':2: vt_alpha must be none, test or blend, not 'test'");
+    check_mtl_error("newmtl a\nvt_wang\n", NULL, VTS_ERR_BAD_INPUT,
+                    "'x.mtl':2: missing pack after 'vt_wang'");
+    check_mtl_error("newmtl a\nvt_wang p.vts scale 0\n", NULL, VTS_ERR_BAD_INPUT,
+                    "'x.mtl':2: vt_wang scale must be a number > 0, not '0'");
+    check_mtl_error("newmtl a\nvt_wang p.vts scale 2x\n", NULL, VTS_ERR_BAD_INPUT,
+                    "'x.mtl':2: vt_wang scale must be a number > 0, not '2x'");
+    check_mtl_error("newmtl a\nvt_wang p.vts 2\n", NULL, VTS_ERR_BAD_INPUT,
+                    "'x.mtl':2: vt_wang takes 'scale S' after the pack, not '2'");
+    check_mtl_error("newmtl a\nvt_wang p.vts scale 2 3\n", NULL, VTS_ERR_BAD_INPUT,
+                    "'x.mtl':2: unexpected after vt_wang scale '3'");
     check_mtl_error("newmtl a\n\nmap_Kd -clamp maybe a.png\n", NULL, VTS_ERR_BAD_INPUT,
                     "'x.mtl':3: expected on or off after '-clamp'");
     check_mtl_error("newmtl a\nmap_Kd -zz 1 a.png\n", NULL, VTS_ERR_BAD_INPUT,
@@ -527,6 +557,7 @@ int main(void)
     VT_RUN(mtl_parses_map_options_and_paths_with_spaces);
     VT_RUN(mtl_backslash_paths_and_bump_options);
     VT_RUN(mtl_errors_name_file_and_line);
+    VT_RUN(mtl_reads_vt_wang);
     VT_RUN(mtl_maps_keep_the_line_of_their_statement);
     VT_RUN(mtl_file_maps_keep_their_line);
     char cmd[128];
