@@ -96,7 +96,7 @@ static int parse_options(int argc, char **argv, struct options *o)
                           .quality = 90,
                           .threads = vt_pool_cpu_count(),
                           .filter = VT_FILTER_BOX};
-    int c, verbosity = VT_LOG_WARN;
+    int c, status;
     uint32_t seed;
     opterr = 0;
     while ((c = vt_getopt_long(argc, argv, ":o:j:qvh", long_options)) != -1) {
@@ -155,23 +155,11 @@ static int parse_options(int argc, char **argv, struct options *o)
             if (vt_parse_u32(optarg, 1, 256, &o->threads))
                 return vt_usage_error("--threads must be 1..256, not '%s'", optarg);
             break;
-        case 'q':
-            verbosity = VT_LOG_ERROR;
-            break;
-        case 'v':
-            verbosity++;
-            break;
-        case 'h':
-            fputs(usage_text, stdout);
-            return VT_EXIT_OK;
-        case OPT_VERSION:
-            vt_print_version(stdout);
-            return VT_EXIT_OK;
         default:
-            return vt_usage_getopt_error(c, argv);
+            if ((status = vt_common_option(c, OPT_VERSION, usage_text, argv)) >= 0)
+                return status;
         }
     }
-    vt_log_set_level(verbosity);
     if (optind >= argc)
         return vt_usage_error("missing SAMPLE");
     if (optind + 1 < argc)

@@ -38,104 +38,28 @@
 
 #include "internal/vt_bc4_block.h"
 #include "internal/vt_bc_encode.h"
+#include "internal/vt_block_tile.h"
 #include "internal/vt_codec_impl.h"
 #include "internal/vt_squish_shim.h"
-#include "vt_checked.h"
 #include "vt_codec.h"
 #include "vt_error.h"
 
-#define BC_BLOCK_PX     4
+#define BC_BLOCK_PX     VT_BLOCK_TILE_PX
 #define BC_ALPHA_OPAQUE 128 /* BC1: alpha below this is stored as transparent */
 
 /* What tells bc1 from bc3. */
 struct bc_format {
-    const char *name;
-    uint32_t block_bytes;  /* 8 or 16 */
-    bool has_alpha_block;  /* bc3 */
-    uint32_t min_channels; /* accepted channel counts */
-    uint32_t max_channels;
+    struct vt_block_format block; /* name, block bytes (8 or 16), channel counts */
+    bool has_alpha_block;         /* bc3 */
 };
 
-static const struct bc_format bc1_format = {"bc1", 8, false, 3, 4};
-static const struct bc_format bc3_format = {"bc3", 16, true, 4, 4};
-
-/* ---- shapes ---- */
-
-static int bc_check_channels_and_sample(const struct bc_format *fmt, uint32_t channels,
-                                        uint32_t sample, struct vts_error *err)
-{
-    if (sample != VTS_SAMPLE_U8)
-        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
-                            "%s stores 8-bit samples only (got %s); use png or raw", fmt->name,
-                            vts_sample_name(sample));
-    if (channels < fmt->min_channels || channels > fmt->max_channels) {
-        if (fmt->has_alpha_block)
-            return vt_error_set(
-                err, VTS_ERR_UNSUPPORTED,
-                "bc3 needs 4 channels (RGBA), got %u: use bc1 for RGB (half the size), png or raw for grey or grey+alpha",
-                channels);
-        return vt_error_set(
-            err, VTS_ERR_UNSUPPORTED,
-            "bc1 needs 3 or 4 channels (RGB or RGBA), got %u: use png or raw for grey or grey+alpha",
-            channels);
-    }
-    return 0;
-}
-
-static int bc_check(const struct bc_format *fmt, uint32_t tile_px, uint32_t channels,
-                    uint32_t sample, struct vts_error *err)
-{
-    int rc = bc_check_channels_and_sample(fmt, channels, sample, err);
-    if (rc < 0)
-        return rc;
-    if (tile_px == 0 || tile_px % BC_BLOCK_PX != 0)
-        return vt_error_set(
-            err, VTS_ERR_UNSUPPORTED,
-            "%s needs a tile payload that is a multiple of 4 (got %u): use --tile-size 256 with --border 4 or --keep payload",
-            fmt->name, tile_px);
-    uint64_t blocks = (uint64_t)(tile_px / BC_BLOCK_PX) * (tile_px / BC_BLOCK_PX);
-    if (blocks * fmt->block_bytes > UINT32_MAX)
-        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
-                            "%s: a %ux%u tile exceeds the 4 GiB payload limit", fmt->name, tile_px,
-                            tile_px);
-    return 0;
-}
-
-/* Payload bytes of a width x height tile, or 0 when the shape is not a whole number of blocks. */
-static size_t bc_payload_bytes(const struct bc_format *fmt, uint32_t width, uint32_t height)
-{
-    size_t total;
-    if (width == 0 || height == 0 || width % BC_BLOCK_PX || height % BC_BLOCK_PX ||
-        !vt_size_mul3(width / BC_BLOCK_PX, height / BC_BLOCK_PX, fmt->block_bytes, &total))
-        return 0;
-    return total;
-}
-
-static size_t bc_encoded_bound(const struct bc_format *fmt, uint32_t width, uint32_t height,
-                               uint32_t channels, uint32_t sample)
-{
-    if (sample != VTS_SAMPLE_U8 || channels < fmt->min_channels || channels > fmt->max_channels)
-        return 0;
-    return bc_payload_bytes(fmt, width, height);
-}
-
-/* Checks that img is a tile this format stores; *payload_bytes receives its encoded size. */
-static int bc_image_layout(const struct bc_format *fmt, const struct vt_image *img,
-                           const char *role, size_t *payload_bytes, struct vts_error *err)
-{
-    int rc = bc_check_channels_and_sample(fmt, img->channels, img->sample, err);
-    if (rc < 0)
-        return rc;
-    *payload_bytes = bc_payload_bytes(fmt, img->width, img->height);
-    if (*payload_bytes == 0)
-        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
-                            "%s: a %ux%u %s image is not a whole number of 4x4 blocks", fmt->name,
-                            img->width, img->height, role);
-    if (!img->pixels || img->stride < (size_t)img->width * img->channels)
-        return vt_error_set(err, VTS_ERR_ARG, "%s codec: invalid %s image (stride %zu, %ux%u)",
-                            fmt->name, role, img->stride, img->width, img->height);
-    return 0;
-}
+static const struct bc_format bc1_format = {
+    {"bc1", 8, 3, 4, "3 or 4 channels (RGB or RGBA)", "use png or raw for grey or grey+alpha"},
+    false};
+static const struct bc_format bc3_format = {
+    {"bc3", 16, 4, 4, "4 channels (RGBA)",
+     "use bc1 for RGB (half the size), png or raw for grey or grey+alpha"},
+    true};
 
 /* ---- encoding ---- */
 
@@ -205,27 +129,22 @@ static int bc_encode(const struct bc_format *fmt, const struct vt_image *src,
 {
     size_t payload_bytes;
     *out_len = 0;
-    int rc = bc_image_layout(fmt, src, "source", &payload_bytes, err);
+    int effort = params ? params->effort : VT_CODEC_BC_FAST;
+    bool effort_valid = effort == VT_CODEC_BC_FAST || effort == VT_CODEC_BC_BEST ||
+                        effort == VT_CODEC_BC_REF_STB_DXT || effort == VT_CODEC_BC_REF_SQUISH;
+    int rc = vt_block_tile_encode_check(&fmt->block, src, effort, effort_valid, dst_capacity,
+                                        &payload_bytes, err);
     if (rc < 0)
         return rc;
-    int effort = params ? params->effort : VT_CODEC_BC_FAST;
-    if (effort != VT_CODEC_BC_FAST && effort != VT_CODEC_BC_BEST &&
-        effort != VT_CODEC_BC_REF_STB_DXT && effort != VT_CODEC_BC_REF_SQUISH)
-        return vt_error_set(err, VTS_ERR_ARG,
-                            "%s codec: effort %d is neither 0 (fast) nor 1 (best)", fmt->name,
-                            effort);
-    if (dst_capacity < payload_bytes)
-        return vt_error_set(err, VTS_ERR_LIMIT, "%s encode: output buffer of %zu bytes < %zu",
-                            fmt->name, dst_capacity, payload_bytes);
     unsigned char *out = dst;
     _Alignas(16) unsigned char rgba[64]; /* stb_dxt reads the texels as 32-bit words */
     for (uint32_t y0 = 0; y0 < src->height; y0 += BC_BLOCK_PX) {
-        for (uint32_t x0 = 0; x0 < src->width; x0 += BC_BLOCK_PX, out += fmt->block_bytes) {
+        for (uint32_t x0 = 0; x0 < src->width; x0 += BC_BLOCK_PX, out += fmt->block.block_bytes) {
             bc_gather_block(src, x0, y0, rgba);
             if (bc_encode_block(fmt, rgba, effort, src->channels == 4, out) < 0)
                 return vt_error_set(err, VTS_ERR_NOMEM,
-                                    "%s encode: libsquish failed at block (%u, %u)", fmt->name,
-                                    x0 / BC_BLOCK_PX, y0 / BC_BLOCK_PX);
+                                    "%s encode: libsquish failed at block (%u, %u)",
+                                    fmt->block.name, x0 / BC_BLOCK_PX, y0 / BC_BLOCK_PX);
         }
     }
     *out_len = payload_bytes;
@@ -289,20 +208,13 @@ static void bc_scatter_block(unsigned char texels[16][4], struct vt_image *dst, 
 static int bc_decode(const struct bc_format *fmt, const void *src, size_t src_len,
                      struct vt_image *dst, struct vts_error *err)
 {
-    size_t payload_bytes;
-    int rc = bc_image_layout(fmt, dst, "destination", &payload_bytes, err);
+    int rc = vt_block_tile_decode_check(&fmt->block, src_len, dst, err);
     if (rc < 0)
         return rc;
-    if (src_len != payload_bytes)
-        return vt_error_set(
-            err, VTS_ERR_BAD_INPUT,
-            "%s payload: %zu bytes != %zu expected for a %ux%u tile (%u blocks of %u bytes)",
-            fmt->name, src_len, payload_bytes, dst->width, dst->height,
-            (unsigned)(payload_bytes / fmt->block_bytes), fmt->block_bytes);
     const unsigned char *block = src;
     unsigned char texels[16][4];
     for (uint32_t y0 = 0; y0 < dst->height; y0 += BC_BLOCK_PX) {
-        for (uint32_t x0 = 0; x0 < dst->width; x0 += BC_BLOCK_PX, block += fmt->block_bytes) {
+        for (uint32_t x0 = 0; x0 < dst->width; x0 += BC_BLOCK_PX, block += fmt->block.block_bytes) {
             if (fmt->has_alpha_block) {
                 bc_decode_colour_block(block + 8, true, texels);
                 vt_bc4_block_decode(block, &texels[0][3], 4);
@@ -319,12 +231,12 @@ static int bc_decode(const struct bc_format *fmt, const void *src, size_t src_le
 
 static int bc1_check(uint32_t tile_px, uint32_t channels, uint32_t sample, struct vts_error *err)
 {
-    return bc_check(&bc1_format, tile_px, channels, sample, err);
+    return vt_block_tile_check(&bc1_format.block, tile_px, channels, sample, err);
 }
 
 static size_t bc1_encoded_bound(uint32_t width, uint32_t height, uint32_t channels, uint32_t sample)
 {
-    return bc_encoded_bound(&bc1_format, width, height, channels, sample);
+    return vt_block_tile_encoded_bound(&bc1_format.block, width, height, channels, sample);
 }
 
 static int bc1_encode(const struct vt_image *src, const struct vt_codec_params *params, void *dst,
@@ -340,12 +252,12 @@ static int bc1_decode(const void *src, size_t src_len, struct vt_image *dst, str
 
 static int bc3_check(uint32_t tile_px, uint32_t channels, uint32_t sample, struct vts_error *err)
 {
-    return bc_check(&bc3_format, tile_px, channels, sample, err);
+    return vt_block_tile_check(&bc3_format.block, tile_px, channels, sample, err);
 }
 
 static size_t bc3_encoded_bound(uint32_t width, uint32_t height, uint32_t channels, uint32_t sample)
 {
-    return bc_encoded_bound(&bc3_format, width, height, channels, sample);
+    return vt_block_tile_encoded_bound(&bc3_format.block, width, height, channels, sample);
 }
 
 static int bc3_encode(const struct vt_image *src, const struct vt_codec_params *params, void *dst,

@@ -24,102 +24,27 @@
 #include <string.h>
 
 #include "internal/vt_bc4_block.h"
+#include "internal/vt_block_tile.h"
 #include "internal/vt_codec_impl.h"
-#include "vt_checked.h"
 #include "vt_codec.h"
 #include "vt_error.h"
 
-#define RGTC_BLOCK_PX 4
+#define RGTC_BLOCK_PX VT_BLOCK_TILE_PX
 
 /* What tells bc4 from bc5. */
 struct rgtc_format {
-    const char *name;
-    uint32_t block_bytes;  /* 8 or 16 */
-    uint32_t planes;       /* BC4 blocks per block: 1 or 2 */
-    uint32_t min_channels; /* accepted channel counts */
-    uint32_t max_channels;
+    struct vt_block_format block; /* name, block bytes (8 or 16), channel counts */
+    uint32_t planes;              /* BC4 blocks per block: 1 or 2 */
 };
 
-static const struct rgtc_format bc4_format = {"bc4", 8, 1, 1, 1};
-static const struct rgtc_format bc5_format = {"bc5", 16, 2, 2, 3};
-
-/* ---- shapes ---- */
-
-static int rgtc_check_channels_and_sample(const struct rgtc_format *fmt, uint32_t channels,
-                                          uint32_t sample, struct vts_error *err)
-{
-    if (sample != VTS_SAMPLE_U8)
-        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
-                            "%s stores 8-bit samples only (got %s); use png or raw", fmt->name,
-                            vts_sample_name(sample));
-    if (channels < fmt->min_channels || channels > fmt->max_channels) {
-        if (fmt->planes == 1)
-            return vt_error_set(
-                err, VTS_ERR_UNSUPPORTED,
-                "bc4 needs 1 channel, got %u: use bc5 for two channels or a normal map, bc1 or bc3 for colour",
-                channels);
-        return vt_error_set(
-            err, VTS_ERR_UNSUPPORTED,
-            "bc5 needs 2 channels or a 3-channel normal map, got %u: use bc4 for one channel, bc1 or bc3 for colour",
-            channels);
-    }
-    return 0;
-}
-
-static int rgtc_check(const struct rgtc_format *fmt, uint32_t tile_px, uint32_t channels,
-                      uint32_t sample, struct vts_error *err)
-{
-    int rc = rgtc_check_channels_and_sample(fmt, channels, sample, err);
-    if (rc < 0)
-        return rc;
-    if (tile_px == 0 || tile_px % RGTC_BLOCK_PX != 0)
-        return vt_error_set(
-            err, VTS_ERR_UNSUPPORTED,
-            "%s needs a tile payload that is a multiple of 4 (got %u): use --tile-size 256 with --border 4 or --keep payload",
-            fmt->name, tile_px);
-    uint64_t blocks = (uint64_t)(tile_px / RGTC_BLOCK_PX) * (tile_px / RGTC_BLOCK_PX);
-    if (blocks * fmt->block_bytes > UINT32_MAX)
-        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
-                            "%s: a %ux%u tile exceeds the 4 GiB payload limit", fmt->name, tile_px,
-                            tile_px);
-    return 0;
-}
-
-/* Payload bytes of a width x height tile, or 0 when the shape is not a whole number of blocks. */
-static size_t rgtc_payload_bytes(const struct rgtc_format *fmt, uint32_t width, uint32_t height)
-{
-    size_t total;
-    if (width == 0 || height == 0 || width % RGTC_BLOCK_PX || height % RGTC_BLOCK_PX ||
-        !vt_size_mul3(width / RGTC_BLOCK_PX, height / RGTC_BLOCK_PX, fmt->block_bytes, &total))
-        return 0;
-    return total;
-}
-
-static size_t rgtc_encoded_bound(const struct rgtc_format *fmt, uint32_t width, uint32_t height,
-                                 uint32_t channels, uint32_t sample)
-{
-    if (sample != VTS_SAMPLE_U8 || channels < fmt->min_channels || channels > fmt->max_channels)
-        return 0;
-    return rgtc_payload_bytes(fmt, width, height);
-}
-
-/* Checks that img is a tile this format stores; *payload_bytes receives its encoded size. */
-static int rgtc_image_layout(const struct rgtc_format *fmt, const struct vt_image *img,
-                             const char *role, size_t *payload_bytes, struct vts_error *err)
-{
-    int rc = rgtc_check_channels_and_sample(fmt, img->channels, img->sample, err);
-    if (rc < 0)
-        return rc;
-    *payload_bytes = rgtc_payload_bytes(fmt, img->width, img->height);
-    if (*payload_bytes == 0)
-        return vt_error_set(err, VTS_ERR_UNSUPPORTED,
-                            "%s: a %ux%u %s image is not a whole number of 4x4 blocks", fmt->name,
-                            img->width, img->height, role);
-    if (!img->pixels || img->stride < (size_t)img->width * img->channels)
-        return vt_error_set(err, VTS_ERR_ARG, "%s codec: invalid %s image (stride %zu, %ux%u)",
-                            fmt->name, role, img->stride, img->width, img->height);
-    return 0;
-}
+static const struct rgtc_format bc4_format = {
+    {"bc4", 8, 1, 1, "1 channel",
+     "use bc5 for two channels or a normal map, bc1 or bc3 for colour"},
+    1};
+static const struct rgtc_format bc5_format = {{"bc5", 16, 2, 3,
+                                               "2 channels or a 3-channel normal map",
+                                               "use bc4 for one channel, bc1 or bc3 for colour"},
+                                              2};
 
 /* ---- encoding ---- */
 
@@ -142,17 +67,12 @@ static int rgtc_encode(const struct rgtc_format *fmt, const struct vt_image *src
 {
     size_t payload_bytes;
     *out_len = 0;
-    int rc = rgtc_image_layout(fmt, src, "source", &payload_bytes, err);
+    int effort = params ? params->effort : VT_CODEC_BC_FAST;
+    bool effort_valid = effort == VT_CODEC_BC_FAST || effort == VT_CODEC_BC_BEST;
+    int rc = vt_block_tile_encode_check(&fmt->block, src, effort, effort_valid, dst_capacity,
+                                        &payload_bytes, err);
     if (rc < 0)
         return rc;
-    int effort = params ? params->effort : VT_CODEC_BC_FAST;
-    if (effort != VT_CODEC_BC_FAST && effort != VT_CODEC_BC_BEST)
-        return vt_error_set(err, VTS_ERR_ARG,
-                            "%s codec: effort %d is neither 0 (fast) nor 1 (best)", fmt->name,
-                            effort);
-    if (dst_capacity < payload_bytes)
-        return vt_error_set(err, VTS_ERR_LIMIT, "%s encode: output buffer of %zu bytes < %zu",
-                            fmt->name, dst_capacity, payload_bytes);
     unsigned flags = effort == VT_CODEC_BC_BEST ? VT_BC4_BLOCK_BEST | VT_BC4_BLOCK_EXTEND : 0;
     unsigned char *out = dst, values[16];
     for (uint32_t y0 = 0; y0 < src->height; y0 += RGTC_BLOCK_PX) {
@@ -181,21 +101,15 @@ static unsigned char rgtc_normal_z(unsigned char r, unsigned char g)
 static int rgtc_decode(const struct rgtc_format *fmt, const void *src, size_t src_len,
                        struct vt_image *dst, struct vts_error *err)
 {
-    size_t payload_bytes;
-    int rc = rgtc_image_layout(fmt, dst, "destination", &payload_bytes, err);
+    int rc = vt_block_tile_decode_check(&fmt->block, src_len, dst, err);
     if (rc < 0)
         return rc;
-    if (src_len != payload_bytes)
-        return vt_error_set(
-            err, VTS_ERR_BAD_INPUT,
-            "%s payload: %zu bytes != %zu expected for a %ux%u tile (%u blocks of %u bytes)",
-            fmt->name, src_len, payload_bytes, dst->width, dst->height,
-            (unsigned)(payload_bytes / fmt->block_bytes), fmt->block_bytes);
     const unsigned char *block = src;
     unsigned char texels[16][3];
     uint32_t ch = dst->channels;
     for (uint32_t y0 = 0; y0 < dst->height; y0 += RGTC_BLOCK_PX) {
-        for (uint32_t x0 = 0; x0 < dst->width; x0 += RGTC_BLOCK_PX, block += fmt->block_bytes) {
+        for (uint32_t x0 = 0; x0 < dst->width;
+             x0 += RGTC_BLOCK_PX, block += fmt->block.block_bytes) {
             for (uint32_t c = 0; c < fmt->planes; c++)
                 vt_bc4_block_decode(block + 8 * c, &texels[0][c], 3);
             if (ch == 3)
@@ -216,12 +130,12 @@ static int rgtc_decode(const struct rgtc_format *fmt, const void *src, size_t sr
 
 static int bc4_check(uint32_t tile_px, uint32_t channels, uint32_t sample, struct vts_error *err)
 {
-    return rgtc_check(&bc4_format, tile_px, channels, sample, err);
+    return vt_block_tile_check(&bc4_format.block, tile_px, channels, sample, err);
 }
 
 static size_t bc4_encoded_bound(uint32_t width, uint32_t height, uint32_t channels, uint32_t sample)
 {
-    return rgtc_encoded_bound(&bc4_format, width, height, channels, sample);
+    return vt_block_tile_encoded_bound(&bc4_format.block, width, height, channels, sample);
 }
 
 static int bc4_encode(const struct vt_image *src, const struct vt_codec_params *params, void *dst,
@@ -237,12 +151,12 @@ static int bc4_decode(const void *src, size_t src_len, struct vt_image *dst, str
 
 static int bc5_check(uint32_t tile_px, uint32_t channels, uint32_t sample, struct vts_error *err)
 {
-    return rgtc_check(&bc5_format, tile_px, channels, sample, err);
+    return vt_block_tile_check(&bc5_format.block, tile_px, channels, sample, err);
 }
 
 static size_t bc5_encoded_bound(uint32_t width, uint32_t height, uint32_t channels, uint32_t sample)
 {
-    return rgtc_encoded_bound(&bc5_format, width, height, channels, sample);
+    return vt_block_tile_encoded_bound(&bc5_format.block, width, height, channels, sample);
 }
 
 static int bc5_encode(const struct vt_image *src, const struct vt_codec_params *params, void *dst,

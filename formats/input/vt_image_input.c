@@ -82,15 +82,19 @@ static int input_plan(const char *path, const unsigned char *magic, size_t len,
     return 0;
 }
 
-/* Checks the path, resolves the limit and reads the magic bytes. */
+/* Checks the path, resolves the limit, reads the magic bytes and plans where the file goes. */
 static int input_start(const char *path, const struct vt_input_limits *limits, uint64_t *max_pixels,
-                       unsigned char magic[8], size_t *len, struct vts_error *err)
+                       struct input_plan *plan, struct vts_error *err)
 {
     if (!path || !path[0])
         return vt_error_set(err, VTS_ERR_ARG, "cannot open an image: empty path");
     *max_pixels = limits && limits->max_pixels ? limits->max_pixels : VT_INPUT_DEFAULT_MAX_PIXELS;
-    *len = 0;
-    return input_read_magic(path, magic, len, err);
+    unsigned char magic[8];
+    size_t len = 0;
+    int rc = input_read_magic(path, magic, &len, err);
+    if (rc < 0)
+        return rc;
+    return input_plan(path, magic, len, plan, err);
 }
 
 int vt_image_input_open(const char *path, const struct vt_input_limits *limits,
@@ -105,13 +109,9 @@ int vt_image_input_open_bands(const char *path, const struct vt_input_limits *li
 {
     memset(out, 0, sizeof *out);
     uint64_t max_pixels = 0;
-    unsigned char magic[8];
-    size_t len;
-    int rc = input_start(path, limits, &max_pixels, magic, &len, err);
-    if (rc < 0)
-        return rc;
     struct input_plan plan;
-    if ((rc = input_plan(path, magic, len, &plan, err)) < 0)
+    int rc = input_start(path, limits, &max_pixels, &plan, err);
+    if (rc < 0)
         return rc;
     if (plan.pixels_gdal) {
         rc = vt_input_gdal_open(path, max_pixels, first, count, out, err);
@@ -139,13 +139,9 @@ int vt_image_input_describe(const char *path, const struct vt_input_limits *limi
 {
     memset(out, 0, sizeof *out);
     uint64_t max_pixels = 0;
-    unsigned char magic[8];
-    size_t len;
-    int rc = input_start(path, limits, &max_pixels, magic, &len, err);
-    if (rc < 0)
-        return rc;
     struct input_plan plan;
-    if ((rc = input_plan(path, magic, len, &plan, err)) < 0)
+    int rc = input_start(path, limits, &max_pixels, &plan, err);
+    if (rc < 0)
         return rc;
     out->geo_unread = plan.geo && plan.gdal_missing;
     snprintf(out->why, sizeof out->why, "%s", plan.why);

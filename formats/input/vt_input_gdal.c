@@ -91,10 +91,7 @@ static int gdal_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *
     char msg[VT_GDAL_ERR_MAX] = "";
     int r = t->read(t->handle, t->first, t->count, x, y, dst->width, dst->height, dst->pixels,
                     dst->stride, msg);
-    if (r == VT_GDAL_OK)
-        return 0;
-    return vt_error_set(err, r == VT_GDAL_NOMEM ? VTS_ERR_NOMEM : VTS_ERR_BAD_INPUT,
-                        "cannot read '%s': rows %u-%u: %s", t->name, y, y + dst->height - 1, msg);
+    return vt_input_module_read_error(r, t->name, y, dst->height, msg, err);
 }
 
 static void gdal_close(void *ctx)
@@ -102,27 +99,18 @@ static void gdal_close(void *ctx)
     struct gdal_input *t = ctx;
     if (!t)
         return;
-    if (t->handle)
-        t->close(t->handle);
-    if (t->module)
-        dlclose(t->module);
+    vt_input_module_close(t->module, t->handle, t->close);
     free(t);
 }
 
 static const struct vt_source_ops gdal_ops = {gdal_read_region, gdal_close};
 
-static int gdal_status(int result)
-{
-    switch (result) {
-    case VT_GDAL_UNKNOWN_FORMAT:
-    case VT_GDAL_UNSUPPORTED:
-        return VTS_ERR_UNSUPPORTED;
-    case VT_GDAL_NOMEM:
-        return VTS_ERR_NOMEM;
-    default:
-        return VTS_ERR_BAD_INPUT;
-    }
-}
+_Static_assert((int)VT_GDAL_OK == VT_INPUT_MODULE_OK &&
+                   (int)VT_GDAL_UNKNOWN_FORMAT == VT_INPUT_MODULE_UNKNOWN_FORMAT &&
+                   (int)VT_GDAL_BAD_FILE == VT_INPUT_MODULE_BAD_FILE &&
+                   (int)VT_GDAL_UNSUPPORTED == VT_INPUT_MODULE_UNSUPPORTED &&
+                   (int)VT_GDAL_NOMEM == VT_INPUT_MODULE_NOMEM,
+               "the module's results are vt_input_module.h's");
 
 /* Loads the module, resolves its functions and opens path: a gdal_input to gdal_close(). */
 static int gdal_load_open(const char *path, uint64_t max_pixels, struct gdal_input **out,
@@ -159,7 +147,8 @@ static int gdal_load_open(const char *path, uint64_t max_pixels, struct gdal_inp
     int result = VT_GDAL_BAD_FILE;
     t->handle = open_fn(path, &t->info, &result, msg);
     if (!t->handle) {
-        rc = vt_error_set(err, gdal_status(result), "cannot read '%s': %s", path, msg);
+        rc = vt_error_set(err, vt_input_module_open_status(result), "cannot read '%s': %s", path,
+                          msg);
         goto out_close;
     }
     rc = vt_input_check_size(path, t->info.width, t->info.height, max_pixels, err);

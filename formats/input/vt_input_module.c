@@ -77,3 +77,33 @@ void *vt_input_module_load(const struct vt_input_module_paths *p, char *why, siz
     }
     return NULL;
 }
+
+int vt_input_module_open_status(int result)
+{
+    switch (result) {
+    case VT_INPUT_MODULE_UNKNOWN_FORMAT:
+    case VT_INPUT_MODULE_UNSUPPORTED:
+        return VTS_ERR_UNSUPPORTED;
+    case VT_INPUT_MODULE_NOMEM:
+        return VTS_ERR_NOMEM;
+    default:
+        return VTS_ERR_BAD_INPUT;
+    }
+}
+
+int vt_input_module_read_error(int result, const char *name, uint32_t y, uint32_t height,
+                               const char *msg, struct vts_error *err)
+{
+    if (result == VT_INPUT_MODULE_OK)
+        return 0;
+    return vt_error_set(err, result == VT_INPUT_MODULE_NOMEM ? VTS_ERR_NOMEM : VTS_ERR_BAD_INPUT,
+                        "cannot read '%s': rows %u-%u: %s", name, y, y + height - 1, msg);
+}
+
+void vt_input_module_close(void *module, void *handle, void (*close_fn)(void *))
+{
+    if (handle)
+        close_fn(handle);
+    if (module)
+        dlclose(module);
+}

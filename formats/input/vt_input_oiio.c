@@ -29,8 +29,6 @@ static int oiio_open(const char *path, uint64_t max_pixels, struct vt_source *ou
 
 #else
 
-#include <dlfcn.h>
-
 struct oiio_input {
     void *module; /* dlopen() reference */
     void *handle; /* the module's open image */
@@ -52,10 +50,7 @@ static int oiio_read_region(void *ctx, uint32_t x, uint32_t y, struct vt_image *
     struct oiio_input *t = ctx;
     char msg[VT_OIIO_ERR_MAX] = "";
     int r = t->read(t->handle, x, y, dst->width, dst->height, dst->pixels, dst->stride, msg);
-    if (r == VT_OIIO_OK)
-        return 0;
-    return vt_error_set(err, r == VT_OIIO_NOMEM ? VTS_ERR_NOMEM : VTS_ERR_BAD_INPUT,
-                        "cannot read '%s': rows %u-%u: %s", t->name, y, y + dst->height - 1, msg);
+    return vt_input_module_read_error(r, t->name, y, dst->height, msg, err);
 }
 
 static void oiio_close(void *ctx)
@@ -63,27 +58,18 @@ static void oiio_close(void *ctx)
     struct oiio_input *t = ctx;
     if (!t)
         return;
-    if (t->handle)
-        t->close(t->handle);
-    if (t->module)
-        dlclose(t->module);
+    vt_input_module_close(t->module, t->handle, t->close);
     free(t);
 }
 
 static const struct vt_source_ops oiio_ops = {oiio_read_region, oiio_close};
 
-static int oiio_status(int result)
-{
-    switch (result) {
-    case VT_OIIO_UNKNOWN_FORMAT:
-    case VT_OIIO_UNSUPPORTED:
-        return VTS_ERR_UNSUPPORTED;
-    case VT_OIIO_NOMEM:
-        return VTS_ERR_NOMEM;
-    default:
-        return VTS_ERR_BAD_INPUT;
-    }
-}
+_Static_assert((int)VT_OIIO_OK == VT_INPUT_MODULE_OK &&
+                   (int)VT_OIIO_UNKNOWN_FORMAT == VT_INPUT_MODULE_UNKNOWN_FORMAT &&
+                   (int)VT_OIIO_BAD_FILE == VT_INPUT_MODULE_BAD_FILE &&
+                   (int)VT_OIIO_UNSUPPORTED == VT_INPUT_MODULE_UNSUPPORTED &&
+                   (int)VT_OIIO_NOMEM == VT_INPUT_MODULE_NOMEM,
+               "the module's results are vt_input_module.h's");
 
 /* Resolves the module's functions and opens path through it. */
 static int oiio_open_with(struct oiio_input *t, const char *path, uint64_t max_pixels,
@@ -104,7 +90,8 @@ static int oiio_open_with(struct oiio_input *t, const char *path, uint64_t max_p
     int result = VT_OIIO_BAD_FILE;
     t->handle = open_fn(path, &info, &result, msg);
     if (!t->handle)
-        return vt_error_set(err, oiio_status(result), "cannot read '%s': %s", path, msg);
+        return vt_error_set(err, vt_input_module_open_status(result), "cannot read '%s': %s", path,
+                            msg);
     int rc = vt_input_check_size(path, info.width, info.height, max_pixels, err);
     if (rc < 0)
         return rc;

@@ -254,6 +254,24 @@ void vt_print_version(FILE *f)
             VTS_FORMAT_MAJOR);
 }
 
+int vt_common_option(int c, int version_opt, const char *usage_text, char *const argv[])
+{
+    if (c == 'q') {
+        vt_log_set_level(VT_LOG_ERROR);
+    } else if (c == 'v') {
+        vt_log_set_level(vt_log_get_level() + 1);
+    } else if (c == 'h') {
+        fputs(usage_text, stdout);
+        return VT_EXIT_OK;
+    } else if (c == version_opt) {
+        vt_print_version(stdout);
+        return VT_EXIT_OK;
+    } else {
+        return vt_usage_getopt_error(c, argv);
+    }
+    return -1;
+}
+
 static double now_s(void)
 {
     struct timespec ts;

@@ -61,6 +61,13 @@ int vt_getopt_long(int argc, char *const argv[], const char *optstring,
  * ':') as a usage error naming the option; returns VT_EXIT_USAGE. */
 int vt_usage_getopt_error(int c, char *const argv[]);
 
+/* The options a tool's vt_getopt_long() switch ends with (its default branch): 'q' sets the log
+ * level to errors only, 'v' raises it by one, 'h' prints usage_text on stdout, version_opt (the
+ * tool's --version value) prints vt_print_version(); any other c is reported with
+ * vt_usage_getopt_error(). Returns -1 to go on parsing, or the exit status (VT_EXIT_OK after
+ * --help or --version). */
+int vt_common_option(int c, int version_opt, const char *usage_text, char *const argv[]);
+
 /* Parses a decimal integer in min..max (no sign, no junk, no empty string) into *out. Returns 0,
  * or -1 (and leaves *out alone) when s is not such a number. */
 int vt_parse_u32(const char *s, uint32_t min, uint32_t max, uint32_t *out);

@@ -217,7 +217,7 @@ int main(int argc, char **argv)
     struct vtv_options o;
     vtv_options_default(&o);
     bool frames_set = false, origin_set = false; /* origin_set: any --wang option */
-    int verbosity = VT_LOG_WARN;
+    int common;
     opterr = 0;
     int c;
     while ((c = vt_getopt_long(argc, argv, ":hj:qv", longopts)) != -1) {
@@ -389,23 +389,11 @@ int main(int argc, char **argv)
                 return vt_usage_error("--origin '%s': expected X,Y tiles", optarg);
             origin_set = true;
             break;
-        case 'q':
-            verbosity = VT_LOG_ERROR;
-            break;
-        case 'v':
-            verbosity++;
-            break;
-        case 'h':
-            fputs(usage_text, stdout);
-            return VT_EXIT_OK;
-        case OPT_VERSION:
-            vt_print_version(stdout);
-            return VT_EXIT_OK;
         default:
-            return vt_usage_getopt_error(c, argv);
+            if ((common = vt_common_option(c, OPT_VERSION, usage_text, argv)) >= 0)
+                return common;
         }
     }
-    vt_log_set_level(verbosity);
     int rest = argc - optind;
     if (o.wang_path || o.extent_x || origin_set)
         return run_wang(&o, rest, frames_set);

@@ -5,6 +5,9 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
+
+#include "vt_error.h"
 
 /* Where a module may be. */
 struct vt_input_module_paths {
@@ -24,5 +27,28 @@ void *vt_input_module_load(const struct vt_input_module_paths *paths, char *why,
 
 /* dlsym() into a function pointer (fn, fn_size bytes) without an object-to-function cast. */
 bool vt_input_module_symbol(void *module, const char *symbol, void *fn, size_t fn_size);
+
+/* The results of every module's open and read: the values vt_oiio_abi.h's and vt_gdal_abi.h's
+ * enums pin (each reader checks its own against these with _Static_assert). */
+enum vt_input_module_result {
+    VT_INPUT_MODULE_OK = 0,
+    VT_INPUT_MODULE_UNKNOWN_FORMAT = 1,
+    VT_INPUT_MODULE_BAD_FILE = 2,
+    VT_INPUT_MODULE_UNSUPPORTED = 3,
+    VT_INPUT_MODULE_NOMEM = 4,
+};
+
+/* The status of a module open's failed result: VTS_ERR_UNSUPPORTED for an unknown format or an
+ * unsupported layout, VTS_ERR_NOMEM, else VTS_ERR_BAD_INPUT. */
+int vt_input_module_open_status(int result);
+
+/* 0 for a module read's VT_INPUT_MODULE_OK, else fills err (VTS_ERR_NOMEM or VTS_ERR_BAD_INPUT)
+ * with "cannot read 'name': rows y-(y + height - 1): msg" and returns its status. */
+int vt_input_module_read_error(int result, const char *name, uint32_t y, uint32_t height,
+                               const char *msg, struct vts_error *err);
+
+/* Closes a module's open handle with the module's close function (when both are set), then drops
+ * the module reference (when set). */
+void vt_input_module_close(void *module, void *handle, void (*close_fn)(void *));
 
 #endif

@@ -479,14 +479,9 @@ static void interrupted_run_leaves_nothing_behind(void)
 
 int main(int argc, char **argv)
 {
-    if (argc != 3)
-        return 2;
-    tiles_tool = argv[1];
-    tiles_info = argv[2];
-    snprintf(tiles_dir, sizeof tiles_dir, "%s/test_vt_tiles.XXXXXX",
-             getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
-    if (!mkdtemp(tiles_dir))
-        return 1;
+    int rc = tiles_start(argc, argv, "test_vt_tiles");
+    if (rc != 0)
+        return rc;
     VT_RUN(level_sizes_and_borders_for_odd_inputs);
     VT_RUN(wrapped_borders_come_from_the_opposite_edge);
     VT_RUN(box_levels_match_a_double_reference);
@@ -498,9 +493,6 @@ int main(int argc, char **argv)
     VT_RUN(output_does_not_depend_on_threads);
     VT_RUN(bad_input_fails_cleanly_without_output);
     VT_RUN(interrupted_run_leaves_nothing_behind);
-    char cmd[400];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tiles_dir);
-    if (vt_test_failures == 0 && system(cmd) != 0)
-        fprintf(stderr, "could not remove %s\n", tiles_dir);
+    tiles_finish(vt_test_failures != 0);
     return vt_test_main_result();
 }

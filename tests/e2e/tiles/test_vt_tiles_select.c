@@ -379,22 +379,14 @@ static void lossy_codecs_and_wrong_combinations_are_refused(void)
 
 int main(int argc, char **argv)
 {
-    if (argc != 3)
-        return 2;
-    tiles_tool = argv[1];
-    tiles_info = argv[2];
-    snprintf(tiles_dir, sizeof tiles_dir, "%s/test_vt_tiles_select.XXXXXX",
-             getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
-    if (!mkdtemp(tiles_dir))
-        return 1;
+    int rc = tiles_start(argc, argv, "test_vt_tiles_select");
+    if (rc != 0)
+        return rc;
     VT_RUN(land_classes_keep_their_value_set_at_every_level);
     VT_RUN(mode_keeps_the_majority_that_nearest_drops);
     VT_RUN(float_elevation_is_exact_and_min_max_bound_every_texel);
     VT_RUN(selections_do_not_depend_on_threads);
     VT_RUN(lossy_codecs_and_wrong_combinations_are_refused);
-    char cmd[400];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tiles_dir);
-    if (vt_test_failures == 0 && system(cmd) != 0)
-        fprintf(stderr, "could not remove %s\n", tiles_dir);
+    tiles_finish(vt_test_failures != 0);
     return vt_test_main_result();
 }

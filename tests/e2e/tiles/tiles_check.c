@@ -12,6 +12,25 @@ const char *tiles_tool;
 const char *tiles_info;
 char tiles_dir[256];
 
+int tiles_start(int argc, char **argv, const char *name)
+{
+    if (argc != 3)
+        return 2;
+    tiles_tool = argv[1];
+    tiles_info = argv[2];
+    snprintf(tiles_dir, sizeof tiles_dir, "%s/%s.XXXXXX",
+             getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp", name);
+    return mkdtemp(tiles_dir) ? 0 : 1;
+}
+
+void tiles_finish(bool keep)
+{
+    char cmd[400];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tiles_dir);
+    if (!keep && system(cmd) != 0)
+        fprintf(stderr, "could not remove %s\n", tiles_dir);
+}
+
 const char *tiles_path(const char *name)
 {
     static char paths[8][512];

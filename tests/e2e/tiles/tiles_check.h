@@ -12,6 +12,14 @@ extern const char *tiles_tool; /* path of vt-tiles */
 extern const char *tiles_info; /* path of vt-info: every store written is checked with --verify */
 extern char tiles_dir[256];    /* temporary directory of this test run */
 
+/* Takes the test's arguments (vt-tiles and vt-info) into tiles_tool and tiles_info and makes
+ * tiles_dir, a fresh "<$TMPDIR or /tmp>/<name>.XXXXXX". Returns 0, or the test's exit status: 2
+ * for other arguments, 1 when the directory cannot be made. */
+int tiles_start(int argc, char **argv, const char *name);
+
+/* Removes tiles_dir, unless keep (a failed run's files are left for a look). */
+void tiles_finish(bool keep);
+
 /* Path of a file in tiles_dir (static buffer rotated among 8 calls). */
 const char *tiles_path(const char *name);
 

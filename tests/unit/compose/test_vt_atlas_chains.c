@@ -15,21 +15,8 @@
 #include "vt_layout.h"
 #include "vt_test.h"
 
-static void fill_texture(struct vt_image *img, uint32_t w, uint32_t h, uint32_t ch, uint32_t seed)
-{
-    vt_image_alloc(img, w, h, ch, VTS_SAMPLE_U8, NULL);
-    uint32_t s = seed * 2654435761u + 1;
-    for (uint32_t y = 0; y < h; y++)
-        for (uint32_t x = 0; x < w; x++) {
-            uint8_t *p = vt_image_at(img, x, y);
-            for (uint32_t c = 0; c < ch; c++) {
-                s ^= s << 13, s ^= s >> 17, s ^= s << 5;
-                p[c] = (uint8_t)((x * 7 + y * 3 + c * 50) + (s & 15));
-            }
-            if (ch == 4)
-                p[3] = (uint8_t)(x * 255 / w);
-        }
-}
+#define NTEX 4
+#include "compose_test_util.h"
 
 /* ---- the stream against the whole chain ---- */
 
@@ -59,7 +46,7 @@ static uint64_t stream_vs_whole_wrap(uint32_t tw, uint32_t th, uint32_t ew, uint
                                      uint32_t levels, bool wrap)
 {
     struct vt_image tex;
-    fill_texture(&tex, tw, th, ch, tw + th);
+    fill_texture(&tex, tw, th, ch, tw + th, 15);
     struct vt_source_info in = {tw, th, ch, VTS_SAMPLE_U8, colour, ch == 4, false, true, 0, 0, ""};
     struct vt_mip_chain_spec s = {ew,
                                   eh,
@@ -154,7 +141,7 @@ static void a_wrong_texel_is_caught(void)
 {
     /* the comparison can fail: a chain of another filter differs */
     struct vt_image tex;
-    fill_texture(&tex, 64, 64, 3, 1);
+    fill_texture(&tex, 64, 64, 3, 1, 15);
     struct vt_source_info in = {64, 64, 3, VTS_SAMPLE_U8, VTS_COLOUR_SRGB, false, false, true,
                                 0,  0,  ""};
     struct vt_mip_chain_spec s = {64,
@@ -294,44 +281,7 @@ static void a_first_reservation_waits_for_others_over_half_the_budget(void)
 
 /* ---- a build: decodes counted through the open callback ---- */
 
-#define NTEX 4
-static struct vt_image textures[NTEX];
 static const uint32_t tex_w[NTEX] = {300, 170, 256, 90}, tex_h[NTEX] = {200, 260, 256, 40};
-static uint64_t rows_read[NTEX];
-
-static int mem_read(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst, struct vts_error *err)
-{
-    int i = (int)(intptr_t)ctx;
-    (void)err;
-    __atomic_fetch_add(&rows_read[i], dst->height, __ATOMIC_RELAXED);
-    for (uint32_t j = 0; j < dst->height; j++)
-        memcpy(vt_image_at(dst, 0, j), vt_image_at(&textures[i], x, y + j),
-               (size_t)dst->width * textures[i].channels);
-    return 0;
-}
-
-static void mem_close(void *ctx)
-{
-    (void)ctx;
-}
-
-static const struct vt_source_ops mem_ops = {mem_read, mem_close};
-
-static int open_mem(void *user, const char *path, struct vt_source *out, struct vts_error *err)
-{
-    const char *b = strrchr(path, '/');
-    int i = (b ? b[1] : path[0]) - '0';
-    (void)user;
-    if (i < 0 || i >= NTEX)
-        return vt_error_set(err, VTS_ERR_IO, "no texture '%s'", path);
-    struct vt_image *t = &textures[i];
-    *out = (struct vt_source){{t->width, t->height, t->channels, VTS_SAMPLE_U8, VTS_COLOUR_SRGB,
-                               t->channels == 4, false, true, 0, 0, "mem"},
-                              &mem_ops,
-                              (void *)(intptr_t)i,
-                              "mem"};
-    return 0;
-}
 
 static int count_tiles(void *user, unsigned worker, uint32_t slot, uint32_t level, uint32_t tx,
                        uint32_t ty, const struct vt_image *payload, struct vts_error *err)
@@ -350,7 +300,7 @@ static void a_build_decodes_each_file_once_within_its_budget(void)
                      "\"map\": \"map_Kd\", \"colour\": \"srgb\"}, {\"name\": \"a\", \"map\": "
                      "\"map_d\", \"colour\": \"data\"}], \"entries\": [");
     for (int i = 0; i < NTEX; i++) {
-        fill_texture(&textures[i], tex_w[i], tex_h[i], i == 1 ? 4 : 3, (uint32_t)i);
+        fill_texture(&textures[i], tex_w[i], tex_h[i], i == 1 ? 4 : 3, (uint32_t)i, 15);
         n += snprintf(json + n, sizeof json - (size_t)n,
                       "%s{\"name\": \"e%d\", \"x\": %d, \"y\": 0, \"width\": %u, \"height\": %u, "
                       "\"cell_width\": 512, \"cell_height\": 512, \"alignment\": 4, %s"

@@ -11,64 +11,14 @@
 #include "vt_test.h"
 
 #define NTEX 4
-static struct vt_image textures[NTEX];
+#include "compose_test_util.h"
+
 /* e0: 256 aligned at 256 (owns texels above the carried level), e1: wraps, e2: odd size in a
  * wide cell aligned at 4 (mixed above level 2), e3: alpha */
 static const uint32_t tex_w[NTEX] = {256, 128, 200, 64}, tex_h[NTEX] = {256, 128, 100, 64};
 static const uint32_t ent_x[NTEX] = {0, 512, 768, 256}, ent_y[NTEX] = {0, 0, 256, 384};
 static const uint32_t cell_w[NTEX] = {256, 128, 256, 64}, cell_h[NTEX] = {256, 128, 128, 64};
 static const uint32_t align[NTEX] = {256, 128, 4, 64};
-static uint64_t rows_read[NTEX];
-
-static void fill_texture(struct vt_image *img, uint32_t w, uint32_t h, uint32_t ch, uint32_t seed)
-{
-    vt_image_alloc(img, w, h, ch, VTS_SAMPLE_U8, NULL);
-    uint32_t s = seed * 2654435761u + 1;
-    for (uint32_t y = 0; y < h; y++)
-        for (uint32_t x = 0; x < w; x++) {
-            uint8_t *p = vt_image_at(img, x, y);
-            for (uint32_t c = 0; c < ch; c++) {
-                s ^= s << 13, s ^= s >> 17, s ^= s << 5;
-                p[c] = (uint8_t)((x * 7 + y * 3 + c * 50) + (s & 31));
-            }
-            if (ch == 4)
-                p[3] = (uint8_t)(x * 255 / w);
-        }
-}
-
-static int mem_read(void *ctx, uint32_t x, uint32_t y, struct vt_image *dst, struct vts_error *err)
-{
-    int i = (int)(intptr_t)ctx;
-    (void)err;
-    __atomic_fetch_add(&rows_read[i], dst->height, __ATOMIC_RELAXED);
-    for (uint32_t j = 0; j < dst->height; j++)
-        memcpy(vt_image_at(dst, 0, j), vt_image_at(&textures[i], x, y + j),
-               (size_t)dst->width * textures[i].channels);
-    return 0;
-}
-
-static void mem_close(void *ctx)
-{
-    (void)ctx;
-}
-
-static const struct vt_source_ops mem_ops = {mem_read, mem_close};
-
-static int open_mem(void *user, const char *path, struct vt_source *out, struct vts_error *err)
-{
-    const char *b = strrchr(path, '/');
-    int i = (b ? b[1] : path[0]) - '0';
-    (void)user;
-    if (i < 0 || i >= NTEX)
-        return vt_error_set(err, VTS_ERR_IO, "no texture '%s'", path);
-    struct vt_image *t = &textures[i];
-    *out = (struct vt_source){{t->width, t->height, t->channels, VTS_SAMPLE_U8, VTS_COLOUR_SRGB,
-                               t->channels == 4, false, true, 0, 0, "mem"},
-                              &mem_ops,
-                              (void *)(intptr_t)i,
-                              "mem"};
-    return 0;
-}
 
 /* Every tile of both layers: a hash of its payload (1 for an empty tile), and how often emitted. */
 #define MAX_TILES 4096
@@ -137,7 +87,7 @@ static void read_layout(void)
                      "\"map\": \"map_Kd\", \"colour\": \"srgb\"}, {\"name\": \"a\", \"map\": "
                      "\"map_d\", \"colour\": \"data\"}], \"entries\": [");
     for (int i = 0; i < NTEX; i++) {
-        fill_texture(&textures[i], tex_w[i], tex_h[i], i == 3 ? 4 : 3, (uint32_t)i + 5);
+        fill_texture(&textures[i], tex_w[i], tex_h[i], i == 3 ? 4 : 3, (uint32_t)i + 5, 31);
         n += snprintf(json + n, sizeof json - (size_t)n,
                       "%s{\"name\": \"e%d\", \"x\": %u, \"y\": %u, \"width\": %u, \"height\": %u, "
                       "\"cell_width\": %u, \"cell_height\": %u, \"alignment\": %u, %s"
