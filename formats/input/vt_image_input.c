@@ -121,9 +121,14 @@ int vt_image_input_open_bands(const char *path, const struct vt_input_limits *li
             vt_error_set(err, VTS_ERR_UNSUPPORTED,
                          "'%s': needs GDAL: cannot load the GDAL module (%s)", path, plan.why);
         if (rc == 0 && count && (first != 0 || count != out->info.channels)) {
+            uint32_t bands = out->info.channels; /* before the close clears it */
             vt_source_close(out);
-            rc = vt_error_set(err, VTS_ERR_ARG, "cannot read '%s': bands %u..%u of %u", path,
-                              first + 1, first + count, out->info.channels);
+            /* a part of the bands (--band-layers): GDAL reads any band of what it knows */
+            struct vts_error why = {0};
+            rc = vt_input_gdal_open(path, max_pixels, first, count, out, &why);
+            if (rc < 0)
+                rc = vt_error_set(err, VTS_ERR_ARG, "cannot read '%s': bands %u..%u of %u (%s)",
+                                  path, first + 1, first + count, bands, why.message);
         }
     }
     if (rc < 0) {

@@ -278,6 +278,16 @@ def test_bands():
     check("geoTransform" not in js and not os.path.exists(pext + ".aux.xml") and
           not os.path.exists(os.path.join(WORK, "png_x.pgw")),
           "a PNG input: no georeferencing, no sidecar files")
+    # --band-layers on a file the native reader takes (the PNG): GDAL reads its bands, exactly
+    bstore = os.path.join(WORK, "png_bands.vts")
+    run(tool("vt-tiles"), "-q", "--band-layers", "--codec", "png", "--colour", "data", png, "-o",
+        bstore)
+    src_png = read_raster(png)
+    js = json.loads(run(tool("vt-info"), "--json", bstore).stdout)
+    ok = all(np.array_equal(layer_of(bstore, b, os.path.join(WORK, "pb%d.tif" % b))[0], src_png[b])
+             for b in range(src_png.shape[0]))
+    check(ok and len(js["layers"]) == src_png.shape[0] == 3,
+          "--band-layers on a PNG: one layer per band, each exact")
 
     # JPEG 2000 (lossless) through GDAL's JP2OpenJPEG driver
     drivers = run("gdalinfo", "--formats").stdout
