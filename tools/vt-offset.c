@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "tool_common.h"
+#include "vt_atlas_place.h"
 #include "vt_atomic_file.h"
 #include "vt_error.h"
 #include "vt_layout.h"
@@ -348,6 +349,21 @@ static void report(const struct options *o, const char *mtl_path, const struct v
             (unsigned long long)s->max_error_f32_line);
 }
 
+/* The packs of the layout's pack materials relative to the MTL's folder (vt_wang paths are
+ * resolved like a map's: against the MTL). */
+static int wang_paths(struct vt_layout *layout, const char *mtl_path, struct vts_error *err)
+{
+    for (uint32_t i = 0; i < layout->wang_count; i++) {
+        struct vt_layout_wang *w = &layout->wangs[i];
+        char *rel = vt_atlas_place_relative_path(mtl_path, w->resolved);
+        if (!rel)
+            return vt_error_set(err, VTS_ERR_NOMEM, "out of memory (or no working directory)");
+        free(w->pack);
+        w->pack = rel;
+    }
+    return 0;
+}
+
 static int run(const struct options *o)
 {
     struct vts_error err = {0};
@@ -386,6 +402,8 @@ static int run(const struct options *o)
     struct vt_offset_sink sink = {sink_write, &obj};
     if (rc == 0)
         rc = vt_offset_rewrite(o->obj_path, &layout, &opt, &sink, &stats, &err);
+    if (rc == 0)
+        rc = wang_paths(&layout, mtl_path, &err);
     if (rc == 0)
         rc = write_mtl(&mtl, o, &layout, &used, store, &err);
     if (rc == 0)

@@ -462,8 +462,8 @@ static int check_wangs(const struct vt_layout *l, const char *name, struct vts_e
                  isfinite(m->ke[k]);
         if (!ok)
             return vt_error_set(err, VTS_ERR_BAD_INPUT,
-                                "'%s': wang_materials[%u] ('%s'): a constant out of range", name,
-                                i, m->name);
+                                "'%s': wang_materials[%u] ('%s'): a constant out of range", name, i,
+                                m->name);
     }
     return 0;
 }

@@ -393,8 +393,7 @@ static int read_material(struct ctx *c, json_t *o, size_t i, const struct vt_lay
 }
 
 /* Kd, Ka, Ks, Ke, Ns, d, illum and alpha of a material or a pack material. */
-static int read_constants(struct ctx *c, json_t *o, const char *where,
-                          struct vt_layout_material *m)
+static int read_constants(struct ctx *c, json_t *o, const char *where, struct vt_layout_material *m)
 {
     char *alpha = NULL;
     uint64_t illum;
@@ -452,8 +451,9 @@ static int read_wangs(struct ctx *c, json_t *arr, struct vt_layout *l, uint32_t 
     if (!json_is_array(arr))
         return bad(c, "wang_materials", "expected an array");
     if (json_array_size(arr) > max)
-        return vt_error_set(c->err, VTS_ERR_LIMIT, "'%s': %zu pack materials, more than the limit %u",
-                            c->name, json_array_size(arr), max);
+        return vt_error_set(c->err, VTS_ERR_LIMIT,
+                            "'%s': %zu pack materials, more than the limit %u", c->name,
+                            json_array_size(arr), max);
     int rc = vt_layout_alloc_wangs(l, (uint32_t)json_array_size(arr), c->err);
     for (size_t i = 0; !rc && i < l->wang_count; i++) {
         struct vt_layout_wang *w = &l->wangs[i];

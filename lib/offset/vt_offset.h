@@ -123,8 +123,10 @@ int vt_offset_rewrite_memory(const void *data, size_t size, const char *name,
  * line gets "# "), one newmtl per material of used, with its constants from the layout's
  * materials (a layout without them, or a name it lacks: Kd 1 1 1 with maps, 0.8 grey without,
  * opaque), its alpha mode as "vt_alpha MODE", and per layer that holds a map of it the layer's
- * MTL statement naming "<store>#<layer>". Written to out. Returns 0, VTS_ERR_NOMEM or out's
- * status. */
+ * MTL statement naming "<store>#<layer>"; a pack material of the layout (layout->wangs) gets its
+ * constants and "vt_wang PACK scale S" with PACK its pack as in wangs[i].pack (the caller makes
+ * it relative to the MTL's folder; one token: white space fails with VTS_ERR_BAD_INPUT). Written
+ * to out. Returns 0, VTS_ERR_NOMEM, VTS_ERR_BAD_INPUT or out's status. */
 int vt_offset_write_mtl(const struct vt_layout *layout, const struct vt_offset_used *used,
                         const char *store, const char *header_comment,
                         const struct vt_offset_sink *out, struct vts_error *err);
