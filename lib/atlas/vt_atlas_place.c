@@ -653,8 +653,9 @@ int vt_atlas_place_choices(const struct vt_atlas_scene *scene,
     memset(report, 0, sizeof *report);
     if (nw == n)
         return vt_error_set(err, VTS_ERR_BAD_INPUT,
-                            "nothing to place: every material the faces use names a Wang pack "
-                            "(vt_wang); an atlas needs at least one other");
+                            "'%s': nothing to place: every material the faces use names a Wang "
+                            "pack (vt_wang); an atlas needs at least one other",
+                            scene->materials[0].obj ? scene->materials[0].obj : "scene");
     struct vt_atlas_scene sub = *scene;
     uint32_t *idx = malloc((size_t)n * sizeof *idx);
     struct vt_atlas_place_choice *sub_choices =

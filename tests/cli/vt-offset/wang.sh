@@ -50,3 +50,8 @@ corners() { # OBJ: the vt lines the first face after "usemtl grass" names
        g && /^f/ { for (i = 2; i <= NF; i++) { split($i, c, "/"); print vt[c[2]] }; exit }' "$1"
 }
 diff <(corners scene.obj) <(corners out/scene.vt.obj) && echo "ok vt of the pack face kept"
+# a scene whose every material names a pack has nothing to place: one line, exit 1
+printf 'mtllib scene.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nusemtl grass\nf 1/1 2/1 3/1\n' > only.obj
+rc=0
+"$VT_ATLAS" only.obj -o out/only.json 2>&1 || rc=$?
+echo "exit $rc"
