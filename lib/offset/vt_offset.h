@@ -49,8 +49,9 @@ struct vt_offset_used {
     uint32_t *slots; /* names of the layout's name index (by_name, sorted: with materials,
                         materials[slot] is the material), in slot order */
     uint32_t slot_count;
-    char **unknown; /* names the layout does not have (faces without texcoords: their
-                       material is not checked), sorted, each once */
+    char **unknown; /* names without an entry in the layout, sorted, each once: the layout's
+                       pack materials (layout->wangs) and names it does not have (faces
+                       without texcoords: their material is not checked) */
     uint32_t unknown_count;
 };
 
