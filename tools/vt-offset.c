@@ -316,11 +316,15 @@ static int write_mtl(struct file_sink *mtl, const struct options *o, const struc
 static void report(const struct options *o, const char *mtl_path, const struct vt_layout *layout,
                    const struct vt_offset_stats *s)
 {
+    char wang[64] = ""; /* only with pack materials: other summaries stay as they were */
+    if (s->vt_wang)
+        snprintf(wang, sizeof wang, ", %llu vt of Wang pack materials as written",
+                 (unsigned long long)s->vt_wang);
     vt_log(
         VT_LOG_WARN,
-        "wrote '%s' and '%s': %llu vt on the atlas (%llu duplicated for other materials or moves, %llu unused kept), %llu of %llu faces renumbered",
+        "wrote '%s' and '%s': %llu vt on the atlas (%llu duplicated for other materials or moves, %llu unused kept)%s, %llu of %llu faces renumbered",
         o->out_path, mtl_path, (unsigned long long)s->vt_rewritten,
-        (unsigned long long)s->vt_duplicated, (unsigned long long)s->vt_unused,
+        (unsigned long long)s->vt_duplicated, (unsigned long long)s->vt_unused, wang,
         (unsigned long long)s->faces_rewritten, (unsigned long long)s->faces);
     if (s->charts_moved || s->faces_cut || s->faces_split)
         vt_log(

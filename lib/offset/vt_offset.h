@@ -88,6 +88,8 @@ struct vt_offset_stats {
     uint64_t vt_rewritten;     /* vt statements replaced by atlas coordinates */
     uint64_t vt_duplicated;    /* extra vt lines written for faces of other materials */
     uint64_t vt_unused;        /* vt statements no face uses (copied unchanged) */
+    uint64_t vt_wang;          /* vt statements of pack materials' faces (copied as written;
+                                  not in vt_rewritten) */
     uint64_t faces;            /* f statements */
     uint64_t faces_rewritten;  /* f and l statements whose texture indices changed */
     uint64_t faces_without_vt; /* f statements without any texture index (copied unchanged) */

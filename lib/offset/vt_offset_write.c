@@ -99,7 +99,10 @@ static int pass2_vt(struct vt_offset_run *r, const unsigned char *line, size_t n
     if (rc == 0)
         rc = vt_offset_run_put(r, after, (size_t)(end - after), err);
     r->out_vt++;
-    r->stats.vt_rewritten++;
+    if (r->keys[r->first[i]].entry == VT_OFFSET_MAT_WANG)
+        r->stats.vt_wang++;
+    else
+        r->stats.vt_rewritten++;
     bool terminated = n && line[n - 1] == '\n';
     const char *eol = line_ending(line, n);
     for (uint32_t k = r->head[i]; rc == 0 && k != VT_OFFSET_NONE; k = r->extra[k].next) {

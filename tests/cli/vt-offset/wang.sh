@@ -40,7 +40,8 @@ json=$(tr -d ' \n' < out/atlas.json)
 echo "${json#*\"entries\":}" | grep -o '"name":"[a-z]*","x"'
 echo "${json#*\"materials\":}" | grep -o '"name":"[a-z]*","entry"'
 echo "${json#*\"wang_materials\":}"
-"$VT_OFFSET" scene.obj out/atlas.json -o out/scene.vt.obj -q
+"$VT_OFFSET" scene.obj out/atlas.json -o out/scene.vt.obj 2>offset.txt
+head -1 offset.txt
 grep -E '^(vt|f|usemtl)' out/scene.vt.obj
 sed -n '/newmtl grass/,/^$/p' out/scene.vt.mtl
 # the vt each corner of the pack face names, input against output, byte for byte (the atlas
