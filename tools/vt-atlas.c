@@ -322,10 +322,13 @@ static void print_summary(const struct options *o, const struct vt_layout *l,
         strncat(layers, k ? ", " : "", sizeof layers - strlen(layers) - 1);
         strncat(layers, l->layers[k].name, sizeof layers - strlen(layers) - 1);
     }
-    char shared[96] = "";
+    char shared[160] = "";
     if (r->shared_cells)
         snprintf(shared, sizeof shared, "; %u materials share %u cell%s", r->shared,
                  r->shared_cells, r->shared_cells == 1 ? "" : "s");
+    if (r->wang) /* pack materials: no entry (docs/wang.md) */
+        snprintf(shared + strlen(shared), sizeof shared - strlen(shared),
+                 "; %u Wang pack material%s (no entry)", r->wang, r->wang == 1 ? "" : "s");
     vt_log(
         VT_LOG_WARN,
         "wrote '%s': %u entries (%u constant, %u replicated, %u rescaled%s) from %u texture files; layers %s",
@@ -387,6 +390,11 @@ static void print_choices(const struct vt_atlas_scene *scene, const struct vt_la
         return;
     for (uint32_t i = 0; i < scene->material_count; i++) {
         const struct vt_atlas_material *m = &scene->materials[i];
+        if (m->wang) {
+            vt_log(VT_LOG_INFO, "material '%s': wang, pack '%s' scale %g (no entry)", m->name,
+                   m->wang, m->wang_scale);
+            continue;
+        }
         const struct vt_layout_entry *e = &l->entries[c[i].entry];
         print_alpha(scene, m);
         if (!m->has_uv || m->umax < m->umin) {

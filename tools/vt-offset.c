@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "tool_common.h"
+#include "vt_atlas_place.h"
 #include "vt_atomic_file.h"
 #include "vt_error.h"
 #include "vt_layout.h"
@@ -315,11 +316,15 @@ static int write_mtl(struct file_sink *mtl, const struct options *o, const struc
 static void report(const struct options *o, const char *mtl_path, const struct vt_layout *layout,
                    const struct vt_offset_stats *s)
 {
+    char wang[64] = ""; /* only with pack materials: other summaries stay as they were */
+    if (s->vt_wang)
+        snprintf(wang, sizeof wang, ", %llu vt of Wang pack materials as written",
+                 (unsigned long long)s->vt_wang);
     vt_log(
         VT_LOG_WARN,
-        "wrote '%s' and '%s': %llu vt on the atlas (%llu duplicated for other materials or moves, %llu unused kept), %llu of %llu faces renumbered",
+        "wrote '%s' and '%s': %llu vt on the atlas (%llu duplicated for other materials or moves, %llu unused kept)%s, %llu of %llu faces renumbered",
         o->out_path, mtl_path, (unsigned long long)s->vt_rewritten,
-        (unsigned long long)s->vt_duplicated, (unsigned long long)s->vt_unused,
+        (unsigned long long)s->vt_duplicated, (unsigned long long)s->vt_unused, wang,
         (unsigned long long)s->faces_rewritten, (unsigned long long)s->faces);
     if (s->charts_moved || s->faces_cut || s->faces_split)
         vt_log(
@@ -346,6 +351,21 @@ static void report(const struct options *o, const char *mtl_path, const struct v
             "warning: float32 texture coordinates lose up to %.2g texel on this %ux%u atlas (vt on line %llu): read them as double",
             s->max_error_f32, layout->width, layout->height,
             (unsigned long long)s->max_error_f32_line);
+}
+
+/* The packs of the layout's pack materials relative to the MTL's folder (vt_wang paths are
+ * resolved like a map's: against the MTL). */
+static int wang_paths(struct vt_layout *layout, const char *mtl_path, struct vts_error *err)
+{
+    for (uint32_t i = 0; i < layout->wang_count; i++) {
+        struct vt_layout_wang *w = &layout->wangs[i];
+        char *rel = vt_atlas_place_relative_path(mtl_path, w->resolved);
+        if (!rel)
+            return vt_error_set(err, VTS_ERR_NOMEM, "out of memory (or no working directory)");
+        free(w->pack);
+        w->pack = rel;
+    }
+    return 0;
 }
 
 static int run(const struct options *o)
@@ -386,6 +406,8 @@ static int run(const struct options *o)
     struct vt_offset_sink sink = {sink_write, &obj};
     if (rc == 0)
         rc = vt_offset_rewrite(o->obj_path, &layout, &opt, &sink, &stats, &err);
+    if (rc == 0)
+        rc = wang_paths(&layout, mtl_path, &err);
     if (rc == 0)
         rc = write_mtl(&mtl, o, &layout, &used, store, &err);
     if (rc == 0)

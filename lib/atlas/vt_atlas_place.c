@@ -494,10 +494,9 @@ int vt_atlas_place(const struct vt_atlas_scene *scene, const struct vt_atlas_pla
     return vt_atlas_place_choices(scene, o, layout, report, NULL, err);
 }
 
-int vt_atlas_place_choices(const struct vt_atlas_scene *scene,
-                           const struct vt_atlas_place_options *o, struct vt_layout *layout,
-                           struct vt_atlas_place_report *report,
-                           struct vt_atlas_place_choice *choices, struct vts_error *err)
+static int place_choices(const struct vt_atlas_scene *scene, const struct vt_atlas_place_options *o,
+                         struct vt_layout *layout, struct vt_atlas_place_report *report,
+                         struct vt_atlas_place_choice *choices, struct vts_error *err)
 {
     memset(layout, 0, sizeof *layout);
     memset(report, 0, sizeof *report);
@@ -609,5 +608,87 @@ out:
     free(rects);
     free(groups);
     free(next_member);
+    return rc;
+}
+
+/* The pack materials of scene (material indices in order) as layout->wangs, sorted by name. */
+static int fill_wangs(const struct vt_atlas_scene *scene, const uint32_t *idx, uint32_t count,
+                      const struct vt_atlas_place_options *o, struct vt_layout *l,
+                      struct vts_error *err)
+{
+    int rc = vt_layout_alloc_wangs(l, count, err);
+    for (uint32_t i = 0; !rc && i < count; i++) {
+        const struct vt_atlas_material *sm = &scene->materials[idx[i]];
+        struct vt_layout_wang *w = &l->wangs[i];
+        w->m = sm->features;
+        w->m.entry = 0;
+        w->m.layer_mask = 0;
+        w->scale = sm->wang_scale;
+        w->m.name = strdup(sm->name);
+        w->pack = vt_atlas_place_relative_path(o->output, sm->wang);
+        if (!w->m.name || !w->pack)
+            rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory building the layout");
+    }
+    if (!rc) {
+        vt_layout_sort_materials(l);
+        rc = vt_layout_index(l, err);
+    }
+    return rc;
+}
+
+/* Materials that name a Wang pack (docs/wang.md) get no entry: the others are placed as a scene
+ * of their own, the pack materials recorded in layout->wangs (choices: "wang", entry UINT32_MAX).
+ */
+int vt_atlas_place_choices(const struct vt_atlas_scene *scene,
+                           const struct vt_atlas_place_options *o, struct vt_layout *layout,
+                           struct vt_atlas_place_report *report,
+                           struct vt_atlas_place_choice *choices, struct vts_error *err)
+{
+    uint32_t n = scene->material_count, nw = 0;
+    for (uint32_t i = 0; i < n; i++)
+        nw += scene->materials[i].wang != NULL;
+    if (nw == 0)
+        return place_choices(scene, o, layout, report, choices, err);
+    memset(layout, 0, sizeof *layout);
+    memset(report, 0, sizeof *report);
+    if (nw == n)
+        return vt_error_set(err, VTS_ERR_BAD_INPUT,
+                            "'%s': nothing to place: every material the faces use names a Wang "
+                            "pack (vt_wang); an atlas needs at least one other",
+                            scene->materials[0].obj ? scene->materials[0].obj : "scene");
+    struct vt_atlas_scene sub = *scene;
+    uint32_t *idx = malloc((size_t)n * sizeof *idx);
+    struct vt_atlas_place_choice *sub_choices =
+        choices ? calloc(n - nw, sizeof *sub_choices) : NULL;
+    sub.materials = malloc((size_t)(n - nw) * sizeof *sub.materials);
+    sub.material_count = n - nw;
+    int rc = 0;
+    if (!idx || !sub.materials || (choices && !sub_choices)) {
+        rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory for %u materials", n);
+        goto out;
+    }
+    /* idx: the placed materials first (sub's order), then the pack materials */
+    for (uint32_t i = 0, a = 0, b = n - nw; i < n; i++) {
+        if (scene->materials[i].wang) {
+            idx[b++] = i;
+        } else {
+            sub.materials[a] = scene->materials[i];
+            idx[a++] = i;
+        }
+    }
+    rc = place_choices(&sub, o, layout, report, sub_choices, err);
+    if (!rc)
+        rc = fill_wangs(scene, idx + (n - nw), nw, o, layout, err);
+    if (!rc) {
+        report->wang = nw;
+    }
+    for (uint32_t i = 0; !rc && choices && i < n; i++)
+        choices[idx[i]] = i < n - nw
+                              ? sub_choices[i]
+                              : (struct vt_atlas_place_choice){.how = "wang", .entry = UINT32_MAX};
+out:
+    free(idx);
+    free(sub_choices);
+    free(sub.materials);
     return rc;
 }

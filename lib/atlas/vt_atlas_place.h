@@ -33,6 +33,7 @@ struct vt_atlas_place_report {
     uint32_t replicated;           /* entries with more than one copy */
     uint32_t constant;             /* entries without any texture */
     uint32_t materials;            /* materials (or list/grid textures) placed */
+    uint32_t wang;                 /* materials naming a Wang pack: not placed (no entry) */
     uint32_t shared;               /* materials in an entry with others (name and aliases) */
     uint32_t shared_cells;         /* entries with aliases */
     uint32_t fit;                  /* textured entries whose charts fit in one copy */
@@ -45,8 +46,8 @@ struct vt_atlas_place_report {
 
 /* What vt_atlas_place() chose for one material, for -v listings (material order). */
 struct vt_atlas_place_choice {
-    const char *how; /* "constant", "fit", "replicate", "split" */
-    uint32_t entry;  /* the layout entry it uses */
+    const char *how; /* "constant", "fit", "replicate", "split"; "wang": a pack material */
+    uint32_t entry;  /* the layout entry it uses (UINT32_MAX for "wang": none) */
     uint32_t repeat_u, repeat_v;
     uint32_t crop_width, crop_height; /* texels the entry holds */
 };
@@ -62,7 +63,10 @@ int vt_atlas_place(const struct vt_atlas_scene *scene, const struct vt_atlas_pla
                    struct vt_layout *layout, struct vt_atlas_place_report *report,
                    struct vts_error *err);
 
-/* As vt_atlas_place(), and fills choices[0 .. scene->material_count) (may be NULL). */
+/* As vt_atlas_place(), and fills choices[0 .. scene->material_count) (may be NULL). Materials
+ * that name a Wang pack (vt_wang) get no entry: layout->wangs records them (their pack relative
+ * to o->output, scale and constants), report->wang counts them; a scene of pack materials only
+ * has nothing to place (VTS_ERR_BAD_INPUT). */
 int vt_atlas_place_choices(const struct vt_atlas_scene *scene,
                            const struct vt_atlas_place_options *o, struct vt_layout *layout,
                            struct vt_atlas_place_report *report,

@@ -530,6 +530,18 @@ static int resolve_material(struct obj_ctx *c, struct vt_atlas_material *m, stru
         return 0;
     }
     m->defined = true;
+    if (mm->wang_path) {
+        /* A pack material: no maps (its faces keep texture coordinates the pack's output is
+         * addressed by, which no atlas map could use), Kd 1 unless given (docs/wang.md). */
+        m->wang_scale = mm->wang_scale;
+        int rc = add_dep(c->scene, mm->wang_path, &m->wang, err);
+        if (rc)
+            return rc;
+        set_constants(m, mm);
+        if (!(mm->flags & VT_MTL_HAS_KD))
+            m->features.kd[0] = m->features.kd[1] = m->features.kd[2] = 1;
+        return set_alpha(c, m, mm, c->mtl_paths[mi], err);
+    }
     int rc = add_maps(c, m, mm, c->mtl_paths[mi], err);
     if (rc)
         return rc;

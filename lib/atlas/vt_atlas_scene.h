@@ -58,6 +58,10 @@ struct vt_atlas_material {
     struct vt_layout_material features;   /* its constants and alpha mode (name, entry and
                                              layer_mask unset: vt_atlas_place fills them) */
     enum vt_atlas_alpha_reason alpha_reason;
+    const char *wang;  /* "vt_wang PACK.vts [scale S]" (docs/wang.md): the pack (one of the
+                          scene's deps, resolved like a map), else NULL. Such a material has no
+                          textures and gets no entry (atlas.json "wang_materials") */
+    double wang_scale; /* S (> 0) */
 };
 
 /* Opens the texture file at path as a source; the scan keeps its size and channels and closes it

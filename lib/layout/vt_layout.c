@@ -431,6 +431,43 @@ static int check_materials(const struct vt_layout *l, const char *name, struct v
     return 0;
 }
 
+/* Pack materials: names non-empty, sorted and unique, none an entry's name or alias; a pack path;
+ * scale finite > 0; the constants in range as for materials. */
+static int check_wangs(const struct vt_layout *l, const char *name, struct vts_error *err)
+{
+    for (uint32_t i = 0; i < l->wang_count; i++) {
+        const struct vt_layout_wang *w = &l->wangs[i];
+        const struct vt_layout_material *m = &w->m;
+        if (!m->name || !m->name[0] || !w->pack || !w->pack[0])
+            return vt_error_set(err, VTS_ERR_BAD_INPUT,
+                                "'%s': wang_materials[%u]: empty name or pack", name, i);
+        if (i > 0 && strcmp(l->wangs[i - 1].m.name, m->name) >= 0)
+            return vt_error_set(err, VTS_ERR_BAD_INPUT,
+                                "'%s': wang_materials[%u] ('%s'): not sorted by name, or given "
+                                "twice",
+                                name, i, m->name);
+        if (vt_layout_find(l, m->name))
+            return vt_error_set(err, VTS_ERR_BAD_INPUT,
+                                "'%s': wang_materials[%u]: name '%s' is also an entry's name or "
+                                "alias",
+                                name, i, m->name);
+        if (!(w->scale > 0 && w->scale <= 1e30))
+            return vt_error_set(err, VTS_ERR_BAD_INPUT,
+                                "'%s': wang_materials[%u].scale: expected a number > 0", name, i);
+        bool ok = m->ns >= 0 && m->ns <= 1e30 && m->d >= 0 && m->d <= 1 && m->illum <= 100 &&
+                  m->alpha <= VT_LAYOUT_ALPHA_BLEND;
+        for (int k = 0; k < 3; k++)
+            ok = ok && m->kd[k] >= 0 && m->ka[k] >= 0 && m->ks[k] >= 0 && m->ke[k] >= 0 &&
+                 isfinite(m->kd[k]) && isfinite(m->ka[k]) && isfinite(m->ks[k]) &&
+                 isfinite(m->ke[k]);
+        if (!ok)
+            return vt_error_set(err, VTS_ERR_BAD_INPUT,
+                                "'%s': wang_materials[%u] ('%s'): a constant out of range", name, i,
+                                m->name);
+    }
+    return 0;
+}
+
 int vt_layout_check(struct vt_layout *l, const char *name, struct vts_error *err)
 {
     if (l->width == 0 || l->height == 0)
@@ -464,7 +501,9 @@ int vt_layout_check(struct vt_layout *l, const char *name, struct vts_error *err
     int rc = index_names(l, name, err);
     if (!rc)
         rc = check_overlaps(l, name, err);
-    return rc ? rc : check_materials(l, name, err);
+    if (!rc)
+        rc = check_materials(l, name, err);
+    return rc ? rc : check_wangs(l, name, err);
 }
 
 int vt_layout_index(struct vt_layout *layout, struct vts_error *err)
@@ -532,6 +571,50 @@ void vt_layout_sort_materials(struct vt_layout *layout)
 {
     if (layout->material_count > 1)
         qsort(layout->materials, layout->material_count, sizeof *layout->materials, cmp_material);
+    if (layout->wang_count > 1) /* m is the first member: cmp_material compares the names */
+        qsort(layout->wangs, layout->wang_count, sizeof *layout->wangs, cmp_material);
+}
+
+const struct vt_layout_wang *vt_layout_wang_find(const struct vt_layout *layout, const char *name)
+{
+    size_t lo = 0, hi = layout->wang_count;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        int c = strcmp(layout->wangs[mid].m.name, name);
+        if (c == 0)
+            return &layout->wangs[mid];
+        if (c < 0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return NULL;
+}
+
+static void free_wangs(struct vt_layout *layout)
+{
+    for (uint32_t i = 0; layout->wangs && i < layout->wang_count; i++) {
+        free(layout->wangs[i].m.name);
+        free(layout->wangs[i].pack);
+        free(layout->wangs[i].resolved);
+    }
+    free(layout->wangs);
+    layout->wangs = NULL;
+    layout->wang_count = 0;
+}
+
+int vt_layout_alloc_wangs(struct vt_layout *layout, uint32_t count, struct vts_error *err)
+{
+    free_wangs(layout);
+    layout->wangs = calloc(count ? count : 1, sizeof *layout->wangs);
+    if (!layout->wangs)
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory for %u pack materials", count);
+    layout->wang_count = count;
+    for (uint32_t i = 0; i < count; i++) {
+        layout->wangs[i].m.d = 1;
+        layout->wangs[i].scale = 1;
+    }
+    return 0;
 }
 
 int vt_layout_alloc_materials(struct vt_layout *layout, uint32_t count, struct vts_error *err)
@@ -631,6 +714,7 @@ void vt_layout_release(struct vt_layout *layout)
     for (uint32_t i = 0; layout->materials && i < layout->material_count; i++)
         free(layout->materials[i].name);
     free(layout->materials);
+    free_wangs(layout);
     free(layout->layers);
     free(layout->entries);
     free(layout->by_name);

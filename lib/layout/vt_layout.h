@@ -131,6 +131,17 @@ struct vt_layout_material {
     uint32_t alpha;                    /* enum vt_layout_alpha */
 };
 
+/* A material whose diffuse is a Wang pack (the MTL statement "vt_wang PACK.vts [scale S]",
+ * docs/wang.md): it has no entry and no atlas space (atlas.json "wang_materials"); vt-offset keeps
+ * its faces' texture coordinates and writes the statement. m holds its constants (m.entry and
+ * m.layer_mask unused: 0). Its name is none of the entries' names or aliases. */
+struct vt_layout_wang {
+    struct vt_layout_material m; /* m.name: the material name */
+    char *pack;                  /* the pack as written (relative to atlas.json unless absolute) */
+    char *resolved;              /* pack resolved against the layout file's directory */
+    double scale;                /* output tiles per texture coordinate unit, finite, > 0 */
+};
+
 /* One name of the name index: entries[entry].name when alias is 0, else
  * entries[entry].aliases[alias - 1]. */
 struct vt_layout_name {
@@ -155,6 +166,8 @@ struct vt_layout {
                                              per name of by_name, in the same order: sorted by
                                              name, so materials[i] is the material of by_name[i] */
     uint32_t material_count;
+    struct vt_layout_wang *wangs; /* pack materials, sorted by name (byte order); NULL when none */
+    uint32_t wang_count;
 };
 
 /* Limits against hostile files; exceeding one fails with VTS_ERR_LIMIT and a message. */
@@ -230,6 +243,15 @@ bool vt_layout_uv_covered(const struct vt_layout_entry *e, double u, double v);
 /* The material named name, or NULL (also when the layout has no materials). O(log n). */
 const struct vt_layout_material *vt_layout_material_find(const struct vt_layout *layout,
                                                          const char *name);
+
+/* The pack material named name, or NULL. O(log n) (wangs sorted by name: vt_layout_check() checks
+ * it, vt_layout_sort_materials() sorts them). */
+const struct vt_layout_wang *vt_layout_wang_find(const struct vt_layout *layout, const char *name);
+
+/* Allocates layout->wangs: count zeroed pack materials (each d 1, scale 1), replacing any earlier
+ * ones. Strings are strdup()ed by the caller and freed by vt_layout_release(). Returns 0 or
+ * VTS_ERR_NOMEM. */
+int vt_layout_alloc_wangs(struct vt_layout *layout, uint32_t count, struct vts_error *err);
 
 /* The atlas.json name of a layer colour (enum vts_colour: "srgb", "linear", "normal", "data"; "?"
  * out of range). */

@@ -364,14 +364,16 @@ static int read_material_layers(struct ctx *c, json_t *o, const char *where,
     return 0;
 }
 
+static int read_constants(struct ctx *c, json_t *o, const char *where,
+                          struct vt_layout_material *m);
+
 static int read_material(struct ctx *c, json_t *o, size_t i, const struct vt_layout *l,
                          struct vt_layout_material *m)
 {
-    char where[48], *entry = NULL, *alpha = NULL;
+    char where[48], *entry = NULL;
     snprintf(where, sizeof where, "materials[%zu]", i);
     if (!json_is_object(o))
         return bad(c, where, "expected an object");
-    uint64_t illum;
     int rc = get_string(c, o, "name", where, true, &m->name);
     if (!rc)
         rc = get_string(c, o, "entry", where, true, &entry);
@@ -387,8 +389,15 @@ static int read_material(struct ctx *c, json_t *o, size_t i, const struct vt_lay
     free(entry);
     if (!rc)
         rc = read_material_layers(c, o, where, l, m);
-    if (!rc)
-        rc = get_rgb(c, o, "Kd", where, m->kd);
+    return rc ? rc : read_constants(c, o, where, m);
+}
+
+/* Kd, Ka, Ks, Ke, Ns, d, illum and alpha of a material or a pack material. */
+static int read_constants(struct ctx *c, json_t *o, const char *where, struct vt_layout_material *m)
+{
+    char *alpha = NULL;
+    uint64_t illum;
+    int rc = get_rgb(c, o, "Kd", where, m->kd);
     if (!rc)
         rc = get_rgb(c, o, "Ka", where, m->ka);
     if (!rc)
@@ -433,6 +442,38 @@ static int read_materials(struct ctx *c, json_t *arr, struct vt_layout *l)
     int rc = vt_layout_alloc_materials(l, (uint32_t)json_array_size(arr), c->err);
     for (size_t i = 0; !rc && i < l->material_count; i++)
         rc = read_material(c, json_array_get(arr, i), i, l, &l->materials[i]);
+    return rc ? rc : vt_layout_check(l, c->name, c->err);
+}
+
+/* "wang_materials" (optional, docs/atlas-format.md): pack materials, checked with the model. */
+static int read_wangs(struct ctx *c, json_t *arr, struct vt_layout *l, uint32_t max)
+{
+    if (!json_is_array(arr))
+        return bad(c, "wang_materials", "expected an array");
+    if (json_array_size(arr) > max)
+        return vt_error_set(c->err, VTS_ERR_LIMIT,
+                            "'%s': %zu pack materials, more than the limit %u", c->name,
+                            json_array_size(arr), max);
+    int rc = vt_layout_alloc_wangs(l, (uint32_t)json_array_size(arr), c->err);
+    for (size_t i = 0; !rc && i < l->wang_count; i++) {
+        struct vt_layout_wang *w = &l->wangs[i];
+        json_t *o = json_array_get(arr, i);
+        char where[48];
+        snprintf(where, sizeof where, "wang_materials[%zu]", i);
+        if (!json_is_object(o))
+            return bad(c, where, "expected an object");
+        rc = get_string(c, o, "name", where, true, &w->m.name);
+        if (!rc)
+            rc = get_string(c, o, "pack", where, true, &w->pack);
+        if (!rc)
+            rc = get_number(c, o, "scale", where, 1e-30, 1e30, &w->scale);
+        if (!rc)
+            rc = read_constants(c, o, where, &w->m);
+        if (!rc && !w->pack[0])
+            rc = bad(c, where, "empty pack");
+        if (!rc && !(w->resolved = vt_obj_resolve_path(c->name, w->pack)))
+            rc = vt_error_set(c->err, VTS_ERR_NOMEM, "'%s': out of memory", c->name);
+    }
     return rc ? rc : vt_layout_check(l, c->name, c->err);
 }
 
@@ -489,7 +530,10 @@ static int read_root(struct ctx *c, json_t *root, const struct vt_layout_limits 
     if (!rc)
         rc = vt_layout_check(l, c->name, c->err);
     json_t *materials = json_object_get(root, "materials");
-    return rc || !materials ? rc : read_materials(c, materials, l);
+    if (!rc && materials)
+        rc = read_materials(c, materials, l);
+    json_t *wangs = json_object_get(root, "wang_materials");
+    return rc || !wangs ? rc : read_wangs(c, wangs, l, lim->max_entries);
 }
 
 int vt_layout_parse_memory(const void *data, size_t size, const char *name,

@@ -104,6 +104,27 @@ static json_t *material_json(const struct vt_layout *l, const struct vt_layout_m
                      (json_int_t)m->illum);
 }
 
+/* One pack material of "wang_materials": name, pack, scale and the constants. */
+static json_t *wang_json(const struct vt_layout_wang *w)
+{
+    const struct vt_layout_material *m = &w->m;
+    return json_pack("{s:s, s:s, s:f, s:s, s:o, s:o, s:o, s:o, s:f, s:f, s:I}", "name", m->name,
+                     "pack", w->pack, "scale", w->scale, "alpha", vt_layout_alpha_name(m->alpha),
+                     "Kd", rgb(m->kd), "Ka", rgb(m->ka), "Ks", rgb(m->ks), "Ke", rgb(m->ke), "Ns",
+                     m->ns, "d", m->d, "illum", (json_int_t)m->illum);
+}
+
+static json_t *wangs_json(const struct vt_layout *l)
+{
+    json_t *arr = json_array();
+    for (uint32_t i = 0; arr && i < l->wang_count; i++)
+        if (json_array_append_new(arr, wang_json(&l->wangs[i]))) {
+            json_decref(arr);
+            return NULL;
+        }
+    return arr;
+}
+
 static json_t *materials_json(const struct vt_layout *l)
 {
     json_t *arr = json_array();
@@ -158,6 +179,11 @@ static json_t *layout_json(const struct vt_layout *l)
                   "entries", entries);
     /* materials only when there are some: layouts without them are written as before */
     if (root && l->material_count && json_object_set_new(root, "materials", materials_json(l))) {
+        json_decref(root);
+        return NULL;
+    }
+    /* pack materials likewise only when there are some */
+    if (root && l->wang_count && json_object_set_new(root, "wang_materials", wangs_json(l))) {
         json_decref(root);
         return NULL;
     }

@@ -49,8 +49,9 @@ struct vt_offset_used {
     uint32_t *slots; /* names of the layout's name index (by_name, sorted: with materials,
                         materials[slot] is the material), in slot order */
     uint32_t slot_count;
-    char **unknown; /* names the layout does not have (faces without texcoords: their
-                       material is not checked), sorted, each once */
+    char **unknown; /* names without an entry in the layout, sorted, each once: the layout's
+                       pack materials (layout->wangs) and names it does not have (faces
+                       without texcoords: their material is not checked) */
     uint32_t unknown_count;
 };
 
@@ -87,6 +88,8 @@ struct vt_offset_stats {
     uint64_t vt_rewritten;     /* vt statements replaced by atlas coordinates */
     uint64_t vt_duplicated;    /* extra vt lines written for faces of other materials */
     uint64_t vt_unused;        /* vt statements no face uses (copied unchanged) */
+    uint64_t vt_wang;          /* vt statements of pack materials' faces (copied as written;
+                                  not in vt_rewritten) */
     uint64_t faces;            /* f statements */
     uint64_t faces_rewritten;  /* f and l statements whose texture indices changed */
     uint64_t faces_without_vt; /* f statements without any texture index (copied unchanged) */
@@ -123,8 +126,10 @@ int vt_offset_rewrite_memory(const void *data, size_t size, const char *name,
  * line gets "# "), one newmtl per material of used, with its constants from the layout's
  * materials (a layout without them, or a name it lacks: Kd 1 1 1 with maps, 0.8 grey without,
  * opaque), its alpha mode as "vt_alpha MODE", and per layer that holds a map of it the layer's
- * MTL statement naming "<store>#<layer>". Written to out. Returns 0, VTS_ERR_NOMEM or out's
- * status. */
+ * MTL statement naming "<store>#<layer>"; a pack material of the layout (layout->wangs) gets its
+ * constants and "vt_wang PACK scale S" with PACK its pack as in wangs[i].pack (the caller makes
+ * it relative to the MTL's folder; one token: white space fails with VTS_ERR_BAD_INPUT). Written
+ * to out. Returns 0, VTS_ERR_NOMEM, VTS_ERR_BAD_INPUT or out's status. */
 int vt_offset_write_mtl(const struct vt_layout *layout, const struct vt_offset_used *used,
                         const char *store, const char *header_comment,
                         const struct vt_offset_sink *out, struct vts_error *err);

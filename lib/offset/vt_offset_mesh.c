@@ -161,6 +161,17 @@ static int assign_keys(struct vt_offset_run *r, struct vts_error *err)
     for (uint32_t fi = 0; fi < f->count; fi++) {
         r->face_key[fi] = VT_OFFSET_NONE;
         uint32_t entry = f->entry[fi];
+        if (entry == VT_OFFSET_MAT_WANG) {
+            /* a pack material: its vt are copied as they are (a copy of their own when a face
+             * of an atlas material shares them) */
+            int rc = key_of(r, VT_OFFSET_MAT_WANG, 0, 0, &r->face_key[fi], err);
+            for (uint64_t k = f->start[fi]; rc == 0 && k < f->start[fi + 1]; k++)
+                if (f->tex[k] != VT_CHART_NONE)
+                    rc = use_vt(r, f->tex[k], r->face_key[fi], err);
+            if (rc < 0)
+                return rc;
+            continue;
+        }
         if (f->group[fi] == VT_CHART_NONE || entry >= r->layout->entry_count)
             continue; /* no texcoords (or nothing to map them with: refused in pass 1) */
         const struct vt_layout_entry *e = &r->layout->entries[entry];

@@ -108,6 +108,19 @@ int vt_offset_write_mtl(const struct vt_layout *layout, const struct vt_offset_u
         put_material(&o, layout, name, m, store);
     }
     for (uint32_t i = 0; i < used->unknown_count && o.rc == 0; i++) {
+        const struct vt_layout_wang *w = vt_layout_wang_find(layout, used->unknown[i]);
+        if (w) { /* a pack material (docs/wang.md): its constants and its pack, no maps */
+            if (strpbrk(w->pack, " \t\r\n"))
+                return vt_error_set(err, VTS_ERR_BAD_INPUT,
+                                    "material '%s': pack path '%s' has white space (a vt_wang "
+                                    "path is one token)",
+                                    w->m.name, w->pack);
+            put_material(&o, layout, w->m.name, &w->m, store);
+            put(&o, "vt_wang ");
+            put(&o, w->pack);
+            putf(&o, " scale %.17g\n", w->scale);
+            continue;
+        }
         struct vt_layout_material implied;
         implied_material(layout, NULL, &implied);
         put(&o, "\n# not in the layout (its faces have no texture coordinates)");

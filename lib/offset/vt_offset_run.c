@@ -83,7 +83,9 @@ int vt_offset_run_usemtl_name(struct vt_offset_run *r, const unsigned char *line
 uint32_t vt_offset_run_material(const struct vt_offset_run *r, const char *name)
 {
     const struct vt_layout_entry *e = vt_layout_find(r->layout, name);
-    return e ? (uint32_t)(e - r->layout->entries) : VT_OFFSET_MAT_MISSING;
+    if (e)
+        return (uint32_t)(e - r->layout->entries);
+    return vt_layout_wang_find(r->layout, name) ? VT_OFFSET_MAT_WANG : VT_OFFSET_MAT_MISSING;
 }
 
 uint32_t vt_offset_run_name_slot(const struct vt_offset_run *r, const char *name)

@@ -48,15 +48,21 @@ static int put_au_av(struct vt_offset_run *r, double au, double av, struct vts_e
     return rc;
 }
 
-/* "U V" (and " W" from the original token) of vt i for key k (entry and move). */
-static int put_uv(struct vt_offset_run *r, uint32_t i, uint32_t k, const struct vt_offset_tok *w,
-                  struct vts_error *err)
+/* "U V" (and " W" from the original token) of vt i for key k (entry and move); on a pack
+ * material's key the text of uv (u and v as written: s..e of the first two tokens). */
+static int put_uv(struct vt_offset_run *r, uint32_t i, uint32_t k, const struct vt_offset_tok *uv,
+                  const struct vt_offset_tok *w, struct vts_error *err)
 {
     double au, av;
     const struct vt_offset_key *key = &r->keys[k];
-    vt_offset_map(r, key->entry, r->uv[2 * (size_t)i] + key->du, r->uv[2 * (size_t)i + 1] + key->dv,
-                  &au, &av);
-    int rc = put_au_av(r, au, av, err);
+    int rc;
+    if (key->entry == VT_OFFSET_MAT_WANG) { /* a pack material's: the u v as written */
+        rc = vt_offset_run_put(r, uv->s, (size_t)(uv->e - uv->s), err);
+    } else {
+        vt_offset_map(r, key->entry, r->uv[2 * (size_t)i] + key->du,
+                      r->uv[2 * (size_t)i + 1] + key->dv, &au, &av);
+        rc = put_au_av(r, au, av, err);
+    }
     if (rc == 0 && w) {
         rc = vt_offset_run_put(r, " ", 1, err);
         if (rc == 0)
@@ -85,14 +91,18 @@ static int pass2_vt(struct vt_offset_run *r, const unsigned char *line, size_t n
     if (count == 0)
         return vt_offset_run_changed_error(r, err);
     const struct vt_offset_tok *w = count == 3 ? &t[2] : NULL;
+    struct vt_offset_tok uv = {t[0].s, t[count > 1 ? 1 : 0].e};
     const unsigned char *after = t[count - 1].e;
     int rc = vt_offset_run_put(r, line, (size_t)(t[0].s - line), err);
     if (rc == 0)
-        rc = put_uv(r, i, r->first[i], w, err);
+        rc = put_uv(r, i, r->first[i], &uv, w, err);
     if (rc == 0)
         rc = vt_offset_run_put(r, after, (size_t)(end - after), err);
     r->out_vt++;
-    r->stats.vt_rewritten++;
+    if (r->keys[r->first[i]].entry == VT_OFFSET_MAT_WANG)
+        r->stats.vt_wang++;
+    else
+        r->stats.vt_rewritten++;
     bool terminated = n && line[n - 1] == '\n';
     const char *eol = line_ending(line, n);
     for (uint32_t k = r->head[i]; rc == 0 && k != VT_OFFSET_NONE; k = r->extra[k].next) {
@@ -101,7 +111,7 @@ static int pass2_vt(struct vt_offset_run *r, const unsigned char *line, size_t n
         if (rc == 0)
             rc = vt_offset_run_put(r, "vt ", 3, err);
         if (rc == 0)
-            rc = put_uv(r, i, r->extra[k].key, w, err);
+            rc = put_uv(r, i, r->extra[k].key, &uv, w, err);
         if (rc == 0 && terminated)
             rc = vt_offset_run_str(r, eol, err);
         r->out_vt++;

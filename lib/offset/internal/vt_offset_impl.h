@@ -18,6 +18,9 @@
 #define VT_OFFSET_NONE        UINT32_MAX       /* no material / no extra */
 #define VT_OFFSET_MAT_NONE    UINT32_MAX       /* before any usemtl */
 #define VT_OFFSET_MAT_MISSING (UINT32_MAX - 1) /* usemtl of a material the layout lacks */
+#define VT_OFFSET_MAT_WANG                                                                         \
+    (UINT32_MAX - 2) /* a pack material (layout->wangs): its faces                                 \
+                        keep their texture coordinates */
 
 struct vt_offset_extra {
     uint32_t key;  /* key index (r->keys) */
@@ -117,7 +120,8 @@ int vt_offset_run_str(struct vt_offset_run *r, const char *s, struct vts_error *
 int vt_offset_run_usemtl_name(struct vt_offset_run *r, const unsigned char *line, size_t n,
                               char **name, struct vts_error *err);
 
-/* The entry index of material name in the layout, or VT_OFFSET_MAT_MISSING. */
+/* The entry index of material name in the layout, VT_OFFSET_MAT_WANG for a pack material, or
+ * VT_OFFSET_MAT_MISSING. */
 uint32_t vt_offset_run_material(const struct vt_offset_run *r, const char *name);
 
 /* The slot of name in the layout's name index (a number per material name, entries and aliases

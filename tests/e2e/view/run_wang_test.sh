@@ -151,6 +151,63 @@ wang_scene)
   scene --camera pack.cam --screenshot x.png 2>err.txt || rc=$?
   [ $rc = 1 ] && grep -q "wall.png" err.txt || fail "a pack that is not one: rc $rc, $(cat err.txt)"
   ;;
+wang_pipeline)
+  # A SOURCE scene whose ground material names a pack ("vt_wang pack.vts scale 1" in scene.mtl,
+  # docs/wang.md "Packs in scenes") through the normal pipeline: vt-atlas (no entry for it: its
+  # pack in atlas.json's "wang_materials"), vt-offset (its faces' vt copied as written, the
+  # statement in the .vt.mtl), vt-tiles --layout, vt-view. The 6 x 6 ground quad (UVs 0..6,
+  # repeats) must match the CPU assembly of output tiles x 0..5, y -6..-1 (--origin 0,58 of the
+  # 64-entry hash) as in wang_scene; the wall quad (map_Kd) must match --reference-scene.
+  # Negative controls: the same pipeline without the statement, and with scale 2, fail.
+  atlas=${VT_ATLAS:?} offset=${VT_OFFSET:?} tiles=${VT_TILES:?}
+  pack -o pack.vts
+  "$synth" wall.png --format png --size 128x128 --channels 3 --photo --seed 3
+  {
+    echo "mtllib scene.mtl"
+    printf 'v %s\n' "-3 -3 0" "3 -3 0" "3 3 0" "-3 3 0" "5 -3 0" "11 -3 0" "11 3 0" "5 3 0"
+    printf 'vt %s\n' "0 0" "6 0" "6 6" "0 6" "0 0" "1 0" "1 1" "0 1"
+    printf 'usemtl ground\nf 1/1 2/2 3/3 4/4\nusemtl wall\nf 5/5 6/6 7/7 8/8\n'
+  } >scene.obj
+  mtl() { # the ground material's vt_wang statement (none: empty)
+    printf 'newmtl ground\nKd 1 1 1\nillum 0\n%s\n\nnewmtl wall\nKd 1 1 1\nillum 0\n' "$1"
+    printf 'map_Kd wall.png\n'
+  }
+  echo "0 0 3 0 0 0 90" >pack.cam
+  echo "8 0 3 8 0 0 90" >wall.cam
+  # pipeline TAG: source scene -> store and .vt.obj in TAG/, the ground quad shot as TAG.png
+  pipeline() {
+    mkdir -p "$1"
+    "$atlas" scene.obj -o "$1/atlas.json" --tile-size 64 --border 2 -q
+    "$offset" scene.obj "$1/atlas.json" -o "$1/scene.vt.obj" -q
+    "$tiles" --layout "$1/atlas.json" -o "$1/scene.vts" --codec png -q
+    vt "$1/scene.vts" "$1/scene.vt.obj" --frames 2 --sync --camera pack.cam --screenshot "$1.png"
+  }
+  mtl "vt_wang pack.vts scale 1" >scene.mtl
+  pipeline p
+  grep -q '"wang_materials"' p/atlas.json || fail "no wang_materials in atlas.json"
+  if grep -q '"name": "ground"' <(sed -n '/"entries"/,/"materials"/p' p/atlas.json); then
+    fail "the pack material has an entry"
+  fi
+  grep -qx 'vt_wang ../pack.vts scale 1' p/scene.vt.mtl || fail "no statement: $(cat p/scene.vt.mtl)"
+  diff <(grep '^vt' scene.obj | head -4) <(grep '^vt' p/scene.vt.obj | head -4) ||
+    fail "the pack faces' vt changed"
+  vt --wang pack.vts --extent 6x6 --origin 0,58 --reference --screenshot ref.png
+  "$vcheck" psnr p.png ref.png --min 40 || fail "the pack material against the CPU assembly"
+  "$check" edges p.png ref.png 6 2
+  # the textured quad against the original scene drawn by --reference-scene
+  vt p/scene.vts p/scene.vt.obj --frames 20 --sync --camera wall.cam --screenshot wall.png
+  vt p/scene.vts p/scene.vt.obj --frames 1 --camera wall.cam --reference --reference-scene \
+    scene.obj --screenshot wallref.png
+  "$vcheck" psnr wall.png wallref.png --min 35 || fail "the textured quad against its texture"
+  if "$vcheck" psnr p.png wallref.png --min 35; then fail "the wall check passes the ground"; fi
+  # negative controls: without the statement (the ground is an atlas material) and scale 2
+  mtl "" >scene.mtl
+  pipeline n
+  if "$vcheck" psnr n.png ref.png --min 30; then fail "the pipeline without vt_wang passes"; fi
+  mtl "vt_wang pack.vts scale 2" >scene.mtl
+  pipeline s
+  if "$vcheck" psnr s.png ref.png --min 30; then fail "scale 2 passes"; fi
+  ;;
 wang_window)
   # The GLFW window (under xvfb-run) draws what the headless run draws. LeakSanitizer is off for
   # the window (the window case of run_view_test.sh says why).
