@@ -52,6 +52,19 @@ static void remove_temps_and_die(int sig)
     raise(sig);
 }
 
+/* The signals the handler cleans up after, blocked in the calling thread (old receives the mask
+ * before): around a temporary file's creation and registration, so that the handler never runs
+ * between the two (it would leave the file behind). */
+static void block_cleanup_signals(sigset_t *old)
+{
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    sigaddset(&set, SIGHUP);
+    pthread_sigmask(SIG_BLOCK, &set, old);
+}
+
 void vt_atomic_file_cleanup_on_signals(void)
 {
     static const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
@@ -143,11 +156,18 @@ static int create_named_temp(struct vt_atomic_file *f, const char *path, const c
             f->temp_path[0] = '\0';
             return vt_error_set(err, VTS_ERR_ARG, "output path '%s' is too long", f->final_path);
         }
+        /* A signal pending meanwhile is handled once the file is registered. The pool's workers
+         * block these signals (vt_pool.c), so none of them takes it in this window instead. */
+        sigset_t old;
+        block_cleanup_signals(&old);
         f->fd = open(f->temp_path, O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-        if (f->fd >= 0) {
+        int open_errno = errno;
+        if (f->fd >= 0)
             temp_register(f->temp_path);
+        pthread_sigmask(SIG_SETMASK, &old, NULL);
+        if (f->fd >= 0)
             return 0;
-        }
+        errno = open_errno;
         if (errno != EEXIST)
             break;
     }

@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <pthread.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -104,6 +105,15 @@ int vt_pool_run(unsigned threads, const struct vt_pool_fns *fns, void *ctx, stru
         rc = vt_error_set(err, VTS_ERR_NOMEM, "out of memory starting %u threads", threads);
         goto out;
     }
+    /* Workers leave SIGINT, SIGTERM and SIGHUP to the other threads (they inherit this mask): the
+     * atomic-file cleanup handler then never runs in a worker while the thread creating an output
+     * file has them blocked (vt_atomic_file.c). */
+    sigset_t block, old_mask;
+    sigemptyset(&block);
+    sigaddset(&block, SIGINT);
+    sigaddset(&block, SIGTERM);
+    sigaddset(&block, SIGHUP);
+    pthread_sigmask(SIG_BLOCK, &block, &old_mask);
     unsigned started = 0;
     for (; started < threads; started++) {
         workers[started] = (struct worker){&p, started};
@@ -119,6 +129,7 @@ int vt_pool_run(unsigned threads, const struct vt_pool_fns *fns, void *ctx, stru
             break; /* run with the workers that did start */
         }
     }
+    pthread_sigmask(SIG_SETMASK, &old_mask, NULL);
     wait_with_progress(&p);
     for (unsigned i = 0; i < started; i++)
         pthread_join(tids[i], NULL);
