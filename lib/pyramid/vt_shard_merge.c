@@ -104,7 +104,7 @@ int vt_shard_merge_range(const struct vt_shard_merge *m, char *out, size_t cap)
         uint32_t n = 0;
         for (const char *p = v;; n++) {
             size_t len = strcspn(p, ",");
-            if (n >= VTS_MAX_LAYERS)
+            if (n >= VTS_MAX_LAYERS || (k > 0 && n >= items))
                 return -1;
             if (k == 0)
                 lo[n] = INFINITY, hi[n] = -INFINITY;
