@@ -17,6 +17,7 @@
 #include "vt_output_path.h"
 #include "vt_shard.h"
 #include "vt_stdin_spool.h"
+#include "vt_store_georef.h"
 #include "vt_store_stats.h"
 #include "vt_tile_reader.h"
 #include "vt_wang_pack.h"
@@ -333,56 +334,27 @@ static json_t *json_wang(const struct vts_store *s)
     return o ? o : json_null();
 }
 
-/* ---- georeferencing (docs/geospatial.md): geo.transform, geo.crs_wkt, nodata ---- */
-
-/* Reads geo.transform's six numbers; false when the store has none or it is malformed. */
-static bool georef_transform(const struct vts_store *s, double t[6])
-{
-    const char *v = vts_store_meta_find(s, "geo.transform");
-    if (!v)
-        return false;
-    for (int i = 0; i < 6; i++) {
-        char *end;
-        t[i] = strtod(v, &end);
-        if (end == v || !isfinite(t[i]))
-            return false;
-        v = end;
-    }
-    while (*v == ' ')
-        v++;
-    return *v == '\0';
-}
-
-/* The CRS's name: the first quoted string of its WKT, into buf. */
-static void georef_crs_name(const char *wkt, char *buf, size_t size)
-{
-    const char *q = strchr(wkt, '"');
-    const char *e = q ? strchr(q + 1, '"') : NULL;
-    if (!e)
-        snprintf(buf, size, "(unnamed)");
-    else
-        snprintf(buf, size, "%.*s", (int)(e - q - 1), q + 1);
-}
+/* ---- georeferencing (docs/geospatial.md; vt_store_georef.h) ---- */
 
 static void print_georef(const struct vts_store *s)
 {
-    double t[6];
-    const char *wkt = vts_store_meta_find(s, "geo.crs_wkt");
-    const char *nodata = vts_store_meta_find(s, "nodata");
-    if (georef_transform(s, t))
+    struct vt_georef g;
+    vt_store_georef(s, 0, &g);
+    const double *t = g.transform;
+    if (g.has_transform)
         printf(
             "georef:            origin %.17g, %.17g; texel %.17g x %.17g; rotation %.17g, %.17g\n",
             t[0], t[3], t[1], t[5], t[2], t[4]);
-    if (wkt) {
+    if (g.crs_wkt) {
         char name[128];
-        georef_crs_name(wkt, name, sizeof name);
+        vt_store_crs_name(g.crs_wkt, name, sizeof name);
         printf("crs:               ");
         print_escaped(name);
         putchar('\n');
     }
-    if (nodata) {
+    if (g.nodata) {
         printf("nodata:            ");
-        print_escaped(nodata);
+        print_escaped(g.nodata);
         putchar('\n');
     }
 }
@@ -491,30 +463,25 @@ static json_t *json_layer(const struct vts_store *s, const struct vt_store_stats
  * store has any (the JSON then prints reals with 17 digits). */
 static bool json_georef(const struct vts_store *s, json_t *root)
 {
-    double t[6];
-    bool any = false;
-    if (georef_transform(s, t)) {
+    struct vt_georef g;
+    vt_store_georef(s, 0, &g);
+    if (g.has_transform) {
         json_t *a = json_array();
         for (int i = 0; i < 6; i++)
-            json_array_append_new(a, json_real(t[i]));
+            json_array_append_new(a, json_real(g.transform[i]));
         json_object_set_new(root, "geoTransform", a);
-        any = true;
     }
-    const char *wkt = vts_store_meta_find(s, "geo.crs_wkt");
-    if (wkt) {
-        json_object_set_new(root, "coordinateSystem", json_pack("{s:o}", "wkt", json_text(wkt)));
-        any = true;
-    }
-    const char *nodata = vts_store_meta_find(s, "nodata");
-    if (nodata) {
+    if (g.crs_wkt)
+        json_object_set_new(root, "coordinateSystem",
+                            json_pack("{s:o}", "wkt", json_text(g.crs_wkt)));
+    if (g.nodata) {
         char *end;
-        double v = strtod(nodata, &end);
+        double v = strtod(g.nodata, &end);
         json_object_set_new(root, "noDataValue",
-                            end != nodata && !*end && isfinite(v) ? json_real(v)
-                                                                  : json_text(nodata));
-        any = true;
+                            end != g.nodata && !*end && isfinite(v) ? json_real(v)
+                                                                    : json_text(g.nodata));
     }
-    return any;
+    return g.has_transform || g.crs_wkt || g.nodata;
 }
 
 static int print_json(const struct vts_store *s, const struct vt_store_stats *st)
@@ -746,14 +713,13 @@ static int run_wang_region(const struct vts_store *s, const struct options *o)
  * OUT.aux.xml and a world file, with the transform of the level (and tile) written. */
 static int write_georef(const struct vts_store *s, const struct options *o)
 {
-    double t[6];
-    struct vt_georef g = {.has_transform = georef_transform(s, t),
-                          .crs_wkt = vts_store_meta_find(s, "geo.crs_wkt"),
-                          .nodata = vts_store_meta_find(s, "nodata"),
-                          .bands = vts_store_layer(s, o->layer)->channels};
+    struct vt_georef g;
+    vt_store_georef(s, o->layer, &g);
     if ((!g.has_transform && !g.crs_wkt) || vt_output_path_is_stdio(o->out_path))
         return VT_EXIT_OK;
     if (g.has_transform) {
+        double t[6];
+        memcpy(t, g.transform, sizeof t);
         const struct vts_geometry *geo = vts_store_geometry(s);
         int64_t x = 0, y = 0; /* a tile's payload starts at its border */
         if (o->has_tile) {
