@@ -168,19 +168,25 @@ static unsigned check_strips(const struct vts_tile_rect *from, const struct vts_
     unsigned bad = count > 4;
     if (count > 4)
         return bad;
-    unsigned char *hits = calloc((size_t)tiles_x * tiles_y, 1);
+    /* a strip reaching outside `to` is wrong; inside it, count the strips over each tile */
+    unsigned char hits[MAX_N * MAX_N] = {0};
+    uint32_t tw = to->x1 - to->x0, th = to->y1 - to->y0;
+    if (rect_empty(to))
+        return bad + (count != 0);
+    if (tw > MAX_N || th > MAX_N)
+        return bad + 1;
     for (uint32_t s = 0; s < count; s++) {
-        bad += rect_empty(&strips[s]) || strips[s].x1 > tiles_x || strips[s].y1 > tiles_y;
-        for (uint32_t y = strips[s].y0; y < strips[s].y1 && y < tiles_y; y++)
-            for (uint32_t x = strips[s].x0; x < strips[s].x1 && x < tiles_x; x++)
-                hits[(size_t)y * tiles_x + x]++;
+        const struct vts_tile_rect *r = &strips[s];
+        bad += rect_empty(r) || r->x1 > tiles_x || r->y1 > tiles_y;
+        bad += r->x0 < to->x0 || r->y0 < to->y0 || r->x1 > to->x1 || r->y1 > to->y1;
+        for (uint32_t y = r->y0; y < r->y1; y++)
+            for (uint32_t x = r->x0; x < r->x1; x++)
+                if (rect_has(to, x, y))
+                    hits[(y - to->y0) * tw + x - to->x0]++;
     }
-    for (uint32_t y = 0; y < tiles_y; y++)
-        for (uint32_t x = 0; x < tiles_x; x++) {
-            bool want = rect_has(to, x, y) && !rect_has(from, x, y);
-            bad += hits[(size_t)y * tiles_x + x] != (want ? 1 : 0);
-        }
-    free(hits);
+    for (uint32_t y = to->y0; y < to->y1; y++)
+        for (uint32_t x = to->x0; x < to->x1; x++)
+            bad += hits[(y - to->y0) * tw + x - to->x0] != (rect_has(from, x, y) ? 0 : 1);
     /* the order: the loaded part stays a rectangle; columns (to's rows not all spanned) first */
     struct vts_tile_rect in = {
         from->x0 > to->x0 ? from->x0 : to->x0, from->y0 > to->y0 ? from->y0 : to->y0,
@@ -599,6 +605,49 @@ static void known_answers(void)
     vts_clipmap_free(&c);
 }
 
+static uint64_t area(const struct vts_tile_rect *r)
+{
+    return rect_empty(r) ? 0 : (uint64_t)(r->x1 - r->x0) * (r->y1 - r->y0);
+}
+
+/* n = 256 over a 2^20-texel square in 256 px tiles (4096 x 4096 tiles at level 0, 13 levels):
+ * the first fill and then diagonal moves load exactly the area of the new strips, in
+ * ceil(pending / budget) steps, and every level ends complete. */
+static void a_large_window_loads_exactly_its_strips(void)
+{
+    struct vts_geometry g = {1u << 20, 1u << 20, 256, 0, 256, 13, 1, 0};
+    struct vts_clipmap c;
+    VT_CHECK_INT_EQ(vts_clipmap_init(&c, &g, VTS_CLIPMAP_MAX_N, NULL), 0);
+    const uint32_t budget = 4096;
+    struct vts_clipmap_tile *plan = calloc(budget, sizeof *plan);
+    double cx = 300000.5, cy = 700000.25;
+    for (int mv = 0; mv < 4; mv++) {
+        uint64_t want = 0;
+        for (uint32_t l = 0; l < c.level_count; l++) {
+            struct vts_tile_rect w, old = c.levels[l].back;
+            VT_CHECK_INT_EQ(vts_clipmap_window(&c, l, cx / (1u << l), cy / (1u << l), &w), 0);
+            VT_CHECK_INT_EQ(vts_clipmap_move(&c, l, &w), 0);
+            struct vts_tile_rect in = {old.x0 > w.x0 ? old.x0 : w.x0, old.y0 > w.y0 ? old.y0 : w.y0,
+                                       old.x1 < w.x1 ? old.x1 : w.x1,
+                                       old.y1 < w.y1 ? old.y1 : w.y1};
+            want += area(&w) - area(&in);
+        }
+        uint64_t pending = vts_clipmap_pending(&c), steps = 0, loads = 0;
+        VT_CHECK_INT_EQ(pending, want);
+        for (uint32_t k; (k = vts_clipmap_plan(&c, plan, budget)) > 0; steps++)
+            for (uint32_t i = 0; i < k; i++, loads++)
+                VT_CHECK(vts_clipmap_loaded(&c, &plan[i]) == 0);
+        VT_CHECK_INT_EQ(loads, want);
+        VT_CHECK_INT_EQ(steps, (want + budget - 1) / budget);
+        for (uint32_t l = 0; l < c.level_count; l++)
+            VT_CHECK(vts_clipmap_complete(&c, l));
+        /* 3.5 tiles right and 2 up at level 0 (the coarse levels move less or not at all) */
+        cx += 3.5 * 256, cy -= 2 * 256;
+    }
+    free(plan);
+    vts_clipmap_free(&c);
+}
+
 static void bad_arguments_are_refused(void)
 {
     struct vts_geometry g = {100, 60, 8, 0, 8, 2, 1, 0};
@@ -650,5 +699,6 @@ int main(void)
     VT_RUN(windows_follow_the_snapping_formula);
     VT_RUN(strips_cover_exactly_the_new_tiles_in_order);
     VT_RUN(walks_load_exactly_the_missing_tiles);
+    VT_RUN(a_large_window_loads_exactly_its_strips);
     return vt_test_main_result();
 }
