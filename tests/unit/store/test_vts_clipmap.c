@@ -350,6 +350,50 @@ static void windows_follow_the_snapping_formula(void)
     fprintf(stderr, "  %u centres checked against the window formula\n", windows);
 }
 
+/* Whether level l's window (in level-0 texels, clipped to the store) lies within level l + 1's:
+ * where the finer level is loaded, the coarser one it falls back to is too. */
+static bool nested(const struct vts_clipmap *c, uint32_t l, const struct vts_tile_rect *fine,
+                   const struct vts_tile_rect *coarse)
+{
+    uint64_t C = c->content_px, w = c->levels[0].width, h = c->levels[0].height;
+    uint64_t f[4] = {fine->x0 * C << l, fine->y0 * C << l, fine->x1 * C << l, fine->y1 * C << l};
+    uint64_t g[4] = {coarse->x0 * C << (l + 1), coarse->y0 * C << (l + 1),
+                     coarse->x1 * C << (l + 1), coarse->y1 * C << (l + 1)};
+    f[2] = f[2] < w ? f[2] : w, g[2] = g[2] < w ? g[2] : w;
+    f[3] = f[3] < h ? f[3] : h, g[3] = g[3] < h ? g[3] : h;
+    return g[0] <= f[0] && g[1] <= f[1] && f[2] <= g[2] && f[3] <= g[3];
+}
+
+static void windows_of_one_centre_nest(void)
+{
+    unsigned pairs = 0, caught = 0;
+    for (size_t gi = 0; gi < GEOMETRY_COUNT; gi++)
+        for (uint32_t n = 1; n <= MAX_N; n++) {
+            struct vts_geometry g = geometry_of(gi);
+            struct vts_clipmap c;
+            VT_CHECK_INT_EQ(vts_clipmap_init(&c, &g, n, NULL), 0);
+            for (int64_t q = -8; q <= 4 * (int64_t)g.width + 8; q++) {
+                double cx = q * g.tile_content_px / 4.0 + 0.125;
+                double cy = (double)((q * 5) % (4 * (int64_t)g.height + 16) - 8);
+                for (uint32_t l = 0; l + 1 < c.level_count; l++) {
+                    struct vts_tile_rect fine, coarse;
+                    vts_clipmap_window(&c, l, cx / (1u << l), cy / (1u << l), &fine);
+                    vts_clipmap_window(&c, l + 1, cx / (2u << l), cy / (2u << l), &coarse);
+                    VT_CHECK(nested(&c, l, &fine, &coarse));
+                    pairs++;
+                    /* the negative control: the coarse level given the fine level's centre
+                     * (not halved) */
+                    vts_clipmap_window(&c, l + 1, cx / (1u << l), cy / (1u << l), &coarse);
+                    caught += !nested(&c, l, &fine, &coarse);
+                }
+            }
+            vts_clipmap_free(&c);
+        }
+    VT_CHECK(caught > 1000);
+    fprintf(stderr, "  %u level pairs nested, %u windows of an unhalved centre caught\n", pairs,
+            caught);
+}
+
 static void strips_cover_exactly_the_new_tiles_in_order(void)
 {
     unsigned pairs = 0, controls = 0;
@@ -697,6 +741,7 @@ int main(void)
     VT_RUN(known_answers);
     VT_RUN(bad_arguments_are_refused);
     VT_RUN(windows_follow_the_snapping_formula);
+    VT_RUN(windows_of_one_centre_nest);
     VT_RUN(strips_cover_exactly_the_new_tiles_in_order);
     VT_RUN(walks_load_exactly_the_missing_tiles);
     VT_RUN(a_large_window_loads_exactly_its_strips);
