@@ -306,8 +306,7 @@ static unsigned check_state(const struct vts_clipmap *c, const struct model *m)
             for (uint32_t x = f->x0; x < f->x1; x++)
                 bad += !model_in_slot(m, l, x, y);
         bool target_empty = rect_empty(&m->target[l]);
-        bad += vts_clipmap_complete(c, l) !=
-               (empty ? target_empty : !target_empty && rect_eq(f, &m->target[l]));
+        bad += vts_clipmap_complete(c, l) != (!target_empty && rect_eq(f, &m->target[l]));
         double C = c->content_px, inset = (double)(l % 3) / 2, x0, y0, x1, y1;
         vts_clipmap_valid(c, l, inset, &x0, &y0, &x1, &y1);
         if (empty) {
@@ -711,6 +710,8 @@ static void bad_arguments_are_refused(void)
 
     VT_CHECK_INT_EQ(vts_clipmap_init(&c, &g, 4, &err), 0);
     VT_CHECK_INT_EQ(c.level_count, 2);
+    VT_CHECK(!vts_clipmap_complete(&c, 1)); /* no target yet */
+    VT_CHECK_INT_EQ(vts_clipmap_pending(&c), 0);
     struct vts_tile_rect w = {1, 1, 1, 1};
     VT_CHECK_INT_EQ(vts_clipmap_window(&c, 2, 0, 0, &w), VTS_ERR_RANGE);
     VT_CHECK(w.x0 == 0 && w.x1 == 0 && w.y0 == 0 && w.y1 == 0);
