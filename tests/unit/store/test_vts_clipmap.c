@@ -573,6 +573,52 @@ static void walk(size_t gi, uint32_t n, uint32_t k, uint32_t moves, struct walk_
     st->walks++;
 }
 
+/* The state checker's negative controls: a front reaching over a tile not loaded, a slot of the
+ * front overwritten, a target the model does not have: each is reported. */
+static void state_checker_catches_a_wrong_front(void)
+{
+    struct vts_geometry g = geometry_of(2); /* 40x40 tiles */
+    struct vts_clipmap c;
+    VT_CHECK_INT_EQ(vts_clipmap_init(&c, &g, 5, NULL), 0);
+    struct model m = {.n = 5, .level_count = c.level_count};
+    for (uint32_t l = 0; l < c.level_count; l++) {
+        m.tiles_x[l] = c.levels[l].tiles_x;
+        m.tiles_y[l] = c.levels[l].tiles_y;
+        for (uint32_t s = 0; s < 25; s++)
+            m.slot[l][s] = -1;
+    }
+    struct vts_tile_rect w = {10, 12, 15, 17};
+    VT_CHECK_INT_EQ(vts_clipmap_move(&c, 0, &w), 0);
+    m.target[0] = w;
+    struct vts_clipmap_tile plan[12];
+    uint32_t count = vts_clipmap_plan(&c, plan, 12); /* two rows and two tiles of the third */
+    VT_CHECK_INT_EQ(count, 12);
+    for (uint32_t i = 0; i < count; i++) {
+        VT_CHECK_INT_EQ(vts_clipmap_loaded(&c, &plan[i]), 0);
+        m.slot[0][plan[i].slot_y * 5 + plan[i].slot_x] = (int64_t)plan[i].y * 40 + plan[i].x;
+    }
+    struct vts_tile_rect two_rows = {10, 12, 15, 14};
+    VT_CHECK(rect_eq(&c.levels[0].front, &two_rows));
+    VT_CHECK_INT_EQ(check_state(&c, &m), 0);
+    c.levels[0].front.y1++; /* the third row is not all loaded */
+    VT_CHECK(check_state(&c, &m) > 0);
+    c.levels[0].front.y1--;
+    /* slot (0, 2) holds the front's tile (10, 12): overwritten by tile (15, 12), outside it */
+    uint64_t *slot = &c.levels[0].slot_tile[2 * 5 + 0], keep = *slot;
+    VT_CHECK_INT_EQ(keep, 12 * 40 + 10);
+    *slot = 12 * 40 + 15;
+    VT_CHECK(check_state(&c, &m) > 0);
+    m.slot[0][2 * 5 + 0] = 12 * 40 + 15; /* even where the model agrees: the front is wrong */
+    VT_CHECK(check_state(&c, &m) > 0);
+    m.slot[0][2 * 5 + 0] = 12 * 40 + 10;
+    *slot = keep;
+    m.target[0].x1--;
+    VT_CHECK(check_state(&c, &m) > 0);
+    m.target[0].x1++;
+    VT_CHECK_INT_EQ(check_state(&c, &m), 0);
+    vts_clipmap_free(&c);
+}
+
 static void walks_load_exactly_the_missing_tiles(void)
 {
     struct walk_stats st = {0};
@@ -744,6 +790,7 @@ int main(void)
     VT_RUN(windows_follow_the_snapping_formula);
     VT_RUN(windows_of_one_centre_nest);
     VT_RUN(strips_cover_exactly_the_new_tiles_in_order);
+    VT_RUN(state_checker_catches_a_wrong_front);
     VT_RUN(walks_load_exactly_the_missing_tiles);
     VT_RUN(a_large_window_loads_exactly_its_strips);
     return vt_test_main_result();
