@@ -51,7 +51,7 @@ struct vts_clipmap_tile {
 };
 
 struct vts_clipmap_level {
-    uint32_t width, height;   /* texels (as struct vts_level) */
+    uint32_t width, height; /* texels (as struct vts_level) */
     uint32_t tiles_x, tiles_y;
     struct vts_tile_rect back;  /* target window (empty until the first vts_clipmap_move) */
     struct vts_tile_rect front; /* loaded rectangle the renderer may use (subset of back) */
@@ -85,18 +85,20 @@ VTS_API int vts_clipmap_window(const struct vts_clipmap *c, uint32_t level, doub
                                struct vts_tile_rect *out);
 
 /* Toroidal slot of tile (x, y): (x mod n, y mod n). */
-VTS_API void vts_clipmap_slot(const struct vts_clipmap *c, uint32_t x, uint32_t y,
-                              uint32_t *slot_x, uint32_t *slot_y);
+VTS_API void vts_clipmap_slot(const struct vts_clipmap *c, uint32_t x, uint32_t y, uint32_t *slot_x,
+                              uint32_t *slot_y);
 
 /* Disjoint rectangles covering `to` minus `from` (both of at most n x n tiles of one level), in
  * loading order: column strips left and right of `from` over the rows `from` and `to` share,
  * then row strips above and below over `to`'s whole width; no empty rectangle. Returns the count
  * (0 .. 4); `to` whole (1) when they do not overlap. */
-VTS_API uint32_t vts_clipmap_strips(const struct vts_tile_rect *from, const struct vts_tile_rect *to,
-                                    struct vts_tile_rect out[4]);
+VTS_API uint32_t vts_clipmap_strips(const struct vts_tile_rect *from,
+                                    const struct vts_tile_rect *to, struct vts_tile_rect out[4]);
 
 /* Sets level's target window (from vts_clipmap_window). The front becomes its intersection with
- * the target; slots are not touched (a tile still in its slot is not loaded again). Returns
+ * the target, then grows as in vts_clipmap_loaded over the columns and rows already in their
+ * slots (tiles an earlier, unfinished target loaded); slots are not touched (a tile still in its
+ * slot is not loaded again). An empty target empties the level's windows. Returns
  * VTS_ERR_RANGE for a level outside the clipmap or a target wider than n or outside the level,
  * else 0. */
 VTS_API int vts_clipmap_move(struct vts_clipmap *c, uint32_t level, const struct vts_tile_rect *to);
@@ -118,7 +120,8 @@ VTS_API uint64_t vts_clipmap_pending(const struct vts_clipmap *c);
  * VTS_ERR_RANGE when t is outside its level's target, else 0. */
 VTS_API int vts_clipmap_loaded(struct vts_clipmap *c, const struct vts_clipmap_tile *t);
 
-/* True when level's front equals its target (the level is complete). */
+/* True when level's front equals its target (the level is complete); false while the target is
+ * empty (before the level's first vts_clipmap_move) and for a level outside the clipmap. */
 VTS_API bool vts_clipmap_complete(const struct vts_clipmap *c, uint32_t level);
 
 /* The texels of level the renderer may sample with a filter reaching `inset` texels around the

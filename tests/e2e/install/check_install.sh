@@ -18,7 +18,7 @@ libdir=$(ls -d "$tmp"/prefix/lib*/pkgconfig | head -1)
 export PKG_CONFIG_PATH=$libdir
 [ "$(pkg-config --modversion vts)" != "" ] || fail "pkg-config --modversion vts"
 headers=$(cd "$tmp/prefix/include/vts" && ls | tr '\n' ' ')
-[ "$headers" = "vts.h vts_decode.h vts_wang.h vts_writer.h " ] || fail "installed headers: $headers"
+[ "$headers" = "vts.h vts_clipmap.h vts_decode.h vts_wang.h vts_writer.h " ] || fail "installed headers: $headers"
 test -x "$tmp/prefix/bin/vt-info" || fail "vt-info not installed"
 
 # Exported symbols: every defined dynamic symbol of libvts.so is vts_*.
