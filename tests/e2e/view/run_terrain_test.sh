@@ -66,6 +66,82 @@ terrain_reference)
     "$check" stat $kind.json fallback_pixels == 0 || fail "$kind: fallback pixels in a converged frame"
   done
   ;;
+terrain_plain)
+  W=320 H=240
+  # json FILE EXPR: a Python expression over the statistics j, true or the test fails
+  json() { python3 -c "import json,sys; j=json.load(open(sys.argv[1])); sys.exit(0 if ($2) else 1)" "$1" ||
+    fail "$1: not ($2)"; }
+  # without --terrain nothing of it runs: no terrain object, no lit variant
+  vt colour.vts --frames 2 --stats plain.json
+  json plain.json "'terrain' not in j and j['mode'] == '2d' and [v['features'] for v in j['variants']] == [['diffuse_map']]"
+  printf 'v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\nf 1/1 2/2 3/3 4/4\n' >plane.vt.obj
+  vt colour.vts plane.vt.obj --frames 2 --stats scene.json
+  json scene.json "'terrain' not in j"
+  # a terrain run carries it: the DEM's range (vtv_terrain_ref dem printed it), the level read
+  read -r lo hi < <("$ref" dem 1001 707 x.tif y.tif $SCALE $OFFSET)
+  vt colour.vts --terrain dem.vts --terrain-grid 400 --frames 1 --stats t.json
+  json t.json "j['terrain']['grid'] == 400 and j['terrain']['level'] == 0 and j['terrain']['level_size'] == [1001, 707]"
+  json t.json "abs(j['terrain']['min_height'] - $lo) < 1e-3 and abs(j['terrain']['max_height'] - $hi) < 1e-3"
+  json t.json "j['terrain']['nodata_texels'] == 40 * 30 and j['terrain']['georeferenced']"
+  json t.json "abs(j['terrain']['unit_per_texel'] - 1001 / 768) < 1e-9"
+  json t.json "j['mode'] == '3d' and [v['features'] for v in j['variants']] == [['diffuse_map', 'lit']]"
+  # the coarsest level with at least G texels across and down: 251 x 177 for G = 128
+  vt colour.vts --terrain dem.vts:diffuse --terrain-grid 128 --terrain-exaggeration 2 --frames 1 \
+    --stats t128.json
+  json t128.json "j['terrain']['level'] == 2 and j['terrain']['level_size'] == [251, 177]"
+  json t128.json "j['terrain']['exaggeration'] == 2"
+  # u16 through the scale and offset vt-tiles wrote: the same heights to the quantum
+  "$view" --version >/dev/null
+  vt colour.vts --terrain dem16.vts --terrain-grid 400 --frames 1 --stats t16.json
+  json t16.json "j['terrain']['scale'] == $SCALE and j['terrain']['offset'] == $OFFSET"
+  json t16.json "abs(j['terrain']['min_height'] - $lo) <= 0.005 + 1e-9 and abs(j['terrain']['max_height'] - $hi) <= 0.005 + 1e-9"
+  # horizontal units: the CRS's (2 units per DEM texel), or the colour store's texels without a
+  # geo.transform
+  gdal_translate -q -a_nodata -9999 -a_ullr 0 1414 2002 0 dem_raw.tif dem2.tif
+  "$tiles" dem2.tif -o dem2.vts --colour data --tile-size 128 -q
+  vt colour.vts --terrain dem2.vts --terrain-grid 64 --frames 1 --stats t2.json
+  json t2.json "abs(j['terrain']['unit_per_texel'] - 2002 / 768) < 1e-9"
+  "$tiles" dem16_raw.tif -o plain16.vts --colour data --tile-size 128 --value-scale $SCALE \
+    --value-offset $OFFSET -q
+  vt colour.vts --terrain plain16.vts --terrain-grid 64 --frames 1 --stats t3.json
+  json t3.json "j['terrain']['unit_per_texel'] == 1 and not j['terrain']['georeferenced'] and j['terrain']['nodata_texels'] == 0"
+  # a layer of the same store (:LAYER), an orbit, the plain-texture reference
+  vt dem.vts --terrain :0 --terrain-grid 64 --frames 1 --stats same.json
+  json same.json "j['terrain']['store'] == 'dem.vts' and j['terrain']['layer'] == 'diffuse'"
+  vt colour.vts --terrain dem.vts --terrain-grid 64 --orbit 3 --stats orbit.json
+  json orbit.json "len(j['frames']) == 3"
+  vt colour.vts --terrain dem.vts --terrain-grid 128 --frames 8 --screenshot vt.png
+  vt colour.vts --terrain dem.vts --terrain-grid 128 --frames 1 --reference --screenshot ref.png
+  "$check" psnr vt.png ref.png --min 35 || fail "--terrain with --reference"
+  # vt-tiles wrote the metadata; refuses a scale of 0
+  "$tiles" dem16_raw.tif -o bad.vts --value-scale 0 -q 2>err.txt && fail "--value-scale 0 accepted"
+  [ $? -eq 2 ] || true
+  grep -q "value-scale" err.txt || fail "--value-scale 0: $(cat err.txt)"
+  # errors: one line, exit 1 (bad input) or 2 (usage)
+  expect() { # STATUS PATTERN ARGS...
+    local want=$1 pat=$2
+    shift 2
+    set +e
+    vt "$@" --frames 1 2>err.txt
+    local got=$?
+    set -e
+    [ $got -eq "$want" ] || fail "$*: exit $got, want $want ($(cat err.txt))"
+    grep -q -- "$pat" err.txt || fail "$*: message '$(cat err.txt)' lacks '$pat'"
+    [ "$want" -eq 2 ] || [ "$(wc -l <err.txt)" -eq 1 ] || fail "$*: more than one line: $(cat err.txt)"
+  }
+  expect 1 "missing.vts" colour.vts --terrain missing.vts
+  expect 1 "has 3 channels" colour.vts --terrain colour.vts:diffuse
+  expect 1 "no one-channel layer" colour.vts --terrain colour.vts
+  expect 1 "no layer 'height'" colour.vts --terrain dem.vts:height
+  "$tiles" dem16_raw.tif -o noscale.vts --colour data --tile-size 128 -q
+  expect 1 "no layer.0.scale" colour.vts --terrain noscale.vts
+  expect 2 "no SCENE" colour.vts plane.vt.obj --terrain dem.vts
+  expect 2 "--wang" colour.vts --terrain dem.vts --wang colour.vts
+  expect 2 "--terrain-grid" colour.vts --terrain dem.vts --terrain-grid 1
+  expect 2 "--terrain-grid" colour.vts --terrain dem.vts --terrain-grid 4097
+  expect 2 "need --terrain" colour.vts --terrain-grid 64
+  expect 2 "--terrain-exaggeration" colour.vts --terrain dem.vts --terrain-exaggeration -1
+  ;;
 *)
   fail "unknown case $case_name"
   ;;
