@@ -95,6 +95,16 @@ terrain_plain)
   vt colour.vts --terrain dem16.vts --terrain-grid 400 --frames 1 --stats t16.json
   json t16.json "j['terrain']['scale'] == $SCALE and j['terrain']['offset'] == $OFFSET"
   json t16.json "abs(j['terrain']['min_height'] - $lo) <= 0.005 + 1e-9 and abs(j['terrain']['max_height'] - $hi) <= 0.005 + 1e-9"
+  # GDAL's band scale and offset of a GeoTIFF become layer.0.scale/offset; --value-scale wins
+  gdal_translate -q -a_nodata 0 -a_scale $SCALE -a_offset $OFFSET -a_ullr 0 707 1001 0 \
+    dem16_raw.tif gscaled.tif
+  "$tiles" gscaled.tif -o gscaled.vts --colour data --tile-size 128 -q
+  vt colour.vts --terrain gscaled.vts --terrain-grid 400 --frames 1 --stats tg.json
+  json tg.json "j['terrain']['scale'] == $SCALE and j['terrain']['offset'] == $OFFSET"
+  json tg.json "abs(j['terrain']['min_height'] - $lo) <= 0.005 + 1e-9 and j['terrain']['nodata_texels'] == 1200"
+  "$tiles" gscaled.tif -o gscaled2.vts --colour data --tile-size 128 --value-scale 0.02 -q
+  vt colour.vts --terrain gscaled2.vts --terrain-grid 64 --frames 1 --stats tg2.json
+  json tg2.json "j['terrain']['scale'] == 0.02 and j['terrain']['offset'] == 0"
   # horizontal units: the CRS's (2 units per DEM texel), or the colour store's texels without a
   # geo.transform
   gdal_translate -q -a_nodata -9999 -a_ullr 0 1414 2002 0 dem_raw.tif dem2.tif
