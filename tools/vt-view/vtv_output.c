@@ -70,10 +70,12 @@ static void terrain_json(FILE *f, const struct vtv_terrain_info *t)
             ", \"grid\": %u, \"level\": %u, \"level_size\": [%u, %u], \"scale\": %.17g, "
             "\"offset\": %.17g,\n    \"min_height\": %.17g, \"max_height\": %.17g, "
             "\"nodata_texels\": %llu, \"exaggeration\": %.17g, \"unit_per_texel\": %.17g, "
-            "\"georeferenced\": %s},\n",
+            "\"georeferenced\": %s,\n    \"mapped_by_geo\": %s, \"window\": [%.17g, %.17g, %.17g, "
+            "%.17g]},\n",
             t->grid, t->level, t->level_width, t->level_height, t->scale, t->offset, t->min_height,
             t->max_height, (unsigned long long)t->nodata_texels, t->exaggeration, t->unit_per_texel,
-            t->geo ? "true" : "false");
+            t->geo ? "true" : "false", t->mapped ? "true" : "false", t->window[0], t->window[1],
+            t->window[2], t->window[3]);
 }
 
 int vtv_write_stats(const char *path, const struct vtv_run_info *info,

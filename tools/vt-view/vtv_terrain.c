@@ -76,6 +76,16 @@ static int pick_layer(const struct vts_store *s, const char *path, const char *n
     return 0;
 }
 
+/* The store's geo.transform (GDAL's six numbers), when it has a usable one. */
+static bool geo_transform(const struct vts_store *s, double t[6])
+{
+    const char *tv = vts_store_meta_find(s, "geo.transform");
+    return tv &&
+           sscanf(tv, "%lf %lf %lf %lf %lf %lf", &t[0], &t[1], &t[2], &t[3], &t[4], &t[5]) == 6 &&
+           isfinite(t[0]) && isfinite(t[1]) && isfinite(t[3]) && isfinite(t[5]) && t[1] != 0 &&
+           t[5] != 0;
+}
+
 /* The coarsest level with at least G texels across and down (level 0 when none has). */
 static uint32_t pick_level(const struct vts_store *s, uint32_t grid)
 {
@@ -194,8 +204,8 @@ static double sample(const struct elevation *e, uint32_t level, double x, double
 
 /* The displaced grid's vertices (double, relative to the extent's centre) into m. */
 static int build_mesh(const struct elevation *e, const struct vtv_terrain_options *o,
-                      uint32_t level, double ew, double eh, double sx, double sz,
-                      struct vtv_mesh *m, struct vts_error *err)
+                      uint32_t level, const double win[4], double sx, double sz, struct vtv_mesh *m,
+                      struct vts_error *err)
 {
     uint32_t G = o->grid;
     size_t nv = (size_t)G * G, tris = (size_t)(G - 1) * (G - 1) * 2, floats;
@@ -221,7 +231,8 @@ static int build_mesh(const struct elevation *e, const struct vtv_terrain_option
             double *q = p + ((size_t)j * G + i) * 3;
             q[0] = (fu - 0.5) * sx;
             q[2] = (fv - 0.5) * sz;
-            q[1] = o->exaggeration * sample(e, level, fu * ew, fv * eh);
+            double ex = win[0] + fu * (win[2] - win[0]), ey = win[1] + fv * (win[3] - win[1]);
+            q[1] = o->exaggeration * sample(e, level, ex, ey);
             for (int k = 0; k < 3; k++) {
                 m->lo[k] = fmin(m->lo[k], q[k]);
                 m->hi[k] = fmax(m->hi[k], q[k]);
@@ -349,16 +360,34 @@ int vtv_terrain_build(const struct vts_store *colour, const char *colour_path,
             e.h[i] = lo;
     if (rc == 0) {
         const struct vts_geometry *eg = vts_store_geometry(s), *cg = vts_store_geometry(colour);
-        double t[6], sx = cg->width, sz = cg->height;
-        const char *tv = vts_store_meta_find(s, "geo.transform");
-        info->geo =
-            tv &&
-            sscanf(tv, "%lf %lf %lf %lf %lf %lf", &t[0], &t[1], &t[2], &t[3], &t[4], &t[5]) == 6 &&
-            isfinite(t[1]) && isfinite(t[5]) && t[1] != 0 && t[5] != 0;
+        double t[6], ct[6], sx = cg->width, sz = cg->height;
+        /* the grid's corners in level-0 texels of the elevation store */
+        double win[4] = {0, 0, eg->width, eg->height};
+        info->geo = geo_transform(s, t);
         if (info->geo) {
             sx = eg->width * fabs(t[1]);
             sz = eg->height * fabs(t[5]);
         }
+        /* both georeferenced (north-up): the grid covers the colour store's extent, the
+         * elevation sampled where the CRS places it */
+        info->mapped = info->geo && s != colour && geo_transform(colour, ct) && t[2] == 0 &&
+                       t[4] == 0 && ct[2] == 0 && ct[4] == 0;
+        if (info->mapped) {
+            sx = cg->width * fabs(ct[1]);
+            sz = cg->height * fabs(ct[5]);
+            win[0] = (ct[0] - t[0]) / t[1];
+            win[1] = (ct[3] - t[3]) / t[5];
+            win[2] = (ct[0] + cg->width * ct[1] - t[0]) / t[1];
+            win[3] = (ct[3] + cg->height * ct[5] - t[3]) / t[5];
+            const char *a = vts_store_meta_find(s, "geo.crs_wkt");
+            const char *b = vts_store_meta_find(colour, "geo.crs_wkt");
+            if (a && b && strcmp(a, b) != 0)
+                vt_log(VT_LOG_WARN,
+                       "%s and %s name different CRSs: their geo.transforms are mapped as if "
+                       "they were the same",
+                       path, colour_path);
+        }
+        memcpy(info->window, win, sizeof win);
         info->unit_per_texel = sx / cg->width;
         info->grid = o->grid;
         info->level = level;
@@ -370,7 +399,7 @@ int vtv_terrain_build(const struct vts_store *colour, const char *colour_path,
         info->max_height = hi;
         info->nodata_texels = holes;
         info->exaggeration = o->exaggeration;
-        rc = build_mesh(&e, o, level, eg->width, eg->height, sx, sz, m, err);
+        rc = build_mesh(&e, o, level, win, sx, sz, m, err);
     }
     free(e.h);
     vts_close(own);

@@ -8,10 +8,13 @@
  * World space: y up; x along the texture's rows (u), z down its columns (v); x and z relative to
  * the extent's centre, y = exaggeration * elevation. Horizontal unit: one level-0 texel of the
  * colour store, or, when the elevation store has a geo.transform, the CRS's unit (the extent is
- * then elevation width * |dx| by elevation height * |dy|). Both stores are taken to cover the same
- * extent. Elevations: float layers as stored, times layer.N.scale plus layer.N.offset when the
- * store has them; u8/u16 layers need them (stored * scale + offset). Texels equal to the store's
- * nodata (or not finite) take the lowest valid elevation. */
+ * then elevation width * |dx| by elevation height * |dy|). When both stores have a north-up
+ * geo.transform, the grid covers the colour store's extent (colour width * |dx| by height * |dy|)
+ * and each vertex samples the elevation where the transforms place it (clamped past its edges);
+ * else both are taken to cover the same extent. Elevations: float layers as stored, times
+ * layer.N.scale plus layer.N.offset when the store has them; u8/u16 layers need them (stored *
+ * scale + offset). Texels equal to the store's nodata (or not finite) take the lowest valid
+ * elevation. */
 #ifndef VTV_TERRAIN_H
 #define VTV_TERRAIN_H
 
@@ -45,6 +48,10 @@ struct vtv_terrain_info {
     double exaggeration;
     double unit_per_texel; /* world units per level-0 texel of the colour store */
     bool geo;              /* units from the elevation store's geo.transform */
+    bool mapped;           /* both stores georeferenced: the grid covers the colour store's extent,
+                              placed on the elevation by the two transforms */
+    double window[4]; /* the grid's corners in level-0 texels of the elevation store: x0, y0, x1,
+                         y1 */
 };
 
 /* Splits spec into the elevation store's path (NULL: the colour store) and layer (NULL: the

@@ -32,15 +32,19 @@ gdal_translate -q -a_nodata 0 -a_ullr 0 707 1001 0 dem16_raw.tif dem16.tif
 "$tiles" dem16.tif -o dem16.vts --colour data --tile-size 128 --value-scale $SCALE \
   --value-offset $OFFSET -q
 vt() { "$view" --headless --sync --size ${W}x$H "$@"; }
+# json FILE EXPR: a Python expression over the statistics j, true or the test fails
+json() { python3 -c "import json,sys; j=json.load(open(sys.argv[1])); sys.exit(0 if ($2) else 1)" "$1" ||
+  fail "$1: not ($2)"; }
 
 case "$case_name" in
 terrain_reference)
   CAM="0 520 560 0 60 40 55"
   echo "$CAM" >view.cam
   G=400
-  # render ELEV NODATA SCALE OFFSET EXAG SHIFT OUT
+  # reference ELEV NODATA SCALE OFFSET EXAG SHIFT OUT [SX SZ X0 Y0 X1 Y1]
   reference() {
-    "$ref" render "$1" colour.png "$7" $W $H $G "$3" "$4" "$2" 1001 707 "$5" $CAM "$6"
+    local sx=${8:-1001} sz=${9:-707} win="${10:-0} ${11:-0} ${12:-1001} ${13:-707}"
+    "$ref" render "$1" colour.png "$7" $W $H $G "$3" "$4" "$2" $sx $sz "$5" $CAM "$6" $win
   }
   db() { "$check" psnr "$1" "$2" --max 1000 | awk '{print $2}'; }
   for kind in f32 u16; do
@@ -65,12 +69,26 @@ terrain_reference)
     done
     "$check" stat $kind.json fallback_pixels == 0 || fail "$kind: fallback pixels in a converged frame"
   done
+  # both stores georeferenced: the photo placed on x 200..800, y 100..600 of the DEM's CRS (the
+  # DEM spans 0..1001 x 0..707, row 0 at y = 707), 600 x 500 units; the grid covers the photo
+  # and samples the DEM where the transforms put it (DEM texels x 200..800, rows 107..607)
+  gdal_translate -q -a_ullr 200 600 800 100 colour.png colour_geo.tif
+  "$tiles" colour_geo.tif -o colour_geo.vts --codec png --tile-size 128 -q
+  vt colour_geo.vts --terrain dem.vts --terrain-grid $G --camera view.cam --frames 12 \
+    --screenshot geo.png --stats geo.json
+  reference dem.tif -9999 1 0 1 0 ref_geo.png 600 500 200 107 800 607
+  reference dem.tif -9999 1 0 1 0 ref_geo_whole.png 600 500
+  json geo.json "j['terrain']['mapped_by_geo'] and j['terrain']['window'] == [200, 107, 800, 607]"
+  json geo.json "abs(j['terrain']['unit_per_texel'] - 600 / 768) < 1e-12"
+  json f32.json "not j['terrain']['mapped_by_geo'] and j['terrain']['window'] == [0, 0, 1001, 707]"
+  good=$(db geo.png ref_geo.png)
+  whole=$(db geo.png ref_geo_whole.png)
+  echo "mapped by geo.transform: reference $good dB; the whole DEM under the photo instead $whole dB"
+  awk -v g="$good" -v w="$whole" 'BEGIN { exit !(g >= 35 && w <= 30) }' ||
+    fail "mapped by geo.transform: $good dB (want >= 35), unmapped $whole dB (want <= 30)"
   ;;
 terrain_plain)
   W=320 H=240
-  # json FILE EXPR: a Python expression over the statistics j, true or the test fails
-  json() { python3 -c "import json,sys; j=json.load(open(sys.argv[1])); sys.exit(0 if ($2) else 1)" "$1" ||
-    fail "$1: not ($2)"; }
   # without --terrain nothing of it runs: no terrain object, no lit variant
   vt colour.vts --frames 2 --stats plain.json
   json plain.json "'terrain' not in j and j['mode'] == '2d' and [v['features'] for v in j['variants']] == [['diffuse_map']]"

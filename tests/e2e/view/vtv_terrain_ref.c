@@ -6,17 +6,19 @@
  *       nodata hole; as 32-bit floats (hole -9999) and as u16 = round((h - OFFSET) / SCALE)
  *       (hole 0). Prints the lowest and highest valid elevation.
  *   vtv_terrain_ref render ELEV COLOUR.png OUT.png W H G SCALE OFFSET NODATA SX SZ EXAG
- *                          EX EY EZ TX TY TZ FOVY SHIFT
+ *                          EX EY EZ TX TY TZ FOVY SHIFT X0 Y0 X1 Y1
  *       the terrain as docs/viewer.md ("Terrain") describes it, rendered in software: the
  *       elevation file read here (value = stored * SCALE + OFFSET, NODATA texels the lowest valid
- *       elevation), a G x G grid over SX x SZ units centred on the origin, heights times EXAG,
+ *       elevation), a G x G grid over SX x SZ units centred on the origin whose corners lie at
+ *       (X0, Y0) and (X1, Y1) of the elevation raster (in its texels), heights times EXAG,
  *       bilinear at level 0 (texel centres at half-integers), normals by central differences;
  *       the camera of a vt-view camera line (look-at with y up, perspective of FOVY degrees),
  *       a z-buffer, texcoords and normals interpolated perspective-correctly; the colour image
  *       sampled bilinearly in linear light from its own 2 x 2 box mip levels at vt-view's level
  *       (the nearest level to log2 of the larger texcoord derivative per pixel), shifted SHIFT
  *       texels along u (0: none; a negative control); lit as vt-view's lit materials: colour *
- *       (ambient 0.15 + 0.85 * max(n . l, 0)), l = normalize(0.3, 0.8, 0.5), encoded sRGB.
+ *       (ambient 0.15 + 0.85 * max(n . l, 0)), l = normalize(0.3, 0.8, 0.5), n turned round on
+ *       back faces (a wall seen from behind), encoded sRGB.
  *       Background (26, 26, 26). Writes an RGB PNG.
  * Exit 0 on success, 1 on failure, 2 on bad use. */
 #include <math.h>
@@ -194,7 +196,7 @@ static void tex(const struct scene *s, uint32_t l, double tx, double ty, double 
 
 static int render(int argc, char **argv)
 {
-    if (argc != 22)
+    if (argc != 26)
         return 2;
     const char *elev = argv[2], *colour = argv[3], *out = argv[4];
     uint32_t W = (uint32_t)atoi(argv[5]), H = (uint32_t)atoi(argv[6]), G = (uint32_t)atoi(argv[7]);
@@ -204,6 +206,7 @@ static int render(int argc, char **argv)
     for (int k = 0; k < 7; k++)
         cam[k] = atof(argv[14 + k]);
     double shift = atof(argv[21]);
+    double win[4] = {atof(argv[22]), atof(argv[23]), atof(argv[24]), atof(argv[25])};
     if (W < 16 || H < 16 || W > 4096 || H > 4096 || G < 2 || G > 4096)
         return 2;
     struct vt_image e = {0}, c = {0};
@@ -236,8 +239,9 @@ static int render(int argc, char **argv)
     for (uint32_t j = 0; j < G; j++)
         for (uint32_t i = 0; i < G; i++) {
             double fu = (double)i / (G - 1), fv = (double)j / (G - 1);
-            double u = fmin(fmax(fu * e.width - 0.5, 0), e.width - 1.0);
-            double v = fmin(fmax(fv * e.height - 0.5, 0), e.height - 1.0);
+            double ex = win[0] + fu * (win[2] - win[0]), ey = win[1] + fv * (win[3] - win[1]);
+            double u = fmin(fmax(ex - 0.5, 0), e.width - 1.0);
+            double v = fmin(fmax(ey - 0.5, 0), e.height - 1.0);
             uint32_t x0 = (uint32_t)u, y0 = (uint32_t)v;
             uint32_t x1 = x0 + 1 < e.width ? x0 + 1 : x0, y1 = y0 + 1 < e.height ? y0 + 1 : y0;
             double fx = u - x0, fy = v - y0;
@@ -417,6 +421,10 @@ static int render(int argc, char **argv)
                             tuv[d][1] = sv / wsum * s.ch;
                         }
                         norm3(nrm);
+                        if (area > 0) /* clockwise on screen (y up): a back face, lit from its
+                                         side as GL's !gl_FrontFacing */
+                            for (int m = 0; m < 3; m++)
+                                nrm[m] = -nrm[m];
                         double gx2 = pow(tuv[1][0] - tuv[0][0], 2) + pow(tuv[1][1] - tuv[0][1], 2);
                         double gy2 = pow(tuv[2][0] - tuv[0][0], 2) + pow(tuv[2][1] - tuv[0][1], 2);
                         double lam = 0.5 * log2(fmax(fmax(gx2, gy2), 1e-20));
@@ -461,6 +469,6 @@ int main(int argc, char **argv)
     if (rc == 2)
         fprintf(stderr, "usage: vtv_terrain_ref dem W H F32.tif U16.tif SCALE OFFSET\n"
                         "       vtv_terrain_ref render ELEV COLOUR.png OUT.png W H G SCALE OFFSET "
-                        "NODATA SX SZ EXAG EX EY EZ TX TY TZ FOVY SHIFT\n");
+                        "NODATA SX SZ EXAG EX EY EZ TX TY TZ FOVY SHIFT X0 Y0 X1 Y1\n");
     return rc;
 }
