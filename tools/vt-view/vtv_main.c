@@ -462,8 +462,12 @@ int main(int argc, char **argv)
     /* before any work: no output is an input (nor the screenshot the statistics); --stats - is
      * standard output, not an input "-" */
     bool stats_out = vt_output_path_is_stdio(o.stats);
-    const char *inputs[] = {o.store_path,      o.obj_path, o.camera_path,
-                            o.reference_scene, o.terrain,  stats_out ? NULL : o.stats};
+    char terrain[1024] = "";
+    const char *terrain_path = NULL, *terrain_layer;
+    if (o.terrain && snprintf(terrain, sizeof terrain, "%s", o.terrain) < (int)sizeof terrain)
+        vtv_terrain_parse(terrain, &terrain_path, &terrain_layer); /* the store's path part */
+    const char *inputs[] = {o.store_path,      o.obj_path,   o.camera_path,
+                            o.reference_scene, terrain_path, stats_out ? NULL : o.stats};
     status = vt_check_output(o.screenshot, inputs, 6);
     if (status < 0)
         status = vt_check_output(o.stats, inputs, 5);

@@ -169,6 +169,10 @@ terrain_plain)
   expect 2 "--terrain-grid" colour.vts --terrain dem.vts --terrain-grid 4097
   expect 2 "need --terrain" colour.vts --terrain-grid 64
   expect 2 "--terrain-exaggeration" colour.vts --terrain dem.vts --terrain-exaggeration -1
+  # the elevation store is an input: no output replaces it (STORE:LAYER named too)
+  cp dem.vts keep.vts
+  expect 1 "is the input" colour.vts --terrain keep.vts:0 --screenshot keep.vts
+  cmp keep.vts dem.vts || fail "the elevation store was replaced"
   ;;
 *)
   fail "unknown case $case_name"
