@@ -69,6 +69,18 @@ terrain_reference)
     done
     "$check" stat $kind.json fallback_pixels == 0 || fail "$kind: fallback pixels in a converged frame"
   done
+  # far away (colour levels 2 and 3 where the view above takes 0 to 3): the level rule matches
+  echo "0 1500 1700 0 0 0 40" >far.cam
+  vt colour.vts --terrain dem.vts --terrain-grid $G --camera far.cam --frames 12 --screenshot far.png
+  CAM="0 1500 1700 0 0 0 40"
+  reference dem.tif -9999 1 0 1 0 ref_far.png
+  reference dem.tif -9999 1 0 0 0 flat_far.png
+  CAM="0 520 560 0 60 40 55"
+  good=$(db far.png ref_far.png)
+  flat=$(db far.png flat_far.png)
+  echo "far view: reference $good dB; flat $flat dB"
+  awk -v g="$good" -v f="$flat" 'BEGIN { exit !(g >= 35 && f <= 30) }' ||
+    fail "far view: $good dB (want >= 35), flat $flat dB (want <= 30)"
   # both stores georeferenced: the photo placed on x 200..800, y 100..600 of the DEM's CRS (the
   # DEM spans 0..1001 x 0..707, row 0 at y = 707), 600 x 500 units; the grid covers the photo
   # and samples the DEM where the transforms put it (DEM texels x 200..800, rows 107..607)
