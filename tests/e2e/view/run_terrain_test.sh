@@ -181,6 +181,11 @@ terrain_plain)
   expect 2 "--terrain-grid" colour.vts --terrain dem.vts --terrain-grid 4097
   expect 2 "need --terrain" colour.vts --terrain-grid 64
   expect 2 "--terrain-exaggeration" colour.vts --terrain dem.vts --terrain-exaggeration -1
+  # an unreadable tile (four bytes of a level-0 payload overwritten: its CRC fails)
+  cp dem.vts corrupt.vts
+  size=$(stat -c %s corrupt.vts)
+  printf '\377\377\377\377' | dd of=corrupt.vts bs=1 seek=$((size - 100)) conv=notrunc status=none
+  expect 1 "checksum" colour.vts --terrain corrupt.vts --terrain-grid 400
   # the elevation store is an input: no output replaces it (STORE:LAYER named too)
   cp dem.vts keep.vts
   expect 1 "is the input" colour.vts --terrain keep.vts:0 --screenshot keep.vts
