@@ -154,6 +154,10 @@ VT_GDAL_EXPORT void *vt_gdal_open(const char *path, struct vt_gdal_info *info, i
     int has_nodata = 0;
     info->nodata = GDALGetRasterNoDataValue(b1, &has_nodata);
     info->has_nodata = has_nodata != 0;
+    int has_scale = 0, has_offset = 0;
+    info->scale = GDALGetRasterScale(b1, &has_scale);
+    info->offset = GDALGetRasterOffset(b1, &has_offset);
+    info->has_scale = (has_scale || has_offset) && info->scale != 0.0;
     GDALDriverH drv = GDALGetDatasetDriver(h->ds);
     snprintf(info->format, sizeof info->format, "%s", drv ? GDALGetDriverShortName(drv) : "?");
     *result = VT_GDAL_OK;

@@ -222,6 +222,9 @@ int vt_input_gdal_describe(const char *path, uint64_t max_pixels, struct vt_inpu
     memcpy(out->geotransform, t->info.geotransform, sizeof out->geotransform);
     out->has_nodata = t->info.has_nodata != 0;
     out->nodata = t->info.nodata;
+    out->has_scale = t->info.has_scale != 0;
+    out->scale = t->info.scale;
+    out->offset = t->info.offset;
     out->crs_wkt = t->crs_wkt(t->handle);
     gdal_close(t);
     return 0;

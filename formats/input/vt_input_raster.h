@@ -18,9 +18,11 @@ struct vt_input_raster {
     double geotransform[6]; /* GDAL's: x0, dx/dcol, dx/drow, y0, dy/dcol, dy/drow */
     char *crs_wkt;          /* the CRS as WKT (malloc'ed), or NULL */
     bool has_nodata;
-    double nodata;   /* of the first band, in the file's units */
-    bool geo_unread; /* a GeoTIFF read natively: the GDAL module could not be loaded */
-    char why[160];   /* with geo_unread: why the module could not be loaded */
+    double nodata;        /* of the first band, in the file's units */
+    bool has_scale;       /* the first band has a scale or offset (GDAL's band scale/offset) */
+    double scale, offset; /* its value = stored * scale + offset */
+    bool geo_unread;      /* a GeoTIFF read natively: the GDAL module could not be loaded */
+    char why[160];        /* with geo_unread: why the module could not be loaded */
 };
 
 /* Frees what r holds (and leaves it without); accepts NULL. */

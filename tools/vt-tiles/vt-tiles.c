@@ -2,6 +2,7 @@
  * parsing and main; the single-image build is tools/vt-tiles/vt_tiles_image.c, the atlas build
  * (--layout) tools/vt-tiles/vt_tiles_layout.c. */
 #include <getopt.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,6 +31,8 @@ struct options {
     uint64_t max_pixels, max_store, cache_bytes;
     uint32_t shard, shard_count; /* --shard I/N (docs/sharding.md); 0 = whole build */
     bool band_layers;            /* --band-layers (docs/geospatial.md) */
+    bool has_value_scale;        /* --value-scale or --value-offset given */
+    double value_scale, value_offset;
 };
 
 static void usage(FILE *f)
@@ -69,6 +72,9 @@ static void usage(FILE *f)
         "      --name NAME          layer name (default diffuse)\n"
         "      --band-layers        one layer per band of the input (default: one per 4 bands,\n"
         "                           named from the band descriptions; docs/geospatial.md)\n"
+        "      --value-scale S      the stored samples mean stored * S + O (metadata\n"
+        "      --value-offset O     layer.N.scale and layer.N.offset, as GDAL's band scale\n"
+        "                           and offset; e.g. u16 elevations; default 1 and 0)\n"
         "      --max-pixels N       refuse inputs with more texels (default 2^34)\n"
         "      --max-store-size S   refuse to write more tile bytes than S (suffix K, M, G, T;\n"
         "                           default 2T)\n"
@@ -98,6 +104,8 @@ static const struct option long_options[] = {{"output", required_argument, 0, 'o
                                              {"mode", required_argument, 0, 'M'},
                                              {"name", required_argument, 0, 'N'},
                                              {"band-layers", no_argument, 0, 'B'},
+                                             {"value-scale", required_argument, 0, 'y'},
+                                             {"value-offset", required_argument, 0, 'Y'},
                                              {"max-pixels", required_argument, 0, 'P'},
                                              {"temp-dir", required_argument, 0, 'T'},
                                              {"max-store-size", required_argument, 0, 'Z'},
@@ -244,6 +252,21 @@ static int parse_options(int argc, char **argv, struct options *o)
         case 'B':
             o->band_layers = true;
             break;
+        case 'y':
+        case 'Y': {
+            char *end;
+            double d = strtod(optarg, &end);
+            bool scale = c == 'y';
+            if (end == optarg || *end || !isfinite(d) || (scale && d == 0))
+                return vt_usage_error("--value-%s must be a finite number%s, not '%s'",
+                                      scale ? "scale" : "offset", scale ? " other than 0" : "",
+                                      optarg);
+            if (!o->has_value_scale)
+                o->value_scale = 1.0;
+            *(scale ? &o->value_scale : &o->value_offset) = d;
+            o->has_value_scale = true;
+            break;
+        }
         case 'P': {
             char *end;
             unsigned long long n = strtoull(optarg, &end, 10);
@@ -301,6 +324,8 @@ static int parse_options(int argc, char **argv, struct options *o)
             return vt_usage_error("--shard and --export-atlas do not go together");
         if (o->band_layers)
             return vt_usage_error("--band-layers does not apply to --layout");
+        if (o->has_value_scale)
+            return vt_usage_error("--value-scale and --value-offset do not apply to --layout");
         if (vt_output_path_is_stdio(o->export_atlas))
             return vt_usage_error("--export-atlas cannot be standard output ('-'): its name "
                                   "(.png, .tif) gives the format");
@@ -370,7 +395,10 @@ static int run_image(const struct options *o)
                                         .max_store = o->max_store,
                                         .shard = o->shard,
                                         .shard_count = o->shard_count,
-                                        .band_layers = o->band_layers};
+                                        .band_layers = o->band_layers,
+                                        .has_value_scale = o->has_value_scale,
+                                        .value_scale = o->value_scale,
+                                        .value_offset = o->value_offset};
     int status = vt_tiles_image_run(&io);
     vt_stdin_spool_release(&spool);
     return status;

@@ -283,6 +283,26 @@ static int set_geo_metadata(struct vts_writer *w, const struct vt_input_raster *
     return rc;
 }
 
+/* --value-scale/--value-offset, else the first band's scale/offset GDAL reports: layer.N.scale and
+ * layer.N.offset of every layer (the value of a stored sample is stored * scale + offset, as GDAL's
+ * band scale and offset; docs/geospatial.md). */
+static int set_value_metadata(struct vts_writer *w, double scale, double offset, uint32_t n_layers,
+                              struct vts_error *err)
+{
+    char key[48], value[64];
+    int rc = 0;
+    for (uint32_t l = 0; rc == 0 && l < n_layers; l++) {
+        snprintf(key, sizeof key, "layer.%u.scale", l);
+        snprintf(value, sizeof value, "%.17g", scale);
+        rc = vts_writer_set_meta(w, key, value, err);
+        snprintf(key, sizeof key, "layer.%u.offset", l);
+        snprintf(value, sizeof value, "%.17g", offset);
+        if (rc == 0)
+            rc = vts_writer_set_meta(w, key, value, err);
+    }
+    return rc;
+}
+
 static int set_metadata(struct vts_writer *w, const struct vt_tiles_image_options *o,
                         const char *codec, struct vts_error *err)
 {
@@ -512,6 +532,10 @@ int vt_tiles_image_run(const struct vt_tiles_image_options *opt)
         rc = set_metadata(r.writer, o, r.codec->name, &err);
     if (rc == 0)
         rc = set_geo_metadata(r.writer, &ras, plans, n_layers, &err);
+    if (rc == 0 && o->has_value_scale) /* the options', else GDAL's for its input */
+        rc = set_value_metadata(r.writer, o->value_scale, o->value_offset, n_layers, &err);
+    else if (rc == 0 && ras.has_scale)
+        rc = set_value_metadata(r.writer, ras.scale, ras.offset, n_layers, &err);
     if (rc == 0 && o->shard)
         rc = set_shard_metadata(r.writer, o, &sb, &err);
     if (rc == 0)

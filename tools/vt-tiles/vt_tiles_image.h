@@ -27,6 +27,8 @@ struct vt_tiles_image_options {
     const char *filtering; /* bilinear, trilinear, anisoN (aniso holds 0, 1 or N) */
     uint64_t max_pixels, max_store;
     uint32_t shard, shard_count; /* --shard I/N (docs/sharding.md); 0 = whole build */
+    bool has_value_scale;        /* --value-scale/--value-offset given: layer.N.scale/offset */
+    double value_scale, value_offset;
 };
 
 /* Runs the build; logs through tool_common (vt_log, progress). Returns the exit status: 0, 1 (an

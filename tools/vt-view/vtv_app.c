@@ -19,6 +19,7 @@
 #include "vtv_render.h"
 #include "vtv_select.h"
 #include "vtv_stream.h"
+#include "vtv_terrain.h"
 #include "vtv_wang_scene.h"
 
 void vtv_options_default(struct vtv_options *o)
@@ -37,6 +38,8 @@ void vtv_options_default(struct vtv_options *o)
     o->auto_lod = true;
     o->ramp = -1;
     o->index = -1;
+    o->terrain_grid = VTV_TERRAIN_GRID_DEFAULT;
+    o->terrain_exaggeration = 1.0;
     const float dir[3] = {0.3f, 0.8f, 0.5f}, colour[3] = {0.85f, 0.85f, 0.85f},
                 ambient[3] = {0.15f, 0.15f, 0.15f};
     memcpy(o->light_dir, dir, sizeof(dir));
@@ -95,7 +98,8 @@ struct app {
     bool select;    /* the store is a selection store and is shown unfiltered at start (key F) */
     char filtering[16];
     int debug;
-    uint32_t layers[VTV_MAP_COUNT]; /* store layer per map kind, UINT32_MAX: none */
+    uint32_t layers[VTV_MAP_COUNT];  /* store layer per map kind, UINT32_MAX: none */
+    struct vtv_terrain_info terrain; /* with --terrain */
 };
 
 /* The store layer of each map kind the scene's materials name (the shown layer for a map naming
@@ -250,7 +254,7 @@ static int setup(struct app *a, struct vts_error *err)
     if (find_layer(a->store, o->layer_name, &layer) != 0)
         return vt_error_set(err, VTS_ERR_ARG, "%s: no layer '%s'", o->store_path, o->layer_name);
     const struct vts_geometry *g = vts_store_geometry(a->store);
-    a->three_d = o->obj_path != NULL;
+    a->three_d = o->obj_path != NULL || o->terrain != NULL;
     /* a selection store is sampled unfiltered unless --filtering asks otherwise */
     char why[64];
     bool sel = vtv_select_store(a->store, why, sizeof(why)) != 0;
@@ -277,8 +281,11 @@ static int setup(struct app *a, struct vts_error *err)
     /* materials: 3D, unless --layer asks for one layer as it is, or the plain reference (the
      * store's level 0 through the scene) is drawn */
     bool materials = a->three_d && !o->layer_name && !(o->reference && !o->reference_scene);
-    int st = a->three_d ? vtv_mesh_read_obj(&a->mesh, o->obj_path, materials, err)
-                        : vtv_mesh_quad(&a->mesh, g->width, g->height, err);
+    struct vtv_terrain_options to = {o->terrain, o->terrain_grid, o->terrain_exaggeration};
+    int st = o->terrain
+                 ? vtv_terrain_build(a->store, o->store_path, &to, &a->mesh, &a->terrain, err)
+             : a->three_d ? vtv_mesh_read_obj(&a->mesh, o->obj_path, materials, err)
+                          : vtv_mesh_quad(&a->mesh, g->width, g->height, err);
     if (st == 0)
         st = vtv_wang_scene_open(&a->wang, a->mesh.wang_paths, a->mesh.wang_count, err);
     if (st != 0)
@@ -470,6 +477,7 @@ static int loop(struct app *a, struct vts_error *err)
                                : a->render.phys_upload[VTV_MAP_DIFFUSE][1] == GL_FLOAT      ? "f32"
                                : a->render.srgb ? "srgb8_alpha8"
                                                 : "rgba8",
+            .terrain = o->terrain ? &a->terrain : NULL,
         };
         size_t count = n < o->frames ? n : o->frames;
         int s = vtv_write_stats(o->stats, &info, a->stats, count, err);

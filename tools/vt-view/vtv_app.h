@@ -28,6 +28,9 @@ struct vtv_options {
     uint32_t extent_x, extent_y; /* --extent MxN: tiles of the Wang output in the frame */
     uint32_t origin_x, origin_y; /* --origin X,Y: its top-left tile */
     bool wang_tilemap;           /* --tilemap: the hash precomputed (Wei's TileMap) */
+    const char *terrain;         /* --terrain ELEVATION.vts[:LAYER] | :LAYER (vtv_terrain.h) */
+    uint32_t terrain_grid;       /* --terrain-grid G */
+    double terrain_exaggeration; /* --terrain-exaggeration F */
 };
 
 void vtv_options_default(struct vtv_options *o);

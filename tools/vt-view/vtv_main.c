@@ -12,10 +12,12 @@
 #include "vt_output_path.h"
 #include "vtv_app.h"
 #include "vtv_ramp.h"
+#include "vtv_terrain.h"
 #include "vtv_wang.h"
 
 static const char usage_text[] =
     "usage: vt-view STORE.vts [SCENE.vt.obj] [options]\n"
+    "       vt-view COLOUR.vts --terrain ELEVATION.vts[:LAYER] | :LAYER [options]\n"
     "       vt-view --wang PACK.vts [--extent MxN] [--origin X,Y] [--tilemap | --reference]\n"
     "Shows a virtual-texture store through a page table and a tile cache: 2D (pan/zoom over the\n"
     "whole texture) without a scene, 3D with a .vt.obj scene.\n"
@@ -72,6 +74,14 @@ static const char usage_text[] =
     "                        0..4294967295 each (default 0,0)\n"
     "  --tilemap             with --wang: look tiles up in a precomputed map of the hash (one\n"
     "                        fetch; hash sizes up to 4096) instead of evaluating it\n"
+    "  --terrain ELEVATION.vts[:LAYER] | :LAYER\n"
+    "                        3D: a grid over the whole store displaced by the elevation layer\n"
+    "                        (default: the first one-channel layer; :LAYER: one of STORE.vts),\n"
+    "                        draped with STORE.vts and lit; float layers as stored, u8/u16\n"
+    "                        through the store's layer.N.scale and layer.N.offset\n"
+    "  --terrain-grid G      vertices across and down the grid, 2..4096 (default 512)\n"
+    "  --terrain-exaggeration F\n"
+    "                        heights times F, 0..1000 (default 1)\n"
     "  -q, --quiet           errors only\n"
     "  -v, --verbose         more messages\n"
     "  -h, --help            this help;    --version  version\n"
@@ -109,6 +119,9 @@ enum {
     OPT_EXTENT,
     OPT_ORIGIN,
     OPT_TILEMAP,
+    OPT_TERRAIN,
+    OPT_TERRAIN_GRID,
+    OPT_TERRAIN_EXAGGERATION,
     OPT_VERSION,
 };
 
@@ -208,6 +221,9 @@ int main(int argc, char **argv)
         {"extent", required_argument, NULL, OPT_EXTENT},
         {"origin", required_argument, NULL, OPT_ORIGIN},
         {"tilemap", no_argument, NULL, OPT_TILEMAP},
+        {"terrain", required_argument, NULL, OPT_TERRAIN},
+        {"terrain-grid", required_argument, NULL, OPT_TERRAIN_GRID},
+        {"terrain-exaggeration", required_argument, NULL, OPT_TERRAIN_EXAGGERATION},
         {"quiet", no_argument, NULL, 'q'},
         {"verbose", no_argument, NULL, 'v'},
         {"help", no_argument, NULL, 'h'},
@@ -217,6 +233,7 @@ int main(int argc, char **argv)
     struct vtv_options o;
     vtv_options_default(&o);
     bool frames_set = false, origin_set = false; /* origin_set: any --wang option */
+    bool terrain_set = false;                    /* --terrain-grid or --terrain-exaggeration */
     int common;
     opterr = 0;
     int c;
@@ -389,20 +406,46 @@ int main(int argc, char **argv)
                 return vt_usage_error("--origin '%s': expected X,Y tiles", optarg);
             origin_set = true;
             break;
+        case OPT_TERRAIN:
+            o.terrain = optarg;
+            break;
+        case OPT_TERRAIN_GRID:
+            if (vt_parse_u32(optarg, 2, VTV_TERRAIN_GRID_MAX, &o.terrain_grid) != 0)
+                return vt_usage_error("--terrain-grid '%s': expected 2..%u vertices", optarg,
+                                      VTV_TERRAIN_GRID_MAX);
+            terrain_set = true;
+            break;
+        case OPT_TERRAIN_EXAGGERATION: {
+            char *end;
+            o.terrain_exaggeration = strtod(optarg, &end);
+            if (end == optarg || *end || !(o.terrain_exaggeration >= 0) ||
+                o.terrain_exaggeration > 1000)
+                return vt_usage_error("--terrain-exaggeration '%s': expected 0..1000", optarg);
+            terrain_set = true;
+            break;
+        }
         default:
             if ((common = vt_common_option(c, OPT_VERSION, usage_text, argv)) >= 0)
                 return common;
         }
     }
     int rest = argc - optind;
+    if (terrain_set && !o.terrain)
+        return vt_usage_error("--terrain-grid and --terrain-exaggeration need --terrain");
+    if (o.terrain && (o.wang_path || o.extent_x || origin_set))
+        return vt_usage_error("--terrain and --wang exclude each other");
+    if (o.terrain && rest == 2)
+        return vt_usage_error("--terrain draws its own grid: no SCENE.vt.obj");
+    if (o.terrain && o.reference_scene)
+        return vt_usage_error("--terrain and --reference-scene exclude each other");
     if (o.wang_path || o.extent_x || origin_set)
         return run_wang(&o, rest, frames_set);
     if (rest < 1 || rest > 2)
         return vt_usage_error(rest < 1 ? "missing STORE.vts" : "too many arguments");
     o.store_path = argv[optind];
     o.obj_path = rest == 2 ? argv[optind + 1] : NULL;
-    if (o.orbit && !o.obj_path)
-        return vt_usage_error("--orbit needs a scene (SCENE.vt.obj)");
+    if (o.orbit && !o.obj_path && !o.terrain)
+        return vt_usage_error("--orbit needs a scene (SCENE.vt.obj) or --terrain");
     if (o.orbit && o.camera_path)
         return vt_usage_error("--orbit and --camera exclude each other");
     if (o.reference_scene && (!o.reference || !o.obj_path))
@@ -419,11 +462,15 @@ int main(int argc, char **argv)
     /* before any work: no output is an input (nor the screenshot the statistics); --stats - is
      * standard output, not an input "-" */
     bool stats_out = vt_output_path_is_stdio(o.stats);
-    const char *inputs[] = {o.store_path, o.obj_path, o.camera_path, o.reference_scene,
-                            stats_out ? NULL : o.stats};
-    status = vt_check_output(o.screenshot, inputs, 5);
+    char terrain[1024] = "";
+    const char *terrain_path = NULL, *terrain_layer;
+    if (o.terrain && snprintf(terrain, sizeof terrain, "%s", o.terrain) < (int)sizeof terrain)
+        vtv_terrain_parse(terrain, &terrain_path, &terrain_layer); /* the store's path part */
+    const char *inputs[] = {o.store_path,      o.obj_path,   o.camera_path,
+                            o.reference_scene, terrain_path, stats_out ? NULL : o.stats};
+    status = vt_check_output(o.screenshot, inputs, 6);
     if (status < 0)
-        status = vt_check_output(o.stats, inputs, 4);
+        status = vt_check_output(o.stats, inputs, 5);
     if (status < 0 && stats_out && o.screenshot)
         status = vt_check_output(o.stats, &o.screenshot, 1);
     if (status >= 0)

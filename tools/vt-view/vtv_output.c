@@ -59,6 +59,25 @@ static void frame_json(FILE *f, const struct vtv_frame_stats *s)
     fputs("]}", f);
 }
 
+/* --terrain: what was drawn (docs/viewer.md, "Terrain"). */
+static void terrain_json(FILE *f, const struct vtv_terrain_info *t)
+{
+    fputs("  \"terrain\": {\"store\": ", f);
+    json_string(f, t->store);
+    fputs(", \"layer\": ", f);
+    json_string(f, t->layer);
+    fprintf(f,
+            ", \"grid\": %u, \"level\": %u, \"level_size\": [%u, %u], \"scale\": %.17g, "
+            "\"offset\": %.17g,\n    \"min_height\": %.17g, \"max_height\": %.17g, "
+            "\"nodata_texels\": %llu, \"exaggeration\": %.17g, \"unit_per_texel\": %.17g, "
+            "\"georeferenced\": %s,\n    \"mapped_by_geo\": %s, \"window\": [%.17g, %.17g, %.17g, "
+            "%.17g]},\n",
+            t->grid, t->level, t->level_width, t->level_height, t->scale, t->offset, t->min_height,
+            t->max_height, (unsigned long long)t->nodata_texels, t->exaggeration, t->unit_per_texel,
+            t->geo ? "true" : "false", t->mapped ? "true" : "false", t->window[0], t->window[1],
+            t->window[2], t->window[3]);
+}
+
 int vtv_write_stats(const char *path, const struct vtv_run_info *info,
                     const struct vtv_frame_stats *frames, size_t count, struct vts_error *err)
 {
@@ -86,6 +105,8 @@ int vtv_write_stats(const char *path, const struct vtv_run_info *info,
         fprintf(f, "], \"faces\": %llu}", (unsigned long long)v->faces);
     }
     fputs("],\n", f);
+    if (info->terrain)
+        terrain_json(f, info->terrain);
     fputs("  \"frames\": [", f);
     for (size_t i = 0; i < count; i++) {
         fputs(i ? ",\n    " : "\n    ", f);

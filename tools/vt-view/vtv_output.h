@@ -8,6 +8,7 @@
 #include "vt_error.h"
 #include "vtv_render.h"
 #include "vtv_stream.h"
+#include "vtv_terrain.h"
 
 /* rgba: w x h RGBA8 rows, top first. Written atomically; path "-" streams it to standard output
  * (vt_atomic_file). */
@@ -25,6 +26,7 @@ struct vtv_run_info {
     const char *physical_format;        /* "rgba8", "srgb8_alpha8", "bc" or "none" */
     const struct vtv_variant *variants; /* the shader variants drawn */
     uint32_t variant_count;
+    const struct vtv_terrain_info *terrain; /* --terrain: the "terrain" object; NULL: none */
 };
 
 /* Frames without timings first (deterministic under --sync), then "timing_ms". Written

@@ -8,7 +8,7 @@
 
 /* Bump VT_GDAL_ABI_VERSION on any change. */
 
-#define VT_GDAL_ABI_VERSION 1
+#define VT_GDAL_ABI_VERSION 2
 #define VT_GDAL_ERR_MAX     256
 
 enum vt_gdal_result {
@@ -30,7 +30,10 @@ struct vt_gdal_info {
     uint32_t has_nodata;       /* 1 when the first band has a nodata value */
     double geotransform[6];    /* GDAL's order: x0, dx/dcol, dx/drow, y0, dy/dcol, dy/drow */
     double nodata;
-    char format[24]; /* the driver's short name ("GTiff", "VRT", "JP2OpenJPEG"...) */
+    char format[24];      /* the driver's short name ("GTiff", "VRT", "JP2OpenJPEG"...) */
+    uint32_t has_scale;   /* 1 when the first band has a scale or an offset (GDAL's defaults 1, 0
+                             for the other) */
+    double scale, offset; /* its value = stored * scale + offset */
 };
 
 /* int vt_gdal_abi_version(void) */
