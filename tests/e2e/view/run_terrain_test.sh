@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # vt-view --terrain (tests/e2e/view/CMakeLists.txt, docs/viewer.md "Terrain"): a generated DEM
 # (vtv_terrain_ref dem: 1001 x 707, hills, a sharp ridge, a valley, a plateau, a nodata hole) built
-# as f32 and as u16 with --value-scale/--value-offset, draped with a photograph of Debian's
-# gnome-backgrounds package, rendered headless and compared with a CPU reference of the displaced
+# as f32 and as u16 with --value-scale/--value-offset, draped with a photograph (autumn leaves) from
+# Debian's plasma-workspace-wallpapers, rendered headless and compared with a CPU reference of the displaced
 # grid (vtv_terrain_ref render).
 # usage: run_terrain_test.sh CASE VT_VIEW VT_TILES VTV_TERRAIN_REF VTV_CHECK WORKDIR
 set -euo pipefail
@@ -12,9 +12,9 @@ mkdir -p "$work"
 cd "$work"
 export MESA_SHADER_CACHE_DISABLE=true EGL_LOG_LEVEL=fatal
 fail() { echo "FAIL: $*" >&2; exit 1; }
-photo=/usr/share/backgrounds/gnome/licorice-l.webp
+photo=/usr/share/wallpapers/Autumn/contents/images/2560x1600.jpg
 if [ ! -r "$photo" ]; then
-  echo "SKIP: $photo missing (install gnome-backgrounds: scripts/setup)"
+  echo "SKIP: $photo missing (install plasma-workspace-wallpapers: scripts/setup)"
   exit 77
 fi
 command -v gdal_translate >/dev/null || { echo "SKIP: gdal_translate missing (gdal-bin)"; exit 77; }
