@@ -28,6 +28,10 @@ struct vtv_options {
     uint32_t extent_x, extent_y; /* --extent MxN: tiles of the Wang output in the frame */
     uint32_t origin_x, origin_y; /* --origin X,Y: its top-left tile */
     bool wang_tilemap;           /* --tilemap: the hash precomputed (Wei's TileMap) */
+    uint32_t clipmap;            /* --clipmap N: clipmap mode with N x N tile windows (0: off) */
+    uint64_t budget;             /* --budget: clipmap bytes uploaded per frame */
+    bool clipmap_centre_set;     /* --clipmap-centre X,Y */
+    double clipmap_centre[2];    /* its X, Y in level-0 texels */
 };
 
 void vtv_options_default(struct vtv_options *o);

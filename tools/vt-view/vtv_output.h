@@ -6,6 +6,7 @@
 #include <stdint.h>
 
 #include "vt_error.h"
+#include "vtv_clipmap.h"
 #include "vtv_render.h"
 #include "vtv_stream.h"
 
@@ -25,6 +26,7 @@ struct vtv_run_info {
     const char *physical_format;        /* "rgba8", "srgb8_alpha8", "bc" or "none" */
     const struct vtv_variant *variants; /* the shader variants drawn */
     uint32_t variant_count;
+    const struct vtv_clipmap *clip; /* clipmap mode: its per-frame statistics, or NULL */
 };
 
 /* Frames without timings first (deterministic under --sync), then "timing_ms". Written

@@ -445,6 +445,28 @@ void vtv_render_upload_tile(struct vtv_render *r, const struct vtv_cache *c, uin
     }
 }
 
+size_t vtv_render_upload_bytes(const struct vtv_render *r)
+{
+    size_t n = 0, px = (size_t)r->payload_px * r->payload_px;
+    for (int k = 0; k < VTV_MAP_COUNT; k++) {
+        if (r->phys_slice[k] < 0)
+            continue;
+        GLenum f = r->phys_upload[k][0], t = r->phys_upload[k][1];
+        if (t == 0) { /* BC blocks of 8 (BC1, BC4) or 16 bytes */
+            GLenum c = r->phys_format[k];
+            bool eight = c == GL_COMPRESSED_RGBA_S3TC_DXT1_EXT ||
+                         c == GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT1_EXT ||
+                         c == GL_COMPRESSED_RED_RGTC1;
+            n += px / 16 * (eight ? 8 : 16);
+            continue;
+        }
+        size_t ch = f == GL_RED ? 1 : f == GL_RG ? 2 : f == GL_RGB ? 3 : 4;
+        size_t b = t == GL_UNSIGNED_BYTE ? 1 : t == GL_FLOAT ? 4 : 2;
+        n += px * ch * b;
+    }
+    return n;
+}
+
 void vtv_render_upload_page_table(struct vtv_render *r, const struct vtv_cache *c)
 {
     glBindTexture(GL_TEXTURE_2D, r->tex_pt);
