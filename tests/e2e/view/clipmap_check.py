@@ -8,7 +8,8 @@ include/vts/vts_clipmap.h and independent of libvts: per frame it recomputes eve
 from the paging centre in the statistics with the snapping formula, moves the target, lists the
 load plan (coarsest level first; the strips of target minus front, column strips beside the front
 then row strips over the target's width, each row by row, skipping tiles already in their
-toroidal slot), cuts it to floor(budget / (C * C * 4)) tiles, loads them and grows the fronts.
+toroidal slot; a move first grows the front over the columns and rows already in their slots),
+cuts it to floor(budget / (C * C * 4)) tiles, loads them and grows the fronts.
 The tiles vt-view uploaded in each frame must equal the model's exactly (same tiles, same order),
 the fronts must agree, and every frame's bytes must stay within the budget. INFO.json is
 `vt-info --json` of the store (the levels' tile grids). --tamper alters the uploads read from
@@ -80,24 +81,18 @@ class Level:
             else:
                 return
         changed = True
-        while changed:
+        while changed:  # passes over the four sides, left, right, top, bottom, until none joins
             changed = False
             x0, y0, x1, y1 = self.front
             if x0 > b[0] and all(self.holds(n, x0 - 1, y) for y in range(y0, y1)):
-                self.front = (x0 - 1, y0, x1, y1)
-                changed = True
-                continue
+                x0, changed = x0 - 1, True
             if x1 < b[2] and all(self.holds(n, x1, y) for y in range(y0, y1)):
-                self.front = (x0, y0, x1 + 1, y1)
-                changed = True
-                continue
+                x1, changed = x1 + 1, True
             if y0 > b[1] and all(self.holds(n, x, y0 - 1) for x in range(x0, x1)):
-                self.front = (x0, y0 - 1, x1, y1)
-                changed = True
-                continue
+                y0, changed = y0 - 1, True
             if y1 < b[3] and all(self.holds(n, x, y1) for x in range(x0, x1)):
-                self.front = (x0, y0, x1, y1 + 1)
-                changed = True
+                y1, changed = y1 + 1, True
+            self.front = (x0, y0, x1, y1)
 
 
 def model(info, n, budget):
@@ -110,6 +105,7 @@ def model(info, n, budget):
             k = 2.0**-l
             lv.back = window(centre[0] * k, centre[1] * k, n, c, lv.tx, lv.ty)
             lv.front = intersect(lv.front, lv.back) if not empty(lv.front) else (0, 0, 0, 0)
+            lv.grow(n)  # tiles an unfinished earlier target left in their slots next to the front
         plan = []
         for l in range(len(levels) - 1, -1, -1):
             lv = levels[l]
