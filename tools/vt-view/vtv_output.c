@@ -70,15 +70,14 @@ static void frame_json(FILE *f, const struct vtv_frame_stats *s, const struct vt
 {
     fprintf(f,
             "{\"requested\": %" PRIu64 ", \"loaded\": %" PRIu64 ", \"resident\": %" PRIu64
-            ", \"uploads\": %" PRIu64 ", \"bytes_uploaded\": %" PRIu64
-            ", \"fallback_pixels\": %" PRIu64 ", \"empty\": %" PRIu64 ", \"failed\": %" PRIu64
-            ", \"ram_hits\": %" PRIu64 ", \"reads\": %" PRIu64 ", \"prefetched\": %" PRIu64
-            ", \"lod_bias\": %g, \"missed_by_level\": [",
-            s->requested, s->loaded, s->resident, s->uploads, s->bytes_uploaded, s->fallback_pixels,
-            s->empty, s->failed, s->ram_hits, s->reads, s->prefetched, (double)s->lod_bias);
+            ", \"uploads\": %" PRIu64 ", \"fallback_pixels\": %" PRIu64 ", \"empty\": %" PRIu64
+            ", \"failed\": %" PRIu64 ", \"ram_hits\": %" PRIu64 ", \"reads\": %" PRIu64
+            ", \"prefetched\": %" PRIu64 ", \"lod_bias\": %g, \"missed_by_level\": [",
+            s->requested, s->loaded, s->resident, s->uploads, s->fallback_pixels, s->empty,
+            s->failed, s->ram_hits, s->reads, s->prefetched, (double)s->lod_bias);
     for (uint32_t l = 0; l < s->levels && l < VTS_MAX_LEVELS; l++)
         fprintf(f, "%s%u", l ? ", " : "", s->missed[l]);
-    fputs("]", f);
+    fprintf(f, "], \"bytes_uploaded\": %" PRIu64, s->bytes_uploaded);
     if (c && cf)
         clip_json(f, c, cf);
     fputs("}", f);
