@@ -497,7 +497,8 @@ static int loop(struct app *a, struct vts_error *err)
                    "the screenshot's frame shows %" PRIu64
                    " fallback pixels (coarser levels while tiles load): %s",
                    last_fallback,
-                   o->sync ? "give more --frames or a larger --uploads"
+                   o->sync ? (o->clipmap ? "give more --frames or a larger --budget"
+                                         : "give more --frames or a larger --uploads")
                            : "use --sync (or more --frames) for a complete frame");
     }
     if (o->stats) {
