@@ -113,14 +113,16 @@ static int apply(struct vtv_clipmap *c, struct vtv_load *ld, struct vtv_clipmap_
     vtv_clipmap_gl_upload(&c->gl, t.level, t.slot_x, t.slot_y, px, g->tile_payload_px, g->border_px,
                           c->zero);
     vts_clipmap_loaded(&c->cm, &t);
+    f->tiles++;
+    f->bytes += c->gl.tile_bytes;
+    if (c->frame_count >= c->opt.frames_cap)
+        return 0; /* past the frames whose statistics are kept (a window: none) */
     if (!vt_array_grow((void **)&c->list, &c->list_cap, c->list_count + 1, sizeof(*c->list), 1024))
         return VTS_ERR_NOMEM;
     uint32_t *e = c->list[c->list_count++];
     e[0] = t.level;
     e[1] = t.x;
     e[2] = t.y;
-    f->tiles++;
-    f->bytes += c->gl.tile_bytes;
     return 0;
 }
 

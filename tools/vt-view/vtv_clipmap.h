@@ -23,8 +23,8 @@ struct vtv_clipmap_frame {
     uint64_t reads;           /* tiles read and decoded (sync: = tiles) */
     uint32_t strips;          /* strips (front to target at the frame's start) now complete */
     uint32_t levels_complete; /* levels whose front equals their target after the uploads */
-    uint64_t first;           /* its uploaded tiles: list[first .. first + tiles) */
-    double centre[2];         /* the paging centre, level-0 texels */
+    uint64_t first;   /* its uploaded tiles: list[first .. first + tiles) (kept frames only) */
+    double centre[2]; /* the paging centre, level-0 texels */
     struct vts_tile_rect front[VTS_MAX_LEVELS]; /* after the uploads */
 };
 
@@ -76,7 +76,7 @@ void vtv_clipmap_free(struct vtv_clipmap *c);
 
 /* One frame's paging: the targets moved to the windows around the paging centre (cx, cy, level-0
  * texels; --clipmap-centre replaces it), then the plan loaded and uploaded within the budget.
- * Records the frame's statistics (out, and kept for vtv_clipmap_frames up to frames_cap).
+ * Records the frame's statistics (out, and in c->frames for the first frames_cap frames).
  * Returns 0 or VTS_ERR_NOMEM. */
 int vtv_clipmap_update(struct vtv_clipmap *c, double cx, double cy, struct vtv_clipmap_frame *out);
 
