@@ -247,11 +247,6 @@ static void apply_input(struct app *a, const struct vtv_input *in)
 static int setup_clipmap(struct app *a, uint32_t shown, bool srgb, struct vts_error *err)
 {
     const struct vtv_options *o = a->o;
-    if (a->render.display.features)
-        return vt_error_set(err, VTS_ERR_ARG,
-                            "--clipmap: layer %u of '%s' is shown through a range, ramp or index "
-                            "colours: not yet supported in clipmap mode",
-                            shown, o->store_path);
     struct vtv_clipmap_options co = {.n = o->clipmap,
                                      .budget = o->budget,
                                      .sync = o->sync,
@@ -260,7 +255,7 @@ static int setup_clipmap(struct app *a, uint32_t shown, bool srgb, struct vts_er
                                      .centre = {o->clipmap_centre[0], o->clipmap_centre[1]},
                                      .frames_cap = o->frames};
     a->render.srgb = srgb;
-    return vtv_clipmap_init(&a->clip, a->store, shown, &co, err);
+    return vtv_clipmap_init(&a->clip, a->store, shown, &co, a->render.display.features, err);
 }
 
 static int setup(struct app *a, struct vts_error *err)

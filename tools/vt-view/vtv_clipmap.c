@@ -7,48 +7,37 @@
 #include <string.h>
 
 #include "vt_checked.h"
-
-uint64_t vtv_clipmap_tile_bytes(const struct vts_store *store, uint32_t layer,
-                                struct vts_error *err)
-{
-    const struct vts_layer *ly = vts_store_layer(store, layer);
-    if (ly->sample != VTS_SAMPLE_U8) {
-        vt_error_set(err, VTS_ERR_ARG,
-                     "--clipmap: layer '%s' of '%s' holds 16-bit or float samples: not yet "
-                     "supported in clipmap mode (u8 layers only)",
-                     ly->name, vts_store_name(store));
-        return 0;
-    }
-    uint64_t c = vts_store_geometry(store)->tile_content_px;
-    return c * c * 4; /* RGBA8 (BC payloads are decoded on the CPU) */
-}
+#include "vtv_wide.h"
 
 int vtv_clipmap_init(struct vtv_clipmap *c, const struct vts_store *store, uint32_t layer,
-                     const struct vtv_clipmap_options *opt, struct vts_error *err)
+                     const struct vtv_clipmap_options *opt, unsigned display_features,
+                     struct vts_error *err)
 {
     memset(c, 0, sizeof(*c));
     c->store = store;
     c->layer = layer;
     c->opt = *opt;
     const struct vts_geometry *g = vts_store_geometry(store);
-    uint64_t tile_bytes = vtv_clipmap_tile_bytes(store, layer, err);
-    if (!tile_bytes)
-        return err->status;
+    const struct vts_layer *info = vts_store_layer(store, layer);
+    struct vtv_texel_format texels;
+    vtv_wide_format(info, &texels); /* what vtv_loader hands over (BC decoded on the CPU) */
+    int st = vts_clipmap_init(&c->cm, g, opt->n, err);
+    if (st == 0)
+        st = vtv_clipmap_gl_init(&c->gl, opt->n, g->tile_content_px, c->cm.level_count, &texels,
+                                 info->colour == VTS_COLOUR_SRGB, display_features, err);
+    if (st != 0)
+        return st;
+    uint64_t tile_bytes = c->gl.tile_bytes;
     if (opt->budget < tile_bytes)
-        return vt_error_set(err, VTS_ERR_ARG,
-                            "--budget %llu: below one tile's upload (%llu bytes: %u x %u RGBA8 "
-                            "texels)",
-                            (unsigned long long)opt->budget, (unsigned long long)tile_bytes,
-                            g->tile_content_px, g->tile_content_px);
+        return vt_error_set(
+            err, VTS_ERR_ARG,
+            "--budget %llu: below one tile's upload (%llu bytes: %u x %u texels of "
+            "%llu bytes)",
+            (unsigned long long)opt->budget, (unsigned long long)tile_bytes, g->tile_content_px,
+            g->tile_content_px,
+            (unsigned long long)(tile_bytes / g->tile_content_px / g->tile_content_px));
     uint64_t max = opt->budget / tile_bytes;
     c->max_tiles = max > (1u << 20) ? 1u << 20 : (uint32_t)max;
-    int st = vts_clipmap_init(&c->cm, g, opt->n, err);
-    if (st != 0)
-        return st;
-    bool srgb = vts_store_layer(store, layer)->colour == VTS_COLOUR_SRGB;
-    st = vtv_clipmap_gl_init(&c->gl, opt->n, g->tile_content_px, c->cm.level_count, srgb, err);
-    if (st != 0)
-        return st;
     c->loader = vtv_loader_create(store, layer, opt->sync ? 0 : opt->threads, 0, err);
     if (!c->loader)
         return err->status;

@@ -61,17 +61,14 @@ struct vtv_clipmap {
     char error[512]; /* the first failure's message */
 };
 
-/* The bytes of one tile's upload for a layer of store (C * C * texel bytes; 0 when the layer
- * cannot be shown in clipmap mode, with the reason in err: VTS_ERR_ARG). */
-uint64_t vtv_clipmap_tile_bytes(const struct vts_store *store, uint32_t layer,
-                                struct vts_error *err);
-
 /* Sets up the clipmap of layer of store: the arithmetic, the loader and the GL texture (needs a
- * current context). Errors (VTS_ERR_ARG: a usage problem, e.g. a budget below one tile;
+ * current context), drawn through the display features (vtv_display.h: the shown colour's range,
+ * ramp or index colours). Errors (VTS_ERR_ARG: a usage problem, e.g. a budget below one tile;
  * VTS_ERR_LIMIT: too large for this GL) in err. Free with vtv_clipmap_free (also after a failed
  * init). */
 int vtv_clipmap_init(struct vtv_clipmap *c, const struct vts_store *store, uint32_t layer,
-                     const struct vtv_clipmap_options *opt, struct vts_error *err);
+                     const struct vtv_clipmap_options *opt, unsigned display_features,
+                     struct vts_error *err);
 void vtv_clipmap_free(struct vtv_clipmap *c);
 
 /* One frame's paging: the targets moved to the windows around the paging centre (cx, cy, level-0

@@ -7,13 +7,14 @@
 
 #include "vt_checked.h"
 #include "vtv_clipmap_glsl.h"
+#include "vtv_material.h"
 #include "vtv_render.h"
 #include "vtv_shaders.h"
 
-static GLuint compile(GLenum type, const char *src, struct vts_error *err)
+static GLuint compile(GLenum type, const char *const *src, int pieces, struct vts_error *err)
 {
     GLuint s = glCreateShader(type);
-    glShaderSource(s, 1, &src, NULL);
+    glShaderSource(s, pieces, src, NULL);
     glCompileShader(s);
     GLint ok = 0;
     glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
@@ -27,10 +28,15 @@ static GLuint compile(GLenum type, const char *src, struct vts_error *err)
     return s;
 }
 
-static GLuint build_program(struct vts_error *err)
+/* The fragment shader: version, the display's #defines, vt_display(), the clipmap's body. */
+static GLuint build_program(unsigned display_features, struct vts_error *err)
 {
-    GLuint vs = compile(GL_VERTEX_SHADER, vtv_vs_source, err);
-    GLuint fs = vs ? compile(GL_FRAGMENT_SHADER, vtv_clipmap_fs_glsl, err) : 0;
+    const char *vsrc = vtv_vs_source;
+    char defines[512];
+    vtv_feature_defines(display_features, defines, sizeof(defines));
+    const char *fsrc[4] = {"#version 330 core\n", defines, vtv_display_glsl, vtv_clipmap_fs_glsl};
+    GLuint vs = compile(GL_VERTEX_SHADER, &vsrc, 1, err);
+    GLuint fs = vs ? compile(GL_FRAGMENT_SHADER, fsrc, 4, err) : 0;
     if (!fs) {
         glDeleteShader(vs);
         return 0;
@@ -58,8 +64,35 @@ double vtv_clipmap_gl_inset(bool nearest)
     return nearest ? 0.5 : 1.0;
 }
 
+/* The texels' GL formats and bytes; one and two channels read as grey (and alpha), as RGBA8
+ * tiles show them (as the page table's physical textures). */
+static size_t texel_formats(struct vtv_clipmap_gl *g, const struct vtv_texel_format *t, bool srgb)
+{
+    if (!t->sample || t->sample == VTS_SAMPLE_U8) {
+        g->internal = srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8;
+        g->format = GL_RGBA;
+        g->type = GL_UNSIGNED_BYTE;
+        return 4;
+    }
+    GLenum f[3];
+    vtv_render_wide_formats(t, f);
+    g->internal = f[0];
+    g->format = f[1];
+    g->type = f[2];
+    return vtv_wide_texel_bytes(t);
+}
+
+static void swizzle(const struct vtv_clipmap_gl *g)
+{
+    if (g->format == GL_RED || g->format == GL_RG) {
+        const GLint sw[4] = {GL_RED, GL_RED, GL_RED, g->format == GL_RG ? GL_GREEN : GL_ONE};
+        glTexParameteriv(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_SWIZZLE_RGBA, sw);
+    }
+}
+
 int vtv_clipmap_gl_init(struct vtv_clipmap_gl *g, uint32_t n, uint32_t content_px, uint32_t levels,
-                        bool srgb, struct vts_error *err)
+                        const struct vtv_texel_format *texels, bool srgb, unsigned display_features,
+                        struct vts_error *err)
 {
     memset(g, 0, sizeof(*g));
     g->debug_offset = -1;
@@ -69,8 +102,9 @@ int vtv_clipmap_gl_init(struct vtv_clipmap_gl *g, uint32_t n, uint32_t content_p
     GLint max_size = 0, max_layers = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
+    size_t texel_bytes = texel_formats(g, texels, srgb);
     uint64_t size = (uint64_t)n * content_px, bytes = 0;
-    bool over = !vt_u64_mul(size, size, &bytes) || !vt_u64_mul(bytes, 4, &bytes) ||
+    bool over = !vt_u64_mul(size, size, &bytes) || !vt_u64_mul(bytes, texel_bytes, &bytes) ||
                 !vt_u64_mul(bytes, levels, &bytes);
     if (size > (uint64_t)max_size)
         return vt_error_set(err, VTS_ERR_LIMIT,
@@ -83,22 +117,22 @@ int vtv_clipmap_gl_init(struct vtv_clipmap_gl *g, uint32_t n, uint32_t content_p
                             levels, max_layers);
     if (over || bytes > VTV_CLIPMAP_MAX_TEXTURE_BYTES)
         return vt_error_set(err, VTS_ERR_LIMIT,
-                            "--clipmap %u: %u levels of %llu^2 RGBA8 texels exceed the %llu MiB "
-                            "limit: use a smaller --clipmap",
-                            n, levels, (unsigned long long)size,
+                            "--clipmap %u: %u levels of %llu^2 texels of %zu bytes exceed the %llu "
+                            "MiB limit: use a smaller --clipmap",
+                            n, levels, (unsigned long long)size, texel_bytes,
                             (unsigned long long)(VTV_CLIPMAP_MAX_TEXTURE_BYTES >> 20));
     g->size_px = (uint32_t)size;
     g->content_px = content_px;
     g->levels = levels;
-    g->srgb = srgb;
-    g->tile_bytes = (uint64_t)content_px * content_px * 4;
-    g->prog = build_program(err);
+    g->tile_bytes = (uint64_t)content_px * content_px * texel_bytes;
+    g->prog = build_program(display_features, err);
     if (!g->prog)
         return err->status;
     glGenTextures(1, &g->tex);
     glBindTexture(GL_TEXTURE_2D_ARRAY, g->tex);
-    glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, (GLsizei)size,
-                   (GLsizei)size, (GLsizei)levels);
+    glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, g->internal, (GLsizei)size, (GLsizei)size,
+                   (GLsizei)levels);
+    swizzle(g);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
@@ -133,8 +167,8 @@ void vtv_clipmap_gl_upload(struct vtv_clipmap_gl *g, uint32_t level, uint32_t sl
         glPixelStorei(GL_UNPACK_SKIP_ROWS, (GLint)border_px);
     }
     glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, (GLint)(slot_x * g->content_px),
-                    (GLint)(slot_y * g->content_px), (GLint)level, c, c, 1, GL_RGBA,
-                    GL_UNSIGNED_BYTE, payload ? payload : zero);
+                    (GLint)(slot_y * g->content_px), (GLint)level, c, c, 1, g->format, g->type,
+                    payload ? payload : zero);
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
     glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
     glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
@@ -201,6 +235,8 @@ uint64_t vtv_clipmap_gl_draw(const struct vtv_clipmap_gl *g, const struct vts_cl
     glUniform1i(glGetUniformLocation(p, "u_nearest"), v->nearest ? 1 : 0);
     glUniform1f(glGetUniformLocation(p, "u_lod_bias"), lod_bias);
     glUniform1i(glGetUniformLocation(p, "u_debug"), v->debug == 1 ? 1 : 0);
+    if (r->group_count) /* the display's range, ramp and index scale (a plain material's) */
+        vtv_render_material_uniforms(r, p, &r->groups[0].mat, v);
     double bx = v->rel ? (double)v->origin[0] * g->content_px : 0.0;
     double by = v->rel ? (double)v->origin[1] * g->content_px : 0.0;
     level_uniforms(g, cm, p, bx, by, vtv_clipmap_gl_inset(v->nearest));

@@ -13,6 +13,7 @@
 #include "vt_error.h"
 #include "vts.h"
 #include "vts_clipmap.h"
+#include "vtv_wide.h"
 
 struct vtv_render;
 struct vtv_view;
@@ -24,20 +25,23 @@ struct vtv_clipmap_gl {
     GLuint tex, prog;
     uint32_t size_px; /* S = n * C, the edge of every layer */
     uint32_t content_px, levels;
-    bool srgb;           /* GL_SRGB8_ALPHA8 (an sRGB layer), else GL_RGBA8 */
-    uint64_t tile_bytes; /* one tile's upload: C * C * 4 */
-    int debug_offset;    /* VTV_CLIPMAP_DEBUG_OFFSET=L: level L addressed one texel off (the
-                            tests' wrong render), else -1 */
+    GLenum internal, format, type; /* the texels: RGBA8 (sRGB: SRGB8_ALPHA8) or vtv_wide's */
+    uint64_t tile_bytes;           /* one tile's upload: C * C * texel bytes */
+    int debug_offset; /* VTV_CLIPMAP_DEBUG_OFFSET=L: level L addressed one texel off (the
+                         tests' wrong render), else -1 */
 };
 
-/* Creates the texture (n x n tiles of content_px per level, levels layers) and the program.
+/* Creates the texture (n x n tiles of content_px per level, levels layers) of texels (what the
+ * loader hands over for the layer, vtv_wide_format; an sRGB u8 layer as GL_SRGB8_ALPHA8) and the
+ * program with the display features (VTV_F_RANGE, VTV_F_RAMP, VTV_F_INDEX: vtv_display.h).
  * VTS_ERR_LIMIT with a one-line reason when the GL or VTV_CLIPMAP_MAX_TEXTURE_BYTES does not
  * allow it (sizes checked for overflow); VTS_ERR_UNSUPPORTED when the shader does not build. */
 int vtv_clipmap_gl_init(struct vtv_clipmap_gl *g, uint32_t n, uint32_t content_px, uint32_t levels,
-                        bool srgb, struct vts_error *err);
+                        const struct vtv_texel_format *texels, bool srgb, unsigned display_features,
+                        struct vts_error *err);
 void vtv_clipmap_gl_free(struct vtv_clipmap_gl *g);
 
-/* Writes the content of one tile's payload (payload_px^2 RGBA8 texels with border_px borders;
+/* Writes the content of one tile's payload (payload_px^2 texels with border_px borders;
  * NULL: an empty tile, zeros) at slot (slot_x, slot_y) of level's layer. */
 void vtv_clipmap_gl_upload(struct vtv_clipmap_gl *g, uint32_t level, uint32_t slot_x,
                            uint32_t slot_y, const uint8_t *payload, uint32_t payload_px,

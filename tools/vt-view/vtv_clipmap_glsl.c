@@ -1,4 +1,5 @@
-/* GLSL of vt-view --clipmap (docs/viewer.md, "Clipmap mode").
+/* GLSL of vt-view --clipmap (docs/viewer.md, "Clipmap mode"); it follows vtv_display_glsl (the
+ * shown colour's range, ramp or index colours, as the page-table path shows them).
  *
  * Coordinates: t0 is the sample's level-0 texel position relative to a base (u_rel, the 2D view's
  * split coordinates: the level-0 tile u_origin's corner; else v_uv over the whole texture and the
@@ -20,7 +21,6 @@
 #include "vtv_clipmap_glsl.h"
 
 const char vtv_clipmap_fs_glsl[] =
-    "#version 330 core\n"
     "in vec2 v_uv;\n"
     "uniform sampler2DArray u_clip;\n"
     "uniform int u_levels;\n"
@@ -86,6 +86,7 @@ const char vtv_clipmap_fs_glsl[] =
     "        c = fetch(used0, t0);\n"
     "        fb = used0 > want0;\n"
     "    }\n"
+    "    c = vt_display(c);\n"
     "    if (u_debug == 1) c = vec4(mix(level_colour(used0), c.rgb, 0.25), 1.0);\n"
     "    o_color = vec4(c.rgb, 1.0);\n"
     "    o_fallback = fb ? 1u : 0u;\n"

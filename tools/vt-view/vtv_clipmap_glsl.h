@@ -6,7 +6,8 @@
 #ifndef VTV_CLIPMAP_GLSL_H
 #define VTV_CLIPMAP_GLSL_H
 
-/* "#version 330 core" and the whole fragment shader; its uniforms are set by vtv_clipmap_gl.c. */
+/* The fragment shader's body, after "#version 330 core", the display's #defines and
+ * vtv_display_glsl (vtv_shaders.h); its uniforms are set by vtv_clipmap_gl.c. */
 extern const char vtv_clipmap_fs_glsl[];
 
 #endif

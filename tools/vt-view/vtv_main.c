@@ -78,7 +78,7 @@ static const char usage_text[] =
     "                        toroidally, instead of the page table (no --cache, --ram-cache,\n"
     "                        --uploads, --prefetch, --reads, --feedback-scale, --reference)\n"
     "  --budget BYTES        with --clipmap: bytes uploaded per frame at most, suffix K or M\n"
-    "                        (default 4M; at least one tile: C x C x 4 bytes)\n"
+    "                        (default 4M; at least one tile: C x C x texel bytes)\n"
     "  --clipmap-centre X,Y  with --clipmap: fix the paging centre at level-0 texel X,Y\n"
     "                        (default: the camera's centre)\n"
     "  -q, --quiet           errors only\n"

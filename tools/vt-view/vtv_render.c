@@ -278,8 +278,7 @@ void vtv_render_material_uniforms(const struct vtv_render *r, GLuint p,
     }
 }
 
-/* The GL formats of a 16-bit or float layer's texels (vtv_wide.h): internal, format, type. */
-static void wide_formats(const struct vtv_texel_format *f, GLenum out[3])
+void vtv_render_wide_formats(const struct vtv_texel_format *f, GLenum out[3])
 {
     static const GLenum formats[4] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
     static const GLenum u16[4] = {GL_R16, GL_RG16, GL_RGB16, GL_RGBA16};
@@ -371,7 +370,7 @@ int vtv_render_set_cache(struct vtv_render *r, const struct vtv_cache *c,
         uint32_t sample = layers[k].texels.sample;
         if (!bc && sample && sample != VTS_SAMPLE_U8) {
             GLenum f[3];
-            wide_formats(&layers[k].texels, f);
+            vtv_render_wide_formats(&layers[k].texels, f);
             r->phys_format[k] = f[0];
             r->phys_upload[k][0] = f[1];
             r->phys_upload[k][1] = f[2];
