@@ -104,7 +104,15 @@ wide)
     for s in "f.vts --range 0.25:2.5 --ramp dusk" "u.vts" "k.vts --ramp index --filtering nearest"; do
       set -- $s
       tag=${1%.vts}_$z
-      vt "$@" --camera z$z.cam --clipmap 8 --sync --frames 3 --screenshot c_$tag.png --stats c_$tag.json
+      # Under ASan, LeakSanitizer's tracer crashes at exit of the f32 clipmap runs ("Tracer caught
+      # signal 11" on a dynamic-TLS block of Mesa's threads; clang 14 and gcc 12 alike, not with
+      # the page table's run): their leak check is off (ASan's checks stay on; valgrind's
+      # memcheck of the same run finds no invalid access; the other layers' runs keep it).
+      nolsan=
+      [ "$1" = f.vts ] && nolsan=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0
+      ASAN_OPTIONS=${nolsan:-${ASAN_OPTIONS:-}} \
+        vt "$@" --camera z$z.cam --clipmap 8 --sync --frames 3 --screenshot c_$tag.png \
+        --stats c_$tag.json
       vt "$@" --camera z$z.cam --sync --frames 16 --screenshot p_$tag.png
       "$check" psnr c_$tag.png p_$tag.png --min 40 || fail "$tag: PSNR"
       "$check" stat c_$tag.json fallback_pixels == 0 || fail "$tag: fallback"
