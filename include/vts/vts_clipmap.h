@@ -120,7 +120,8 @@ VTS_API uint64_t vts_clipmap_pending(const struct vts_clipmap *c);
  * VTS_ERR_RANGE when t is outside its level's target, else 0. */
 VTS_API int vts_clipmap_loaded(struct vts_clipmap *c, const struct vts_clipmap_tile *t);
 
-/* True when level's front equals its target (the level is complete). */
+/* True when level's front equals its target (the level is complete); false while the target is
+ * empty (before the level's first vts_clipmap_move) and for a level outside the clipmap. */
 VTS_API bool vts_clipmap_complete(const struct vts_clipmap *c, uint32_t level);
 
 /* The texels of level the renderer may sample with a filter reaching `inset` texels around the

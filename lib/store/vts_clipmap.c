@@ -304,7 +304,7 @@ bool vts_clipmap_complete(const struct vts_clipmap *c, uint32_t level)
     if (!c || level >= c->level_count)
         return false;
     const struct vts_clipmap_level *cl = &c->levels[level];
-    return memcmp(&cl->front, &cl->back, sizeof cl->front) == 0;
+    return !rect_empty(&cl->back) && memcmp(&cl->front, &cl->back, sizeof cl->front) == 0;
 }
 
 void vts_clipmap_valid(const struct vts_clipmap *c, uint32_t level, double inset, double *x0,

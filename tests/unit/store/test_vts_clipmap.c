@@ -168,19 +168,25 @@ static unsigned check_strips(const struct vts_tile_rect *from, const struct vts_
     unsigned bad = count > 4;
     if (count > 4)
         return bad;
-    unsigned char *hits = calloc((size_t)tiles_x * tiles_y, 1);
+    /* a strip reaching outside `to` is wrong; inside it, count the strips over each tile */
+    unsigned char hits[MAX_N * MAX_N] = {0};
+    uint32_t tw = to->x1 - to->x0, th = to->y1 - to->y0;
+    if (rect_empty(to))
+        return bad + (count != 0);
+    if (tw > MAX_N || th > MAX_N)
+        return bad + 1;
     for (uint32_t s = 0; s < count; s++) {
-        bad += rect_empty(&strips[s]) || strips[s].x1 > tiles_x || strips[s].y1 > tiles_y;
-        for (uint32_t y = strips[s].y0; y < strips[s].y1 && y < tiles_y; y++)
-            for (uint32_t x = strips[s].x0; x < strips[s].x1 && x < tiles_x; x++)
-                hits[(size_t)y * tiles_x + x]++;
+        const struct vts_tile_rect *r = &strips[s];
+        bad += rect_empty(r) || r->x1 > tiles_x || r->y1 > tiles_y;
+        bad += r->x0 < to->x0 || r->y0 < to->y0 || r->x1 > to->x1 || r->y1 > to->y1;
+        for (uint32_t y = r->y0; y < r->y1; y++)
+            for (uint32_t x = r->x0; x < r->x1; x++)
+                if (rect_has(to, x, y))
+                    hits[(y - to->y0) * tw + x - to->x0]++;
     }
-    for (uint32_t y = 0; y < tiles_y; y++)
-        for (uint32_t x = 0; x < tiles_x; x++) {
-            bool want = rect_has(to, x, y) && !rect_has(from, x, y);
-            bad += hits[(size_t)y * tiles_x + x] != (want ? 1 : 0);
-        }
-    free(hits);
+    for (uint32_t y = to->y0; y < to->y1; y++)
+        for (uint32_t x = to->x0; x < to->x1; x++)
+            bad += hits[(y - to->y0) * tw + x - to->x0] != (rect_has(from, x, y) ? 0 : 1);
     /* the order: the loaded part stays a rectangle; columns (to's rows not all spanned) first */
     struct vts_tile_rect in = {
         from->x0 > to->x0 ? from->x0 : to->x0, from->y0 > to->y0 ? from->y0 : to->y0,
@@ -300,8 +306,7 @@ static unsigned check_state(const struct vts_clipmap *c, const struct model *m)
             for (uint32_t x = f->x0; x < f->x1; x++)
                 bad += !model_in_slot(m, l, x, y);
         bool target_empty = rect_empty(&m->target[l]);
-        bad += vts_clipmap_complete(c, l) !=
-               (empty ? target_empty : !target_empty && rect_eq(f, &m->target[l]));
+        bad += vts_clipmap_complete(c, l) != (!target_empty && rect_eq(f, &m->target[l]));
         double C = c->content_px, inset = (double)(l % 3) / 2, x0, y0, x1, y1;
         vts_clipmap_valid(c, l, inset, &x0, &y0, &x1, &y1);
         if (empty) {
@@ -342,6 +347,50 @@ static void windows_follow_the_snapping_formula(void)
             vts_clipmap_free(&c);
         }
     fprintf(stderr, "  %u centres checked against the window formula\n", windows);
+}
+
+/* Whether level l's window (in level-0 texels, clipped to the store) lies within level l + 1's:
+ * where the finer level is loaded, the coarser one it falls back to is too. */
+static bool nested(const struct vts_clipmap *c, uint32_t l, const struct vts_tile_rect *fine,
+                   const struct vts_tile_rect *coarse)
+{
+    uint64_t C = c->content_px, w = c->levels[0].width, h = c->levels[0].height;
+    uint64_t f[4] = {fine->x0 * C << l, fine->y0 * C << l, fine->x1 * C << l, fine->y1 * C << l};
+    uint64_t g[4] = {coarse->x0 * C << (l + 1), coarse->y0 * C << (l + 1),
+                     coarse->x1 * C << (l + 1), coarse->y1 * C << (l + 1)};
+    f[2] = f[2] < w ? f[2] : w, g[2] = g[2] < w ? g[2] : w;
+    f[3] = f[3] < h ? f[3] : h, g[3] = g[3] < h ? g[3] : h;
+    return g[0] <= f[0] && g[1] <= f[1] && f[2] <= g[2] && f[3] <= g[3];
+}
+
+static void windows_of_one_centre_nest(void)
+{
+    unsigned pairs = 0, caught = 0;
+    for (size_t gi = 0; gi < GEOMETRY_COUNT; gi++)
+        for (uint32_t n = 1; n <= MAX_N; n++) {
+            struct vts_geometry g = geometry_of(gi);
+            struct vts_clipmap c;
+            VT_CHECK_INT_EQ(vts_clipmap_init(&c, &g, n, NULL), 0);
+            for (int64_t q = -8; q <= 4 * (int64_t)g.width + 8; q++) {
+                double cx = q * g.tile_content_px / 4.0 + 0.125;
+                double cy = (double)((q * 5) % (4 * (int64_t)g.height + 16) - 8);
+                for (uint32_t l = 0; l + 1 < c.level_count; l++) {
+                    struct vts_tile_rect fine, coarse;
+                    vts_clipmap_window(&c, l, cx / (1u << l), cy / (1u << l), &fine);
+                    vts_clipmap_window(&c, l + 1, cx / (2u << l), cy / (2u << l), &coarse);
+                    VT_CHECK(nested(&c, l, &fine, &coarse));
+                    pairs++;
+                    /* the negative control: the coarse level given the fine level's centre
+                     * (not halved) */
+                    vts_clipmap_window(&c, l + 1, cx / (1u << l), cy / (1u << l), &coarse);
+                    caught += !nested(&c, l, &fine, &coarse);
+                }
+            }
+            vts_clipmap_free(&c);
+        }
+    VT_CHECK(caught > 1000);
+    fprintf(stderr, "  %u level pairs nested, %u windows of an unhalved centre caught\n", pairs,
+            caught);
 }
 
 static void strips_cover_exactly_the_new_tiles_in_order(void)
@@ -524,6 +573,52 @@ static void walk(size_t gi, uint32_t n, uint32_t k, uint32_t moves, struct walk_
     st->walks++;
 }
 
+/* The state checker's negative controls: a front reaching over a tile not loaded, a slot of the
+ * front overwritten, a target the model does not have: each is reported. */
+static void state_checker_catches_a_wrong_front(void)
+{
+    struct vts_geometry g = geometry_of(2); /* 40x40 tiles */
+    struct vts_clipmap c;
+    VT_CHECK_INT_EQ(vts_clipmap_init(&c, &g, 5, NULL), 0);
+    struct model m = {.n = 5, .level_count = c.level_count};
+    for (uint32_t l = 0; l < c.level_count; l++) {
+        m.tiles_x[l] = c.levels[l].tiles_x;
+        m.tiles_y[l] = c.levels[l].tiles_y;
+        for (uint32_t s = 0; s < 25; s++)
+            m.slot[l][s] = -1;
+    }
+    struct vts_tile_rect w = {10, 12, 15, 17};
+    VT_CHECK_INT_EQ(vts_clipmap_move(&c, 0, &w), 0);
+    m.target[0] = w;
+    struct vts_clipmap_tile plan[12];
+    uint32_t count = vts_clipmap_plan(&c, plan, 12); /* two rows and two tiles of the third */
+    VT_CHECK_INT_EQ(count, 12);
+    for (uint32_t i = 0; i < count; i++) {
+        VT_CHECK_INT_EQ(vts_clipmap_loaded(&c, &plan[i]), 0);
+        m.slot[0][plan[i].slot_y * 5 + plan[i].slot_x] = (int64_t)plan[i].y * 40 + plan[i].x;
+    }
+    struct vts_tile_rect two_rows = {10, 12, 15, 14};
+    VT_CHECK(rect_eq(&c.levels[0].front, &two_rows));
+    VT_CHECK_INT_EQ(check_state(&c, &m), 0);
+    c.levels[0].front.y1++; /* the third row is not all loaded */
+    VT_CHECK(check_state(&c, &m) > 0);
+    c.levels[0].front.y1--;
+    /* slot (0, 2) holds the front's tile (10, 12): overwritten by tile (15, 12), outside it */
+    uint64_t *slot = &c.levels[0].slot_tile[2 * 5 + 0], keep = *slot;
+    VT_CHECK_INT_EQ(keep, 12 * 40 + 10);
+    *slot = 12 * 40 + 15;
+    VT_CHECK(check_state(&c, &m) > 0);
+    m.slot[0][2 * 5 + 0] = 12 * 40 + 15; /* even where the model agrees: the front is wrong */
+    VT_CHECK(check_state(&c, &m) > 0);
+    m.slot[0][2 * 5 + 0] = 12 * 40 + 10;
+    *slot = keep;
+    m.target[0].x1--;
+    VT_CHECK(check_state(&c, &m) > 0);
+    m.target[0].x1++;
+    VT_CHECK_INT_EQ(check_state(&c, &m), 0);
+    vts_clipmap_free(&c);
+}
+
 static void walks_load_exactly_the_missing_tiles(void)
 {
     struct walk_stats st = {0};
@@ -599,6 +694,49 @@ static void known_answers(void)
     vts_clipmap_free(&c);
 }
 
+static uint64_t area(const struct vts_tile_rect *r)
+{
+    return rect_empty(r) ? 0 : (uint64_t)(r->x1 - r->x0) * (r->y1 - r->y0);
+}
+
+/* n = 256 over a 2^20-texel square in 256 px tiles (4096 x 4096 tiles at level 0, 13 levels):
+ * the first fill and then diagonal moves load exactly the area of the new strips, in
+ * ceil(pending / budget) steps, and every level ends complete. */
+static void a_large_window_loads_exactly_its_strips(void)
+{
+    struct vts_geometry g = {1u << 20, 1u << 20, 256, 0, 256, 13, 1, 0};
+    struct vts_clipmap c;
+    VT_CHECK_INT_EQ(vts_clipmap_init(&c, &g, VTS_CLIPMAP_MAX_N, NULL), 0);
+    const uint32_t budget = 4096;
+    struct vts_clipmap_tile *plan = calloc(budget, sizeof *plan);
+    double cx = 300000.5, cy = 700000.25;
+    for (int mv = 0; mv < 4; mv++) {
+        uint64_t want = 0;
+        for (uint32_t l = 0; l < c.level_count; l++) {
+            struct vts_tile_rect w, old = c.levels[l].back;
+            VT_CHECK_INT_EQ(vts_clipmap_window(&c, l, cx / (1u << l), cy / (1u << l), &w), 0);
+            VT_CHECK_INT_EQ(vts_clipmap_move(&c, l, &w), 0);
+            struct vts_tile_rect in = {old.x0 > w.x0 ? old.x0 : w.x0, old.y0 > w.y0 ? old.y0 : w.y0,
+                                       old.x1 < w.x1 ? old.x1 : w.x1,
+                                       old.y1 < w.y1 ? old.y1 : w.y1};
+            want += area(&w) - area(&in);
+        }
+        uint64_t pending = vts_clipmap_pending(&c), steps = 0, loads = 0;
+        VT_CHECK_INT_EQ(pending, want);
+        for (uint32_t k; (k = vts_clipmap_plan(&c, plan, budget)) > 0; steps++)
+            for (uint32_t i = 0; i < k; i++, loads++)
+                VT_CHECK(vts_clipmap_loaded(&c, &plan[i]) == 0);
+        VT_CHECK_INT_EQ(loads, want);
+        VT_CHECK_INT_EQ(steps, (want + budget - 1) / budget);
+        for (uint32_t l = 0; l < c.level_count; l++)
+            VT_CHECK(vts_clipmap_complete(&c, l));
+        /* 3.5 tiles right and 2 up at level 0 (the coarse levels move less or not at all) */
+        cx += 3.5 * 256, cy -= 2 * 256;
+    }
+    free(plan);
+    vts_clipmap_free(&c);
+}
+
 static void bad_arguments_are_refused(void)
 {
     struct vts_geometry g = {100, 60, 8, 0, 8, 2, 1, 0};
@@ -618,6 +756,8 @@ static void bad_arguments_are_refused(void)
 
     VT_CHECK_INT_EQ(vts_clipmap_init(&c, &g, 4, &err), 0);
     VT_CHECK_INT_EQ(c.level_count, 2);
+    VT_CHECK(!vts_clipmap_complete(&c, 1)); /* no target yet */
+    VT_CHECK_INT_EQ(vts_clipmap_pending(&c), 0);
     struct vts_tile_rect w = {1, 1, 1, 1};
     VT_CHECK_INT_EQ(vts_clipmap_window(&c, 2, 0, 0, &w), VTS_ERR_RANGE);
     VT_CHECK(w.x0 == 0 && w.x1 == 0 && w.y0 == 0 && w.y1 == 0);
@@ -648,7 +788,10 @@ int main(void)
     VT_RUN(known_answers);
     VT_RUN(bad_arguments_are_refused);
     VT_RUN(windows_follow_the_snapping_formula);
+    VT_RUN(windows_of_one_centre_nest);
     VT_RUN(strips_cover_exactly_the_new_tiles_in_order);
+    VT_RUN(state_checker_catches_a_wrong_front);
     VT_RUN(walks_load_exactly_the_missing_tiles);
+    VT_RUN(a_large_window_loads_exactly_its_strips);
     return vt_test_main_result();
 }
