@@ -11,6 +11,7 @@
 #include "tool_common.h"
 #include "vt_error.h"
 #include "vtv_camera.h"
+#include "vtv_clipmap.h"
 #include "vtv_context.h"
 #include "vtv_display.h"
 #include "vtv_mesh.h"
@@ -40,6 +41,7 @@ void vtv_options_default(struct vtv_options *o)
     o->index = -1;
     o->terrain_grid = VTV_TERRAIN_GRID_DEFAULT;
     o->terrain_exaggeration = 1.0;
+    o->budget = 4u << 20;
     const float dir[3] = {0.3f, 0.8f, 0.5f}, colour[3] = {0.85f, 0.85f, 0.85f},
                 ambient[3] = {0.15f, 0.15f, 0.15f};
     memcpy(o->light_dir, dir, sizeof(dir));
@@ -84,6 +86,7 @@ struct app {
     struct vtv_context *ctx;
     struct vtv_render render;
     struct vtv_stream stream;
+    struct vtv_clipmap clip; /* --clipmap: instead of the stream */
     struct vtv_mesh mesh;
     struct vtv_reference_scene ref_scene;
     struct vtv_wang_scene wang; /* packs named by vt_wang materials */
@@ -244,6 +247,21 @@ static void apply_input(struct app *a, const struct vtv_input *in)
     }
 }
 
+/* --clipmap: the clipmap instead of the page table's stream (docs/viewer.md, "Clipmap mode"). */
+static int setup_clipmap(struct app *a, uint32_t shown, bool srgb, struct vts_error *err)
+{
+    const struct vtv_options *o = a->o;
+    struct vtv_clipmap_options co = {.n = o->clipmap,
+                                     .budget = o->budget,
+                                     .sync = o->sync,
+                                     .threads = o->threads,
+                                     .centre_fixed = o->clipmap_centre_set,
+                                     .centre = {o->clipmap_centre[0], o->clipmap_centre[1]},
+                                     .frames_cap = o->frames};
+    a->render.srgb = srgb;
+    return vtv_clipmap_init(&a->clip, a->store, shown, &co, a->render.display.features, err);
+}
+
 static int setup(struct app *a, struct vts_error *err)
 {
     const struct vtv_options *o = a->o;
@@ -325,8 +343,9 @@ static int setup(struct app *a, struct vts_error *err)
         o->index, &a->render.display);
     if (!o->reference_scene) {
         st = vtv_render_set_mesh(&a->render, &a->mesh,
-                                 o->reference ? 1u << VTV_PROG_REFERENCE
-                                              : (1u << VTV_PROG_VT) | (1u << VTV_PROG_FEEDBACK),
+                                 o->clipmap     ? 0u /* its own program (vtv_clipmap_gl) */
+                                 : o->reference ? 1u << VTV_PROG_REFERENCE
+                                                : (1u << VTV_PROG_VT) | (1u << VTV_PROG_FEEDBACK),
                                  err);
         if (st != 0)
             return st;
@@ -336,6 +355,8 @@ static int setup(struct app *a, struct vts_error *err)
     if (o->reference_scene) {
         a->render.srgb = srgb; /* the frame encodes as the virtual-texture pass's would */
         st = vtv_reference_scene_load(&a->ref_scene, &a->render, o->reference_scene, srgb, err);
+    } else if (o->clipmap) {
+        st = setup_clipmap(a, shown, srgb, err);
     } else if (o->reference) {
         uint8_t *img = vtv_stream_level0(a->store, layer, err);
         if (!img)
@@ -366,6 +387,30 @@ static int setup(struct app *a, struct vts_error *err)
     return 0;
 }
 
+/* A clipmap frame: paging around the 2D camera's centre (or --clipmap-centre), uploads within
+ * the budget, the draw; no tile-determination pass. */
+static int frame_clipmap(struct app *a, uint64_t i, const struct vtv_view *v,
+                         struct vtv_frame_stats *st, struct vts_error *err)
+{
+    const struct vtv_camera *cam = a->path.count ? vtv_camera_path_at(&a->path, i) : &a->cam;
+    struct vtv_clipmap_frame f;
+    if (vtv_clipmap_update(&a->clip, cam->v[0], cam->v[1], &f) != 0)
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
+    st->uploads = f.tiles;
+    st->bytes_uploaded = f.bytes;
+    st->reads = f.reads;
+    st->loaded = f.tiles;
+    st->failed = a->clip.failed;
+    st->lod_bias = a->o->auto_lod ? 0.0f : a->o->lod_bias;
+    st->fallback_pixels =
+        vtv_clipmap_gl_draw(&a->clip.gl, &a->clip.cm, &a->render, v, st->lod_bias);
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR)
+        return vt_error_set(err, VTS_ERR_UNSUPPORTED, "OpenGL error 0x%x in frame %" PRIu64,
+                            (unsigned)e, i);
+    return 0;
+}
+
 /* One frame; returns 0 or a negative status. */
 static int frame(struct app *a, uint64_t i, struct vtv_frame_stats *st, struct vts_error *err)
 {
@@ -379,7 +424,10 @@ static int frame(struct app *a, uint64_t i, struct vtv_frame_stats *st, struct v
         vtv_render_reference(&a->render, &v);
         return 0;
     }
+    if (a->o->clipmap)
+        return frame_clipmap(a, i, &v, st, err);
     vtv_stream_update(&a->stream, st);
+    st->bytes_uploaded = st->uploads * vtv_render_upload_bytes(&a->render);
     st->fallback_pixels = vtv_render_vt(&a->render, &v);
     /* Jitter the low-resolution pass over the K x K sub-pixel positions so that thin slivers of a
      * tile are found within K^2 frames. */
@@ -451,7 +499,8 @@ static int loop(struct app *a, struct vts_error *err)
                    "the screenshot's frame shows %" PRIu64
                    " fallback pixels (coarser levels while tiles load): %s",
                    last_fallback,
-                   o->sync ? "give more --frames or a larger --uploads"
+                   o->sync ? (o->clipmap ? "give more --frames or a larger --budget"
+                                         : "give more --frames or a larger --uploads")
                            : "use --sync (or more --frames) for a complete frame");
     }
     if (o->stats) {
@@ -459,7 +508,10 @@ static int loop(struct app *a, struct vts_error *err)
             .store = o->store_path,
             .mode = a->three_d ? "3d" : "2d",
             .filtering = filtering_name(a),
-            .renderer = o->reference ? "reference" : "virtual",
+            .renderer = o->reference ? "reference"
+                        : o->clipmap ? "clipmap"
+                                     : "virtual",
+            .clip = o->clipmap ? &a->clip : NULL,
             .width = o->width,
             .height = o->height,
             .feedback_width = a->render.fb_width,
@@ -506,7 +558,9 @@ int vtv_app_run(const struct vtv_options *o)
     if (st != 0)
         vt_log(VT_LOG_ERROR, "%s", err.message);
     if (a.ctx) {
-        if (!o->reference)
+        if (o->clipmap)
+            vtv_clipmap_free(&a.clip);
+        else if (!o->reference)
             vtv_stream_free(&a.stream);
         vtv_reference_scene_free(&a.ref_scene);
         vtv_wang_scene_free(&a.wang);

@@ -31,6 +31,10 @@ struct vtv_options {
     const char *terrain;         /* --terrain ELEVATION.vts[:LAYER] | :LAYER (vtv_terrain.h) */
     uint32_t terrain_grid;       /* --terrain-grid G */
     double terrain_exaggeration; /* --terrain-exaggeration F */
+    uint32_t clipmap;            /* --clipmap N: clipmap mode with N x N tile windows (0: off) */
+    uint64_t budget;             /* --budget: clipmap bytes uploaded per frame */
+    bool clipmap_centre_set;     /* --clipmap-centre X,Y */
+    double clipmap_centre[2];    /* its X, Y in level-0 texels */
 };
 
 void vtv_options_default(struct vtv_options *o);

@@ -10,6 +10,7 @@
 #include "tool_common.h"
 #include "vt_atomic_file.h"
 #include "vt_output_path.h"
+#include "vts_clipmap.h"
 #include "vtv_app.h"
 #include "vtv_ramp.h"
 #include "vtv_terrain.h"
@@ -82,6 +83,14 @@ static const char usage_text[] =
     "  --terrain-grid G      vertices across and down the grid, 2..4096 (default 512)\n"
     "  --terrain-exaggeration F\n"
     "                        heights times F, 0..1000 (default 1)\n"
+    "  --clipmap N           clipmap mode (2D): per level an N x N window of tiles (1..256)\n"
+    "                        around the paging centre in one texture array layer, updated\n"
+    "                        toroidally, instead of the page table (no --cache, --ram-cache,\n"
+    "                        --uploads, --prefetch, --reads, --feedback-scale, --reference)\n"
+    "  --budget BYTES        with --clipmap: bytes uploaded per frame at most, suffix K or M\n"
+    "                        (default 4M; at least one tile: C x C x texel bytes)\n"
+    "  --clipmap-centre X,Y  with --clipmap: fix the paging centre at level-0 texel X,Y\n"
+    "                        (default: the camera's centre)\n"
     "  -q, --quiet           errors only\n"
     "  -v, --verbose         more messages\n"
     "  -h, --help            this help;    --version  version\n"
@@ -122,6 +131,9 @@ enum {
     OPT_TERRAIN,
     OPT_TERRAIN_GRID,
     OPT_TERRAIN_EXAGGERATION,
+    OPT_CLIPMAP,
+    OPT_BUDGET,
+    OPT_CLIPMAP_CENTRE,
     OPT_VERSION,
 };
 
@@ -158,6 +170,56 @@ static int check_stdio(const struct vtv_options *o)
     return status;
 }
 
+/* "BYTES" with an optional K or M suffix (1024-based), 1 .. 2^40. */
+static int parse_bytes(const char *s, uint64_t *out)
+{
+    char *end;
+    if (*s < '0' || *s > '9')
+        return -1;
+    unsigned long long v = strtoull(s, &end, 10);
+    unsigned shift = *end == 'K' ? 10 : *end == 'M' ? 20 : 0;
+    if (shift)
+        end++;
+    if (*end || end == s || v == 0 || v > (1ull << 40) >> shift)
+        return -1;
+    *out = (uint64_t)v << shift;
+    return 0;
+}
+
+/* "X,Y": two finite numbers (level-0 texels). */
+static int parse_centre(const char *s, double out[2])
+{
+    char *end;
+    out[0] = strtod(s, &end);
+    if (end == s || *end != ',' || !isfinite(out[0]))
+        return -1;
+    const char *p = end + 1;
+    out[1] = strtod(p, &end);
+    if (end == p || *end || !isfinite(out[1]) || fabs(out[0]) > 1e12 || fabs(out[1]) > 1e12)
+        return -1;
+    return 0;
+}
+
+/* --clipmap's conflicts (docs/cli/vt-view.md): the page table's own options are refused, as are
+ * the modes it does not draw yet. pt_option: the first page-table option given, or NULL. */
+static int check_clipmap(const struct vtv_options *o, bool clip_opt, const char *pt_option)
+{
+    if (!o->clipmap)
+        return clip_opt ? vt_usage_error("--budget and --clipmap-centre need --clipmap N") : -1;
+    if (o->reference)
+        return vt_usage_error("--clipmap and --reference exclude each other");
+    if (o->obj_path)
+        return vt_usage_error(
+            "--clipmap draws the 2D view only: a 3D scene (SCENE.vt.obj) is not yet supported");
+    if (o->terrain)
+        return vt_usage_error("--clipmap draws the 2D view only: --terrain is not yet supported");
+    if (pt_option)
+        return vt_usage_error("%s is a page-table option: not with --clipmap", pt_option);
+    if (o->aniso > 1)
+        return vt_usage_error("--clipmap filters bilinear, trilinear or nearest: not anisoN");
+    return -1;
+}
+
 /* --wang PACK.vts: its own checks, then vtv_wang_run(). */
 static int run_wang(struct vtv_options *o, int rest, bool frames_set)
 {
@@ -168,6 +230,8 @@ static int run_wang(struct vtv_options *o, int rest, bool frames_set)
     if (o->camera_path || o->orbit || o->reference_scene || o->layer_name || o->stats)
         return vt_usage_error(
             "--wang draws its extent: no --camera, --orbit, --reference-scene, --layer or --stats");
+    if (o->clipmap)
+        return vt_usage_error("--clipmap and --wang exclude each other");
     if (o->wang_tilemap && o->reference)
         return vt_usage_error("--tilemap and --reference exclude each other");
     if (!o->extent_x)
@@ -224,6 +288,9 @@ int main(int argc, char **argv)
         {"terrain", required_argument, NULL, OPT_TERRAIN},
         {"terrain-grid", required_argument, NULL, OPT_TERRAIN_GRID},
         {"terrain-exaggeration", required_argument, NULL, OPT_TERRAIN_EXAGGERATION},
+        {"clipmap", required_argument, NULL, OPT_CLIPMAP},
+        {"budget", required_argument, NULL, OPT_BUDGET},
+        {"clipmap-centre", required_argument, NULL, OPT_CLIPMAP_CENTRE},
         {"quiet", no_argument, NULL, 'q'},
         {"verbose", no_argument, NULL, 'v'},
         {"help", no_argument, NULL, 'h'},
@@ -234,6 +301,8 @@ int main(int argc, char **argv)
     vtv_options_default(&o);
     bool frames_set = false, origin_set = false; /* origin_set: any --wang option */
     bool terrain_set = false;                    /* --terrain-grid or --terrain-exaggeration */
+    bool clip_opt = false;                       /* --budget or --clipmap-centre */
+    const char *pt_option = NULL;                /* a page-table option given */
     int common;
     opterr = 0;
     int c;
@@ -265,6 +334,7 @@ int main(int argc, char **argv)
             o.stats = optarg;
             break;
         case OPT_FEEDBACK:
+            pt_option = "--feedback-scale";
             if (strncmp(optarg, "1/", 2) != 0 || vt_parse_u32(optarg + 2, 1, 16, &o.feedback_div))
                 return vt_usage_error("--feedback-scale '%s': expected 1/K with K in 1..16",
                                       optarg);
@@ -294,18 +364,22 @@ int main(int argc, char **argv)
                 return vt_usage_error("--debug '%s': expected none, levels or tiles", optarg);
             break;
         case OPT_CACHE:
+            pt_option = "--cache";
             if (vt_parse_u32(optarg, 2, 65536, &o.cache_tiles) != 0)
                 return vt_usage_error("--cache '%s': expected 2..65536 tiles", optarg);
             break;
         case OPT_UPLOADS:
+            pt_option = "--uploads";
             if (vt_parse_u32(optarg, 1, 65536, &o.uploads) != 0)
                 return vt_usage_error("--uploads '%s': expected 1..65536", optarg);
             break;
         case OPT_RAM_CACHE:
+            pt_option = "--ram-cache";
             if (vt_parse_u32(optarg, 0, 1u << 20, &o.ram_tiles) != 0)
                 return vt_usage_error("--ram-cache '%s': expected 0..1048576 tiles", optarg);
             break;
         case OPT_PREFETCH:
+            pt_option = "--prefetch";
             if (strcmp(optarg, "on") == 0)
                 o.prefetch = true;
             else if (strcmp(optarg, "off") == 0)
@@ -314,6 +388,7 @@ int main(int argc, char **argv)
                 return vt_usage_error("--prefetch '%s': expected on or off", optarg);
             break;
         case OPT_READS:
+            pt_option = "--reads";
             if (vt_parse_u32(optarg, 0, 65536, &o.reads) != 0)
                 return vt_usage_error("--reads '%s': expected 0..65536", optarg);
             break;
@@ -424,6 +499,22 @@ int main(int argc, char **argv)
             terrain_set = true;
             break;
         }
+        case OPT_CLIPMAP:
+            if (vt_parse_u32(optarg, 1, VTS_CLIPMAP_MAX_N, &o.clipmap) != 0)
+                return vt_usage_error("--clipmap '%s': expected a window of 1..%d tiles", optarg,
+                                      VTS_CLIPMAP_MAX_N);
+            break;
+        case OPT_BUDGET:
+            if (parse_bytes(optarg, &o.budget) != 0)
+                return vt_usage_error("--budget '%s': expected bytes, 1..2^40, suffix K or M",
+                                      optarg);
+            clip_opt = true;
+            break;
+        case OPT_CLIPMAP_CENTRE:
+            if (parse_centre(optarg, o.clipmap_centre) != 0)
+                return vt_usage_error("--clipmap-centre '%s': expected X,Y level-0 texels", optarg);
+            o.clipmap_centre_set = clip_opt = true;
+            break;
         default:
             if ((common = vt_common_option(c, OPT_VERSION, usage_text, argv)) >= 0)
                 return common;
@@ -444,6 +535,9 @@ int main(int argc, char **argv)
         return vt_usage_error(rest < 1 ? "missing STORE.vts" : "too many arguments");
     o.store_path = argv[optind];
     o.obj_path = rest == 2 ? argv[optind + 1] : NULL;
+    int status = check_clipmap(&o, clip_opt, pt_option);
+    if (status >= 0)
+        return status;
     if (o.orbit && !o.obj_path && !o.terrain)
         return vt_usage_error("--orbit needs a scene (SCENE.vt.obj) or --terrain");
     if (o.orbit && o.camera_path)
@@ -456,7 +550,7 @@ int main(int argc, char **argv)
         o.frames = o.headless ? (o.orbit ? o.orbit : 30) : 0;
     if (o.headless && o.frames == 0)
         return vt_usage_error("--frames 0 needs a window (no --headless)");
-    int status = check_stdio(&o);
+    status = check_stdio(&o);
     if (status >= 0)
         return status;
     /* before any work: no output is an input (nor the screenshot the statistics); --stats - is

@@ -45,7 +45,28 @@ static void json_string(FILE *f, const char *s)
     fputc('"', f);
 }
 
-static void frame_json(FILE *f, const struct vtv_frame_stats *s)
+/* Clipmap mode's keys of a frame: strips, levels, the paging centre, the uploaded tiles
+ * ([level, x, y]) and each level's front ([x0, y0, x1, y1] tiles) after the uploads. */
+static void clip_json(FILE *f, const struct vtv_clipmap *c, const struct vtv_clipmap_frame *cf)
+{
+    fprintf(f,
+            ", \"tiles_uploaded\": %" PRIu64 ", \"strips_completed\": %u, \"levels_complete\": "
+            "%u, \"centre\": [%.17g, %.17g], \"uploaded\": [",
+            cf->tiles, cf->strips, cf->levels_complete, cf->centre[0], cf->centre[1]);
+    for (uint64_t i = 0; i < cf->tiles; i++) {
+        const uint32_t *t = c->list[cf->first + i];
+        fprintf(f, "%s[%u, %u, %u]", i ? ", " : "", t[0], t[1], t[2]);
+    }
+    fputs("], \"fronts\": [", f);
+    for (uint32_t l = 0; l < c->cm.level_count; l++) {
+        const struct vts_tile_rect *r = &cf->front[l];
+        fprintf(f, "%s[%u, %u, %u, %u]", l ? ", " : "", r->x0, r->y0, r->x1, r->y1);
+    }
+    fputs("]", f);
+}
+
+static void frame_json(FILE *f, const struct vtv_frame_stats *s, const struct vtv_clipmap *c,
+                       const struct vtv_clipmap_frame *cf)
 {
     fprintf(f,
             "{\"requested\": %" PRIu64 ", \"loaded\": %" PRIu64 ", \"resident\": %" PRIu64
@@ -56,7 +77,10 @@ static void frame_json(FILE *f, const struct vtv_frame_stats *s)
             s->failed, s->ram_hits, s->reads, s->prefetched, (double)s->lod_bias);
     for (uint32_t l = 0; l < s->levels && l < VTS_MAX_LEVELS; l++)
         fprintf(f, "%s%u", l ? ", " : "", s->missed[l]);
-    fputs("]}", f);
+    fprintf(f, "], \"bytes_uploaded\": %" PRIu64, s->bytes_uploaded);
+    if (c && cf)
+        clip_json(f, c, cf);
+    fputs("}", f);
 }
 
 /* --terrain: what was drawn (docs/viewer.md, "Terrain"). */
@@ -95,6 +119,12 @@ int vtv_write_stats(const char *path, const struct vtv_run_info *info,
     fprintf(f, "  \"cache_tiles\": %u,\n  \"uploads_per_frame\": %u,\n  \"sync\": %s,\n",
             info->cache_tiles, info->uploads_per_frame, info->sync ? "true" : "false");
     fprintf(f, "  \"physical_format\": \"%s\",\n", info->physical_format);
+    if (info->clip)
+        fprintf(f,
+                "  \"clipmap\": {\"n\": %u, \"budget\": %" PRIu64 ", \"tile_bytes\": %" PRIu64
+                ", \"tiles_per_frame\": %u, \"levels\": %u, \"texture_px\": %u},\n",
+                info->clip->cm.n, info->clip->opt.budget, info->clip->gl.tile_bytes,
+                info->clip->max_tiles, info->clip->cm.level_count, info->clip->gl.size_px);
     fputs("  \"variants\": [", f);
     for (uint32_t i = 0; i < info->variant_count; i++) {
         const struct vtv_variant *v = &info->variants[i];
@@ -110,11 +140,14 @@ int vtv_write_stats(const char *path, const struct vtv_run_info *info,
     fputs("  \"frames\": [", f);
     for (size_t i = 0; i < count; i++) {
         fputs(i ? ",\n    " : "\n    ", f);
-        frame_json(f, &frames[i]);
+        frame_json(f, &frames[i], info->clip,
+                   info->clip && i < info->clip->frame_count ? &info->clip->frames[i] : NULL);
     }
     fputs("\n  ],\n  \"last\": ", f);
     struct vtv_frame_stats zero = {0};
-    frame_json(f, count ? &frames[count - 1] : &zero);
+    const struct vtv_clipmap *c = info->clip;
+    frame_json(f, count ? &frames[count - 1] : &zero, c,
+               c && count && count <= c->frame_count ? &c->frames[count - 1] : NULL);
     fputs(",\n  \"timing_ms\": [", f);
     for (size_t i = 0; i < count; i++)
         fprintf(f, "%s%.3f", i ? ", " : "", frames[i].ms);

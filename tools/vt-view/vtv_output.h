@@ -6,6 +6,7 @@
 #include <stdint.h>
 
 #include "vt_error.h"
+#include "vtv_clipmap.h"
 #include "vtv_render.h"
 #include "vtv_stream.h"
 #include "vtv_terrain.h"
@@ -27,6 +28,7 @@ struct vtv_run_info {
     const struct vtv_variant *variants; /* the shader variants drawn */
     uint32_t variant_count;
     const struct vtv_terrain_info *terrain; /* --terrain: the "terrain" object; NULL: none */
+    const struct vtv_clipmap *clip;         /* clipmap mode: its per-frame statistics, or NULL */
 };
 
 /* Frames without timings first (deterministic under --sync), then "timing_ms". Written

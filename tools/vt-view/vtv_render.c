@@ -278,8 +278,7 @@ void vtv_render_material_uniforms(const struct vtv_render *r, GLuint p,
     }
 }
 
-/* The GL formats of a 16-bit or float layer's texels (vtv_wide.h): internal, format, type. */
-static void wide_formats(const struct vtv_texel_format *f, GLenum out[3])
+void vtv_render_wide_formats(const struct vtv_texel_format *f, GLenum out[3])
 {
     static const GLenum formats[4] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
     static const GLenum u16[4] = {GL_R16, GL_RG16, GL_RGB16, GL_RGBA16};
@@ -371,7 +370,7 @@ int vtv_render_set_cache(struct vtv_render *r, const struct vtv_cache *c,
         uint32_t sample = layers[k].texels.sample;
         if (!bc && sample && sample != VTS_SAMPLE_U8) {
             GLenum f[3];
-            wide_formats(&layers[k].texels, f);
+            vtv_render_wide_formats(&layers[k].texels, f);
             r->phys_format[k] = f[0];
             r->phys_upload[k][0] = f[1];
             r->phys_upload[k][1] = f[2];
@@ -443,6 +442,28 @@ void vtv_render_upload_tile(struct vtv_render *r, const struct vtv_cache *c, uin
             glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
         }
     }
+}
+
+size_t vtv_render_upload_bytes(const struct vtv_render *r)
+{
+    size_t n = 0, px = (size_t)r->payload_px * r->payload_px;
+    for (int k = 0; k < VTV_MAP_COUNT; k++) {
+        if (r->phys_slice[k] < 0)
+            continue;
+        GLenum f = r->phys_upload[k][0], t = r->phys_upload[k][1];
+        if (t == 0) { /* BC blocks of 8 (BC1, BC4) or 16 bytes */
+            GLenum c = r->phys_format[k];
+            bool eight = c == GL_COMPRESSED_RGBA_S3TC_DXT1_EXT ||
+                         c == GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT1_EXT ||
+                         c == GL_COMPRESSED_RED_RGTC1;
+            n += px / 16 * (eight ? 8 : 16);
+            continue;
+        }
+        size_t ch = f == GL_RED ? 1 : f == GL_RG ? 2 : f == GL_RGB ? 3 : 4;
+        size_t b = t == GL_UNSIGNED_BYTE ? 1 : t == GL_FLOAT ? 4 : 2;
+        n += px * ch * b;
+    }
+    return n;
 }
 
 void vtv_render_upload_page_table(struct vtv_render *r, const struct vtv_cache *c)

@@ -135,6 +135,11 @@ GLenum vtv_render_bc_format(const struct vtv_render *r, uint32_t codec, bool srg
  * RGBA8 texels or BC blocks as stored). */
 void vtv_render_upload_tile(struct vtv_render *r, const struct vtv_cache *c, uint32_t slot,
                             const uint8_t *data, size_t bytes);
+/* The GL formats of a 16-bit or float layer's texels (vtv_wide.h): internal, format, type. */
+void vtv_render_wide_formats(const struct vtv_texel_format *f, GLenum out[3]);
+/* Bytes one tile's upload sends to the physical textures (every layer: its payload in its GL
+ * format, or its BC blocks). */
+size_t vtv_render_upload_bytes(const struct vtv_render *r);
 /* Uploads the entries in the cache's dirty rectangles. */
 void vtv_render_upload_page_table(struct vtv_render *r, const struct vtv_cache *c);
 

@@ -198,7 +198,7 @@ static const char shading[] =
  * [min, max] to [0,1] (u_range: min, 1 / (max - min)), then its first channel through the ramp
  * (u_ramp: VTV_RAMP_POINTS colours at 0, 1/8, ..., 1, linear in between; as vtv_ramp_at()).
  * Without F_RANGE and F_RAMP it is the identity. */
-static const char display[] =
+const char vtv_display_glsl[] =
     "uniform vec2 u_range;\n"
     "uniform float u_index_scale;\n"
     "uniform vec3 u_ramp[9];\n"
@@ -359,7 +359,7 @@ int vtv_shader_fragment(enum vtv_program_kind kind, unsigned features, char *def
             pieces[n++] = vtv_wang_material_glsl;
         }
         pieces[n++] = shading;
-        pieces[n++] = display;
+        pieces[n++] = vtv_display_glsl;
         pieces[n++] = vt_body;
         break;
     case VTV_PROG_FEEDBACK:
@@ -368,7 +368,7 @@ int vtv_shader_fragment(enum vtv_program_kind kind, unsigned features, char *def
         break;
     default:
         pieces[n++] = shading;
-        pieces[n++] = display;
+        pieces[n++] = vtv_display_glsl;
         pieces[n++] = reference_body;
         break;
     }

@@ -19,6 +19,7 @@ struct vtv_frame_stats {
     uint64_t loaded;          /* tiles read and decoded that were applied this frame */
     uint64_t resident;        /* tiles in the physical texture after the uploads */
     uint64_t uploads;         /* tiles uploaded this frame */
+    uint64_t bytes_uploaded;  /* bytes those uploads sent to GL */
     uint64_t fallback_pixels; /* pixels drawn from a coarser level than wanted */
     uint64_t empty;           /* tiles known to be stored empty */
     uint64_t failed;          /* tiles that could not be read or decoded, in all */
