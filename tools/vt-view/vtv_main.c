@@ -210,9 +210,8 @@ static int check_clipmap(const struct vtv_options *o, bool clip_opt, const char 
         return vt_usage_error("--clipmap and --reference exclude each other");
     if (o->obj_path)
         return vt_usage_error(
-            "--clipmap draws the 2D view only: a 3D scene (SCENE.vt.obj) is not yet supported");
-    if (o->terrain)
-        return vt_usage_error("--clipmap draws the 2D view only: --terrain is not yet supported");
+            "--clipmap draws the 2D view and --terrain: a 3D scene (SCENE.vt.obj) is not yet "
+            "supported");
     if (pt_option)
         return vt_usage_error("%s is a page-table option: not with --clipmap", pt_option);
     if (o->aniso > 1)

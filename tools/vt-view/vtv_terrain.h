@@ -52,7 +52,14 @@ struct vtv_terrain_info {
                               placed on the elevation by the two transforms */
     double window[4]; /* the grid's corners in level-0 texels of the elevation store: x0, y0, x1,
                          y1 */
+    double extent[2]; /* the grid's world size along x and z (centred on 0) */
+    uint32_t colour_width, colour_height; /* the colour store's level 0, texels */
 };
+
+/* The colour store's level-0 texel position (tx, ty) under world point (x, z) (any y): the
+ * inverse of the grid's placement, not clamped. */
+void vtv_terrain_texel(const struct vtv_terrain_info *info, double x, double z, double *tx,
+                       double *ty);
 
 /* Splits spec into the elevation store's path (NULL: the colour store) and layer (NULL: the
  * default) in place; a spec naming an existing file is a path whole. */
