@@ -44,8 +44,10 @@ const char vtv_clipmap_fs_glsl[] =
     "layout(location = 0) out vec4 o_color;\n"
     "layout(location = 1) out uint o_fallback;\n"
     "vec2 level_pos(int l, vec2 t0) { return t0 / exp2(float(l)); }\n"
+    /* the position the fetch reads (clamped to the level's edge texels' centres): a sample on
+       the texture's far edge (the terrain grid's u = 1) is held where its texel is */
     "bool holds(int l, vec2 t0) {\n"
-    "    vec2 r = level_pos(l, t0);\n"
+    "    vec2 r = clamp(level_pos(l, t0), u_edge[l].xy, u_edge[l].zw);\n"
     "    vec4 v = u_valid[l];\n"
     "    return r.x >= v.x && r.y >= v.y && r.x < v.z && r.y < v.w;\n"
     "}\n"
