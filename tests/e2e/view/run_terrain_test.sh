@@ -232,8 +232,8 @@ terrain_clipmap)
   json fixed.json "j['frames'][0]['centre'] == [100, 50]"
   ;;
 terrain_flyover)
-  # A fly-over in clipmap mode: 32 frames flying low (eye 150 units over the plane, the DEM's hills
-  # reach 0..~260) across the DEM, looking ahead and down; a colour store of 64 px tiles (14 x 10
+  # A fly-over in clipmap mode: 32 frames flying low (eye at height 150; the DEM's heights are
+  # -66..233) across the DEM, looking ahead and down; a colour store of 64 px tiles (14 x 10
   # at level 0), --clipmap 3, a budget of 5 tiles a frame. Per frame the paging centre is the
   # colour texel under the eye (computed here from the path), the uploaded tiles equal exactly
   # clipmap_check.py's model (same tiles, same order) and the bytes stay within the budget; the
