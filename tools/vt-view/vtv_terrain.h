@@ -3,7 +3,8 @@
  * of it, read and decoded once here), draped with the colour store (texcoords in [0,1]^2 over the
  * virtual texture, v = 0 its first row: the convention of the .vt.obj scenes, so the virtual
  * texture's programs draw it unchanged) and lit with the normals of the displaced grid (central
- * differences). The result is a struct vtv_mesh of one lit material that any renderer can draw.
+ * differences). The result is an indexed struct vtv_mesh (G^2 vertices, three indices a triangle)
+ * of one lit material that any renderer can draw.
  *
  * World space: y up; x along the texture's rows (u), z down its columns (v); x and z relative to
  * the extent's centre, y = exaggeration * elevation. Horizontal unit: one level-0 texel of the
