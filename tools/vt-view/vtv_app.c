@@ -195,16 +195,23 @@ static void quad_2d(struct app *a, const struct vtv_camera *cam, struct vtv_view
     vtv_camera_matrix_2d(&centred, a->o->width, a->o->height, v->mvp);
 }
 
+/* The camera of a frame: the path's, the orbit's, else the interactive one. */
+static void frame_camera(const struct app *a, uint64_t frame, struct vtv_camera *cam)
+{
+    *cam = a->cam;
+    if (a->path.count)
+        *cam = *vtv_camera_path_at(&a->path, frame);
+    else if (a->o->orbit)
+        vtv_camera_orbit(a->mesh.lo, a->mesh.hi, frame, a->o->orbit, cam);
+}
+
 static void frame_view(struct app *a, uint64_t frame, struct vtv_view *v)
 {
     const struct vtv_options *o = a->o;
-    struct vtv_camera cam = a->cam;
+    struct vtv_camera cam;
     v->rel = false;
     v->origin[0] = v->origin[1] = 0;
-    if (a->path.count)
-        cam = *vtv_camera_path_at(&a->path, frame);
-    else if (o->orbit)
-        vtv_camera_orbit(a->mesh.lo, a->mesh.hi, frame, o->orbit, &cam);
+    frame_camera(a, frame, &cam);
     if (a->three_d) {
         double d = 0;
         for (int k = 0; k < 3; k++)
@@ -259,7 +266,9 @@ static int setup_clipmap(struct app *a, uint32_t shown, bool srgb, struct vts_er
                                      .centre = {o->clipmap_centre[0], o->clipmap_centre[1]},
                                      .frames_cap = o->frames};
     a->render.srgb = srgb;
-    return vtv_clipmap_init(&a->clip, a->store, shown, &co, a->render.display.features, err);
+    /* the terrain's material is lit: the clipmap's program shades it as the page table's does */
+    unsigned features = a->render.display.features | (o->terrain ? VTV_F_LIT : 0u);
+    return vtv_clipmap_init(&a->clip, a->store, shown, &co, features, err);
 }
 
 static int setup(struct app *a, struct vts_error *err)
@@ -387,14 +396,19 @@ static int setup(struct app *a, struct vts_error *err)
     return 0;
 }
 
-/* A clipmap frame: paging around the 2D camera's centre (or --clipmap-centre), uploads within
- * the budget, the draw; no tile-determination pass. */
+/* A clipmap frame: paging around the paging centre (--clipmap-centre, else the 2D camera's centre,
+ * or the terrain's colour texel under the eye: docs/viewer.md "Terrain in clipmap mode"), uploads
+ * within the budget, the draw; no tile-determination pass. */
 static int frame_clipmap(struct app *a, uint64_t i, const struct vtv_view *v,
                          struct vtv_frame_stats *st, struct vts_error *err)
 {
-    const struct vtv_camera *cam = a->path.count ? vtv_camera_path_at(&a->path, i) : &a->cam;
+    struct vtv_camera cam;
+    frame_camera(a, i, &cam);
+    double cx = cam.v[0], cy = cam.v[1];
+    if (a->o->terrain) /* the ground point below the eye (x, z), in the colour's texels */
+        vtv_terrain_texel(&a->terrain, cam.v[0], cam.v[2], &cx, &cy);
     struct vtv_clipmap_frame f;
-    if (vtv_clipmap_update(&a->clip, cam->v[0], cam->v[1], &f) != 0)
+    if (vtv_clipmap_update(&a->clip, cx, cy, &f) != 0)
         return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
     st->uploads = f.tiles;
     st->bytes_uploaded = f.bytes;

@@ -247,7 +247,7 @@ uint64_t vtv_clipmap_gl_draw(const struct vtv_clipmap_gl *g, const struct vts_cl
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, f);
     glBindVertexArray(r->vao);
     for (uint32_t i = 0; i < r->group_count; i++)
-        glDrawArrays(GL_TRIANGLES, (GLint)r->groups[i].first, (GLsizei)r->groups[i].count);
+        vtv_render_draw_group(r, &r->groups[i]);
     glBindVertexArray(0);
     glUseProgram(0);
     glBindTexture(GL_TEXTURE_2D_ARRAY, 0);

@@ -33,7 +33,8 @@ struct vtv_clipmap_gl {
 
 /* Creates the texture (n x n tiles of content_px per level, levels layers) of texels (what the
  * loader hands over for the layer, vtv_wide_format; an sRGB u8 layer as GL_SRGB8_ALPHA8) and the
- * program with the display features (VTV_F_RANGE, VTV_F_RAMP, VTV_F_INDEX: vtv_display.h).
+ * program with the display features (VTV_F_RANGE, VTV_F_RAMP, VTV_F_INDEX: vtv_display.h) and
+ * VTV_F_LIT (shaded as a lit material without maps: the terrain).
  * VTS_ERR_LIMIT with a one-line reason when the GL or VTV_CLIPMAP_MAX_TEXTURE_BYTES does not
  * allow it (sizes checked for overflow); VTS_ERR_UNSUPPORTED when the shader does not build. */
 int vtv_clipmap_gl_init(struct vtv_clipmap_gl *g, uint32_t n, uint32_t content_px, uint32_t levels,

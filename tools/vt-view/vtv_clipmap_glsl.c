@@ -17,7 +17,10 @@
  *       from there whose valid rectangle holds the sample (the same unless a coarser level's
  *       front is smaller than a finer one's). Trilinear: floor(lambda) and floor(lambda) + 1, each
  *       so, blended by the fraction of lambda. A pixel drawn from a coarser level than lambda's
- *       counts as a fallback pixel (as in the page-table path). */
+ *       counts as a fallback pixel (as in the page-table path).
+ *
+ * With F_LIT (the terrain's lit material) the colour is shaded as the page-table pass's vt_shade
+ * shades a lit material without maps: Kd * colour * (ambient + light * max(n . l, 0)). */
 #include "vtv_clipmap_glsl.h"
 
 const char vtv_clipmap_fs_glsl[] =
@@ -34,11 +37,17 @@ const char vtv_clipmap_fs_glsl[] =
     "uniform int u_nearest;\n"
     "uniform float u_lod_bias;\n"
     "uniform int u_debug;\n"
+    "#ifdef F_LIT\n"
+    "in vec3 v_normal;\n"
+    "uniform vec3 u_kd, u_light_dir, u_light_colour, u_ambient;\n"
+    "#endif\n"
     "layout(location = 0) out vec4 o_color;\n"
     "layout(location = 1) out uint o_fallback;\n"
     "vec2 level_pos(int l, vec2 t0) { return t0 / exp2(float(l)); }\n"
+    /* the position the fetch reads (clamped to the level's edge texels' centres): a sample on
+       the texture's far edge (the terrain grid's u = 1) is held where its texel is */
     "bool holds(int l, vec2 t0) {\n"
-    "    vec2 r = level_pos(l, t0);\n"
+    "    vec2 r = clamp(level_pos(l, t0), u_edge[l].xy, u_edge[l].zw);\n"
     "    vec4 v = u_valid[l];\n"
     "    return r.x >= v.x && r.y >= v.y && r.x < v.z && r.y < v.w;\n"
     "}\n"
@@ -87,6 +96,12 @@ const char vtv_clipmap_fs_glsl[] =
     "        fb = used0 > want0;\n"
     "    }\n"
     "    c = vt_display(c);\n"
+    /* a lit material (the terrain): the page-table pass's vt_shade without maps */
+    "#ifdef F_LIT\n"
+    "    vec3 n = normalize(v_normal);\n"
+    "    if (!gl_FrontFacing) n = -n;\n"
+    "    c.rgb = u_kd * c.rgb * (u_ambient + u_light_colour * max(dot(n, u_light_dir), 0.0));\n"
+    "#endif\n"
     "    if (u_debug == 1) c = vec4(mix(level_colour(used0), c.rgb, 0.25), 1.0);\n"
     "    o_color = vec4(c.rgb, 1.0);\n"
     "    o_fallback = fb ? 1u : 0u;\n"

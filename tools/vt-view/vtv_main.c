@@ -83,14 +83,15 @@ static const char usage_text[] =
     "  --terrain-grid G      vertices across and down the grid, 2..4096 (default 512)\n"
     "  --terrain-exaggeration F\n"
     "                        heights times F, 0..1000 (default 1)\n"
-    "  --clipmap N           clipmap mode (2D): per level an N x N window of tiles (1..256)\n"
-    "                        around the paging centre in one texture array layer, updated\n"
-    "                        toroidally, instead of the page table (no --cache, --ram-cache,\n"
-    "                        --uploads, --prefetch, --reads, --feedback-scale, --reference)\n"
+    "  --clipmap N           clipmap mode (2D or --terrain): per level an N x N window of\n"
+    "                        tiles (1..256) around the paging centre in one texture array\n"
+    "                        layer, updated toroidally, instead of the page table (no --cache,\n"
+    "                        --ram-cache, --uploads, --prefetch, --reads, --feedback-scale,\n"
+    "                        --reference)\n"
     "  --budget BYTES        with --clipmap: bytes uploaded per frame at most, suffix K or M\n"
     "                        (default 4M; at least one tile: C x C x texel bytes)\n"
     "  --clipmap-centre X,Y  with --clipmap: fix the paging centre at level-0 texel X,Y\n"
-    "                        (default: the camera's centre)\n"
+    "                        (default: the camera's centre; --terrain: the texel under the eye)\n"
     "  -q, --quiet           errors only\n"
     "  -v, --verbose         more messages\n"
     "  -h, --help            this help;    --version  version\n"
@@ -210,9 +211,8 @@ static int check_clipmap(const struct vtv_options *o, bool clip_opt, const char 
         return vt_usage_error("--clipmap and --reference exclude each other");
     if (o->obj_path)
         return vt_usage_error(
-            "--clipmap draws the 2D view only: a 3D scene (SCENE.vt.obj) is not yet supported");
-    if (o->terrain)
-        return vt_usage_error("--clipmap draws the 2D view only: --terrain is not yet supported");
+            "--clipmap draws the 2D view and --terrain: a 3D scene (SCENE.vt.obj) is not yet "
+            "supported");
     if (pt_option)
         return vt_usage_error("%s is a page-table option: not with --clipmap", pt_option);
     if (o->aniso > 1)

@@ -382,6 +382,7 @@ int vtv_mesh_read_obj(struct vtv_mesh *m, const char *path, bool materials, stru
 void vtv_mesh_free(struct vtv_mesh *m)
 {
     free(m->vertices);
+    free(m->indices);
     free(m->groups);
     for (int k = 0; k < VTV_MAP_COUNT; k++)
         free(m->layers[k]);

@@ -12,7 +12,8 @@
 #include "vtv_material.h"
 #include "vtv_tangent.h"
 
-/* The faces of one material: vertices first .. first + count - 1 of the buffer. */
+/* The faces of one material: vertices first .. first + count - 1 of the buffer, or, in a mesh
+ * with an index buffer, indices first .. first + count - 1 of it. */
 struct vtv_mesh_group {
     uint32_t first, count;
     uint64_t faces; /* OBJ faces (before fanning) */
@@ -21,8 +22,12 @@ struct vtv_mesh_group {
 };
 
 struct vtv_mesh {
-    float *vertices; /* VTV_VERTEX_FLOATS per vertex, 3 vertices per triangle */
+    float *vertices; /* VTV_VERTEX_FLOATS per vertex, 3 vertices per triangle (unindexed) */
     uint32_t vertex_count;
+    /* Optional (the terrain grid): 3 indices per triangle into vertices, drawn with
+     * glDrawElements; NULL: the vertices are the triangles (OBJ scenes, the 2D quad). */
+    uint32_t *indices;
+    uint32_t index_count;
     struct vtv_mesh_group *groups; /* ordered: opaque feature sets, then blended; by features */
     uint32_t group_count;
     /* The store layer each map kind is drawn from (by name; NULL: no material maps it; "": the

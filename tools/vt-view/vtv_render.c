@@ -186,6 +186,8 @@ void vtv_render_free(struct vtv_render *r)
     GLuint fbos[2] = {r->fbo, r->fb_fbo};
     glDeleteFramebuffers(2, fbos);
     glDeleteBuffers(1, &r->vbo);
+    if (r->ebo)
+        glDeleteBuffers(1, &r->ebo);
     glDeleteVertexArrays(1, &r->vao);
     free(r->fallback_pixels);
     memset(r, 0, sizeof(*r));
@@ -220,6 +222,14 @@ int vtv_render_set_mesh(struct vtv_render *r, const struct vtv_mesh *mesh, unsig
                  (GLsizeiptr)mesh->vertex_count * VTV_VERTEX_FLOATS * sizeof(float), mesh->vertices,
                  GL_STATIC_DRAW);
     vtv_render_vertex_layout();
+    r->indexed = mesh->indices != NULL;
+    if (r->indexed) { /* the element buffer binding is the vertex array's state */
+        if (!r->ebo)
+            glGenBuffers(1, &r->ebo);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->ebo);
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)mesh->index_count * sizeof(uint32_t),
+                     mesh->indices, GL_STATIC_DRAW);
+    }
     glBindVertexArray(0);
     r->groups = mesh->groups;
     r->group_count = mesh->group_count;
@@ -230,6 +240,15 @@ int vtv_render_set_mesh(struct vtv_render *r, const struct vtv_mesh *mesh, unsig
         v->faces += mesh->groups[i].faces;
     }
     return 0;
+}
+
+void vtv_render_draw_group(const struct vtv_render *r, const struct vtv_mesh_group *g)
+{
+    if (r->indexed)
+        glDrawElements(GL_TRIANGLES, (GLsizei)g->count, GL_UNSIGNED_INT,
+                       (const void *)((size_t)g->first * sizeof(uint32_t)));
+    else
+        glDrawArrays(GL_TRIANGLES, (GLint)g->first, (GLsizei)g->count);
 }
 
 static float to_linear(float c)
@@ -573,7 +592,7 @@ static void draw_groups(struct vtv_render *r, enum vtv_program_kind kind, const 
         bool blend = g->features & VTV_F_ALPHA_BLEND;
         if (blend)
             set_blend(true, kind == VTV_PROG_VT);
-        glDrawArrays(GL_TRIANGLES, (GLint)g->first, (GLsizei)g->count);
+        vtv_render_draw_group(r, g);
         if (blend)
             set_blend(false, kind == VTV_PROG_VT);
     }
@@ -715,7 +734,7 @@ void vtv_render_reference(struct vtv_render *r, const struct vtv_view *v)
             continue;
         glUseProgram(var->prog[VTV_PROG_REFERENCE]);
         vtv_render_reference_uniforms(r, var->prog[VTV_PROG_REFERENCE], &g->mat, v, NULL);
-        glDrawArrays(GL_TRIANGLES, (GLint)g->first, (GLsizei)g->count);
+        vtv_render_draw_group(r, g);
     }
     glBindVertexArray(0);
     vtv_render_reference_end();

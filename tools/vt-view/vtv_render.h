@@ -57,6 +57,8 @@ struct vtv_render {
     GLuint feedback_progs[VTV_MAX_VARIANTS];
     uint32_t feedback_count;
     GLuint vao, vbo;
+    GLuint ebo;                          /* the mesh's index buffer (bound to vao), or 0 */
+    bool indexed;                        /* the groups address the index buffer (glDrawElements) */
     const struct vtv_mesh_group *groups; /* the scene's (owned by its struct vtv_mesh) */
     uint32_t group_count;
     GLuint fbo, rb_color, rb_fallback, rb_depth;
@@ -109,6 +111,10 @@ void vtv_render_free(struct vtv_render *r);
 void vtv_render_update_vertices(struct vtv_render *r, const struct vtv_mesh *mesh);
 int vtv_render_set_mesh(struct vtv_render *r, const struct vtv_mesh *mesh, unsigned kinds,
                         struct vts_error *err);
+
+/* Draws group g of the mesh (vao bound): glDrawElements of its indices when the mesh has an
+ * index buffer, else glDrawArrays of its vertices. */
+void vtv_render_draw_group(const struct vtv_render *r, const struct vtv_mesh_group *g);
 
 /* The variant of features (compiled for kinds when new); NULL and err on a compile error or when
  * there are more than VTV_MAX_VARIANTS. */

@@ -211,11 +211,14 @@ static int build_mesh(const struct elevation *e, const struct vtv_terrain_option
     size_t nv = (size_t)G * G, tris = (size_t)(G - 1) * (G - 1) * 2, floats;
     double *p = malloc(nv * 3 * sizeof(double)); /* x y z of each grid vertex */
     float *nrm = malloc(nv * 3 * sizeof(float));
-    bool fits = vt_size_mul(tris * 3, VTV_VERTEX_FLOATS, &floats) && floats < ((size_t)1 << 33);
+    /* indexed: G^2 vertices, 3 uint32 indices per triangle (G <= VTV_TERRAIN_GRID_MAX keeps both
+       counts far below 2^32) */
+    bool fits = vt_size_mul(nv, VTV_VERTEX_FLOATS, &floats) && tris * 3 < UINT32_MAX;
     m->vertices = fits ? malloc(floats * sizeof(float)) : NULL;
+    m->indices = fits ? malloc(tris * 3 * sizeof(uint32_t)) : NULL;
     m->groups = calloc(1, sizeof(*m->groups));
     m->layers[VTV_MAP_DIFFUSE] = strdup("");
-    if (!p || !nrm || !m->vertices || !m->groups || !m->layers[VTV_MAP_DIFFUSE]) {
+    if (!p || !nrm || !m->vertices || !m->indices || !m->groups || !m->layers[VTV_MAP_DIFFUSE]) {
         free(p);
         free(nrm);
         return vt_error_set(err, VTS_ERR_NOMEM,
@@ -250,35 +253,49 @@ static int build_mesh(const struct elevation *e, const struct vtv_terrain_option
             for (int k = 0; k < 3; k++)
                 nrm[((size_t)j * G + i) * 3 + k] = (float)(n[k] / len);
         }
-    /* two triangles per cell, counter-clockwise seen from above (+y) */
+    /* the vertices, row by row */
     float *out = m->vertices;
+    for (uint32_t j = 0; j < G; j++)
+        for (uint32_t i = 0; i < G; i++, out += VTV_VERTEX_FLOATS) {
+            size_t at = (size_t)j * G + i;
+            for (int k = 0; k < 3; k++) {
+                out[k] = (float)p[at * 3 + k];
+                out[5 + k] = nrm[at * 3 + k];
+            }
+            out[3] = (float)((double)i / (G - 1));
+            out[4] = (float)((double)j / (G - 1));
+            out[8] = 1.0f; /* tangent +x (no normal map is drawn) */
+            out[9] = out[10] = 0.0f;
+            out[11] = 1.0f;
+        }
+    /* two triangles per cell, counter-clockwise seen from above (+y) */
+    uint32_t *idx = m->indices;
     for (uint32_t j = 0; j + 1 < G; j++)
         for (uint32_t i = 0; i + 1 < G; i++) {
             const uint32_t corner[6][2] = {{i, j},     {i, j + 1}, {i + 1, j},
                                            {i + 1, j}, {i, j + 1}, {i + 1, j + 1}};
-            for (int c = 0; c < 6; c++, out += VTV_VERTEX_FLOATS) {
-                size_t at = (size_t)corner[c][1] * G + corner[c][0];
-                for (int k = 0; k < 3; k++) {
-                    out[k] = (float)p[at * 3 + k];
-                    out[5 + k] = nrm[at * 3 + k];
-                }
-                out[3] = (float)((double)corner[c][0] / (G - 1));
-                out[4] = (float)((double)corner[c][1] / (G - 1));
-                out[8] = 1.0f; /* tangent +x (no normal map is drawn) */
-                out[9] = out[10] = 0.0f;
-                out[11] = 1.0f;
-            }
+            for (int c = 0; c < 6; c++)
+                *idx++ = corner[c][1] * G + corner[c][0];
         }
     free(p);
     free(nrm);
-    m->vertex_count = (uint32_t)(tris * 3);
+    m->vertex_count = (uint32_t)nv;
+    m->index_count = (uint32_t)(tris * 3);
     m->group_count = 1;
-    m->groups[0].count = m->vertex_count;
+    m->groups[0].count = m->index_count;
     m->groups[0].faces = tris;
     vtv_material_plain(&m->groups[0].mat);
     m->groups[0].mat.illum = 1; /* lit: directional light plus ambient */
     m->groups[0].features = vtv_material_features(&m->groups[0].mat);
     return 0;
+}
+
+void vtv_terrain_texel(const struct vtv_terrain_info *info, double x, double z, double *tx,
+                       double *ty)
+{
+    /* the grid: x = (u - 1/2) * extent[0] with u = tx / width; likewise z and v */
+    *tx = (x / info->extent[0] + 0.5) * info->colour_width;
+    *ty = (z / info->extent[1] + 0.5) * info->colour_height;
 }
 
 int vtv_terrain_build(const struct vts_store *colour, const char *colour_path,
@@ -389,6 +406,10 @@ int vtv_terrain_build(const struct vts_store *colour, const char *colour_path,
         }
         memcpy(info->window, win, sizeof win);
         info->unit_per_texel = sx / cg->width;
+        info->extent[0] = sx;
+        info->extent[1] = sz;
+        info->colour_width = cg->width;
+        info->colour_height = cg->height;
         info->grid = o->grid;
         info->level = level;
         info->level_width = e.w;

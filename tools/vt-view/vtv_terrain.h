@@ -3,7 +3,8 @@
  * of it, read and decoded once here), draped with the colour store (texcoords in [0,1]^2 over the
  * virtual texture, v = 0 its first row: the convention of the .vt.obj scenes, so the virtual
  * texture's programs draw it unchanged) and lit with the normals of the displaced grid (central
- * differences). The result is a struct vtv_mesh of one lit material that any renderer can draw.
+ * differences). The result is an indexed struct vtv_mesh (G^2 vertices, three indices a triangle)
+ * of one lit material that any renderer can draw.
  *
  * World space: y up; x along the texture's rows (u), z down its columns (v); x and z relative to
  * the extent's centre, y = exaggeration * elevation. Horizontal unit: one level-0 texel of the
@@ -52,7 +53,14 @@ struct vtv_terrain_info {
                               placed on the elevation by the two transforms */
     double window[4]; /* the grid's corners in level-0 texels of the elevation store: x0, y0, x1,
                          y1 */
+    double extent[2]; /* the grid's world size along x and z (centred on 0) */
+    uint32_t colour_width, colour_height; /* the colour store's level 0, texels */
 };
+
+/* The colour store's level-0 texel position (tx, ty) under world point (x, z) (any y): the
+ * inverse of the grid's placement, not clamped. */
+void vtv_terrain_texel(const struct vtv_terrain_info *info, double x, double z, double *tx,
+                       double *ty);
 
 /* Splits spec into the elevation store's path (NULL: the colour store) and layer (NULL: the
  * default) in place; a spec naming an existing file is a path whole. */

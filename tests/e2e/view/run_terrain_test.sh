@@ -4,9 +4,14 @@
 # as f32 and as u16 with --value-scale/--value-offset, draped with a photograph (autumn leaves) from
 # Debian's plasma-workspace-wallpapers, rendered headless and compared with a CPU reference of the displaced
 # grid (vtv_terrain_ref render).
-# usage: run_terrain_test.sh CASE VT_VIEW VT_TILES VTV_TERRAIN_REF VTV_CHECK WORKDIR
+# Terrain in clipmap mode (--clipmap N): against the page-table render and the CPU reference, and
+# a fly-over path whose uploads clipmap_check.py checks against its model.
+# usage: run_terrain_test.sh CASE VT_VIEW VT_TILES VTV_TERRAIN_REF VTV_CHECK WORKDIR [VT_INFO]
+# VT_PYTHON (default python3) runs clipmap_check.py.
 set -euo pipefail
-case_name=$1 view=$2 tiles=$3 ref=$4 check=$5 work=$6
+case_name=$1 view=$2 tiles=$3 ref=$4 check=$5 work=$6 vt_info=${7:-}
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+python=${VT_PYTHON:-python3}
 rm -rf "$work"
 mkdir -p "$work"
 cd "$work"
@@ -190,6 +195,76 @@ terrain_plain)
   cp dem.vts keep.vts
   expect 1 "is the input" colour.vts --terrain keep.vts:0 --screenshot keep.vts
   cmp keep.vts dem.vts || fail "the elevation store was replaced"
+  ;;
+terrain_clipmap)
+  # The terrain drawn through the clipmap (--clipmap 8: every level's window holds the whole level
+  # once loaded), converged (--sync, 3 frames): against the page-table render of the same camera
+  # (>= 40 dB) and the CPU reference of the displaced grid (>= 35 dB); negative controls: level 0
+  # addressed one texel off (VTV_CLIPMAP_DEBUG_OFFSET=0) against the page table, the colour 6
+  # texels off against the clipmap render. The paging centre is the colour texel under the eye.
+  G=400
+  CAM="0 520 560 0 60 40 55"
+  echo "$CAM" >view.cam
+  vt colour.vts --terrain dem.vts --terrain-grid $G --camera view.cam --frames 12 --screenshot pt.png
+  vt colour.vts --terrain dem.vts --terrain-grid $G --camera view.cam --frames 3 --clipmap 8 \
+    --screenshot clip.png --stats clip.json
+  "$ref" render dem.tif colour.png ref.png $W $H $G 1 0 -9999 1001 707 1 $CAM 0 0 0 1001 707
+  "$ref" render dem.tif colour.png shift.png $W $H $G 1 0 -9999 1001 707 1 $CAM 6 0 0 1001 707
+  VTV_CLIPMAP_DEBUG_OFFSET=0 vt colour.vts --terrain dem.vts --terrain-grid $G --camera view.cam \
+    --frames 3 --clipmap 8 --screenshot off0.png
+  db() { "$check" psnr "$1" "$2" --max 1000 | awk '{print $2}'; }
+  pt=$(db clip.png pt.png)
+  good=$(db clip.png ref.png)
+  off=$(db off0.png pt.png)
+  shift=$(db clip.png shift.png)
+  echo "clipmap terrain: page table $pt dB, reference $good dB; controls: level 0 off by a texel $off dB, colour shifted $shift dB"
+  awk -v v="$pt" 'BEGIN { exit !(v >= 40) }' || fail "$pt dB against the page table (want >= 40)"
+  awk -v v="$good" 'BEGIN { exit !(v >= 35) }' || fail "$good dB against the reference (want >= 35)"
+  awk -v v="$off" 'BEGIN { exit !(v < 40) }' || fail "level 0 off by a texel: $off dB (want < 40)"
+  awk -v v="$shift" 'BEGIN { exit !(v <= 30) }' || fail "colour shifted: $shift dB (want <= 30)"
+  "$check" stat clip.json fallback_pixels == 0 || fail "fallback pixels in a converged frame"
+  json clip.json "j['renderer'] == 'clipmap' and j['mode'] == '3d' and [v['features'] for v in j['variants']] == [['diffuse_map', 'lit']]"
+  # the eye (0, 560) over the DEM's 1001 x 707 units, on the colour's 768 x 543 texels
+  json clip.json "all(abs(a - b) < 1e-9 for a, b in zip(j['frames'][0]['centre'], [384, (560 / 707 + 0.5) * 543]))"
+  # --clipmap-centre still fixes it
+  vt colour.vts --terrain dem.vts --terrain-grid 64 --camera view.cam --frames 1 --clipmap 2 \
+    --clipmap-centre 100,50 --stats fixed.json
+  json fixed.json "j['frames'][0]['centre'] == [100, 50]"
+  ;;
+terrain_flyover)
+  # A fly-over in clipmap mode: 32 frames flying low (eye at height 150; the DEM's heights are
+  # -66..233) across the DEM, looking ahead and down; a colour store of 64 px tiles (14 x 10
+  # at level 0), --clipmap 3, a budget of 5 tiles a frame. Per frame the paging centre is the
+  # colour texel under the eye (computed here from the path), the uploaded tiles equal exactly
+  # clipmap_check.py's model (same tiles, same order) and the bytes stay within the budget; the
+  # check fails on a list with one tile dropped or added.
+  [ -n "$vt_info" ] || fail "terrain_flyover needs VT_INFO"
+  "$tiles" colour.png -o c64.vts --codec png --tile-size 64 -q
+  "$vt_info" c64.vts --json >info.json
+  C=$("$python" -c 'import json,sys; print(json.load(open(sys.argv[1]))["tile_content_px"])' info.json)
+  budget=$((5 * C * C * 4))
+  awk 'BEGIN { for (i = 0; i < 32; i++) { x = -420 + i * 26; z = -260 + i * 17;
+    printf "%.3f 150 %.3f %.3f 0 %.3f 50\n", x, z, x + 120, z + 80 } }' >fly.cam
+  vt c64.vts --terrain dem.vts --terrain-grid 200 --camera fly.cam --frames 32 --clipmap 3 \
+    --budget $budget --stats fly.json --screenshot fly.png
+  "$python" "$here/clipmap_check.py" strips fly.json info.json || fail "fly-over: uploads"
+  for t in drop add; do
+    if "$python" "$here/clipmap_check.py" strips fly.json info.json --tamper $t >/dev/null; then
+      fail "fly-over: the check passed a list with one tile $t"
+    fi
+  done
+  "$python" - fly.json fly.cam <<'PY' || fail "fly-over: paging centres"
+import json, sys
+j = json.load(open(sys.argv[1]))
+cams = [list(map(float, l.split())) for l in open(sys.argv[2])]
+for f, c in zip(j["frames"], cams):
+    want = [(c[0] / 1001 + 0.5) * 768, (c[2] / 707 + 0.5) * 543]
+    assert all(abs(a - b) < 1e-9 for a, b in zip(f["centre"], want)), (f["centre"], want)
+    assert f["bytes_uploaded"] <= j["clipmap"]["budget"], f
+moved = sum(1 for f in j["frames"][4:] if f["uploads"])
+assert moved >= 8, f"only {moved} frames after the start uploaded tiles"
+print(f"fly-over: {len(j['frames'])} frames, {sum(f['uploads'] for f in j['frames'])} tiles uploaded, {moved} frames after the 4th uploaded")
+PY
   ;;
 *)
   fail "unknown case $case_name"
