@@ -8,25 +8,9 @@
 #include "vt_checked.h"
 #include "vtv_clipmap_glsl.h"
 #include "vtv_material.h"
+#include "vtv_program.h"
 #include "vtv_render.h"
 #include "vtv_shaders.h"
-
-static GLuint compile(GLenum type, const char *const *src, int pieces, struct vts_error *err)
-{
-    GLuint s = glCreateShader(type);
-    glShaderSource(s, pieces, src, NULL);
-    glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[512] = "";
-        glGetShaderInfoLog(s, sizeof(log), NULL, log);
-        vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot compile the clipmap shader: %s", log);
-        glDeleteShader(s);
-        return 0;
-    }
-    return s;
-}
 
 /* The fragment shader: version, the display's #defines, vt_display(), the clipmap's body. */
 static GLuint build_program(unsigned display_features, struct vts_error *err)
@@ -35,28 +19,7 @@ static GLuint build_program(unsigned display_features, struct vts_error *err)
     char defines[512];
     vtv_feature_defines(display_features, defines, sizeof(defines));
     const char *fsrc[4] = {"#version 330 core\n", defines, vtv_display_glsl, vtv_clipmap_fs_glsl};
-    GLuint vs = compile(GL_VERTEX_SHADER, &vsrc, 1, err);
-    GLuint fs = vs ? compile(GL_FRAGMENT_SHADER, fsrc, 4, err) : 0;
-    if (!fs) {
-        glDeleteShader(vs);
-        return 0;
-    }
-    GLuint p = glCreateProgram();
-    glAttachShader(p, vs);
-    glAttachShader(p, fs);
-    glLinkProgram(p);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[512] = "";
-        glGetProgramInfoLog(p, sizeof(log), NULL, log);
-        vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot link the clipmap program: %s", log);
-        glDeleteProgram(p);
-        return 0;
-    }
-    return p;
+    return vtv_program_build(&vsrc, 1, fsrc, 4, "clipmap", err);
 }
 
 double vtv_clipmap_gl_inset(bool nearest)

@@ -9,56 +9,18 @@
 #include <string.h>
 
 #include "vt_error.h"
+#include "vtv_program.h"
 #include "vtv_shaders.h"
 #include "vtv_wang_scene.h"
-
-static GLuint compile(GLenum type, const char *const *src, int pieces, const char *what,
-                      struct vts_error *err)
-{
-    GLuint s = glCreateShader(type);
-    glShaderSource(s, pieces, src, NULL);
-    glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[512] = "";
-        glGetShaderInfoLog(s, sizeof(log), NULL, log);
-        vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot compile the %s shader: %s", what, log);
-        glDeleteShader(s);
-        return 0;
-    }
-    return s;
-}
 
 static GLuint program(enum vtv_program_kind kind, unsigned features, struct vts_error *err)
 {
     static const char *const names[VTV_PROG_KINDS] = {"virtual-texture", "feedback", "reference"};
     const char *vsrc = vtv_vs_source;
-    GLuint vs = compile(GL_VERTEX_SHADER, &vsrc, 1, "vertex", err);
     char defines[512];
     const char *pieces[VTV_SHADER_PIECES];
     int n = vtv_shader_fragment(kind, features, defines, sizeof(defines), pieces);
-    GLuint fs = vs ? compile(GL_FRAGMENT_SHADER, pieces, n, names[kind], err) : 0;
-    if (!fs) {
-        glDeleteShader(vs);
-        return 0;
-    }
-    GLuint p = glCreateProgram();
-    glAttachShader(p, vs);
-    glAttachShader(p, fs);
-    glLinkProgram(p);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[512] = "";
-        glGetProgramInfoLog(p, sizeof(log), NULL, log);
-        vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot link the %s program: %s", names[kind], log);
-        glDeleteProgram(p);
-        return 0;
-    }
-    return p;
+    return vtv_program_build(&vsrc, 1, pieces, n, names[kind], err);
 }
 
 /* The tile determination depends only on the coverage features and on whether any map is

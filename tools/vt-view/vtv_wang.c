@@ -13,6 +13,7 @@
 #include "vtv_context.h"
 #include "vtv_mipmap.h"
 #include "vtv_output.h"
+#include "vtv_program.h"
 #include "vtv_wang_gl.h"
 #include "vtv_wang_glsl.h"
 
@@ -31,38 +32,9 @@ static GLuint compile_program(bool tiletex, const char *what, struct vts_error *
 {
     static const char version[] = "#version 330 core\n";
     const char *fragment[3] = {version, vtv_wang_hash_glsl, vtv_wang_tiletex_glsl};
-    GLuint p = glCreateProgram();
-    for (int i = 0; i < 2; i++) {
-        GLuint s = glCreateShader(i ? GL_FRAGMENT_SHADER : GL_VERTEX_SHADER);
-        GLint ok = 0;
-        if (i == 0)
-            glShaderSource(s, 1, (const char *const[]){vtv_wang_vertex_glsl}, NULL);
-        else if (tiletex)
-            glShaderSource(s, 3, fragment, NULL);
-        else
-            glShaderSource(s, 1, (const char *const[]){vtv_wang_reference_glsl}, NULL);
-        glCompileShader(s);
-        glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-        if (!ok) {
-            char log[512] = "";
-            glGetShaderInfoLog(s, sizeof log, NULL, log);
-            vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot compile the %s shader: %s", what, log);
-            glDeleteShader(s);
-            glDeleteProgram(p);
-            return 0;
-        }
-        glAttachShader(p, s);
-        glDeleteShader(s);
-    }
-    GLint ok = 0;
-    glLinkProgram(p);
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        vt_error_set(err, VTS_ERR_UNSUPPORTED, "cannot link the %s program", what);
-        glDeleteProgram(p);
-        return 0;
-    }
-    return p;
+    const char *vertex[1] = {vtv_wang_vertex_glsl}, *reference[1] = {vtv_wang_reference_glsl};
+    return tiletex ? vtv_program_build(vertex, 1, fragment, 3, what, err)
+                   : vtv_program_build(vertex, 1, reference, 1, what, err);
 }
 
 static int load_pack(struct wang_view *w, struct vts_error *err)
