@@ -174,16 +174,7 @@ static void level_uniforms(const struct vtv_clipmap_gl *g, const struct vts_clip
 uint64_t vtv_clipmap_gl_draw(const struct vtv_clipmap_gl *g, const struct vts_clipmap *cm,
                              struct vtv_render *r, const struct vtv_view *v, float lod_bias)
 {
-    static const GLfloat bg[4] = {0.1f, 0.1f, 0.1f, 1.0f};
-    static const GLuint zero[4] = {0, 0, 0, 0};
-    glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
-    glViewport(0, 0, (GLsizei)r->width, (GLsizei)r->height);
-    glEnable(GL_DEPTH_TEST);
-    glDepthMask(GL_TRUE);
-    glClearBufferfv(GL_COLOR, 0, bg);
-    glClearBufferuiv(GL_COLOR, 1, zero);
-    glClear(GL_DEPTH_BUFFER_BIT);
-    (r->srgb ? glEnable : glDisable)(GL_FRAMEBUFFER_SRGB);
+    vtv_render_begin_main(r);
     GLuint p = g->prog;
     glUseProgram(p);
     glUniformMatrix4fv(glGetUniformLocation(p, "u_mvp"), 1, GL_FALSE, v->mvp);

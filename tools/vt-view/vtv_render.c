@@ -562,7 +562,7 @@ static void draw_groups(struct vtv_render *r, enum vtv_program_kind kind, const 
     glUseProgram(0);
 }
 
-static void begin_main(const struct vtv_render *r)
+void vtv_render_begin_main(const struct vtv_render *r)
 {
     static const GLfloat bg[4] = {0.1f, 0.1f, 0.1f, 1.0f};
     static const GLuint zero[4] = {0, 0, 0, 0};
@@ -586,7 +586,7 @@ static void setup_vt(struct vtv_render *r, GLuint p, const struct vtv_view *v, v
 
 uint64_t vtv_render_vt(struct vtv_render *r, const struct vtv_view *v)
 {
-    begin_main(r);
+    vtv_render_begin_main(r);
     phys_filter(r, v->nearest);
     bind_textures(r);
     draw_groups(r, VTV_PROG_VT, v, setup_vt, NULL);
@@ -649,7 +649,7 @@ int vtv_render_set_reference(struct vtv_render *r, const uint8_t *rgba, uint32_t
 
 void vtv_render_reference_begin(struct vtv_render *r)
 {
-    begin_main(r);
+    vtv_render_begin_main(r);
 }
 
 void vtv_render_reference_end(void)

@@ -149,6 +149,10 @@ size_t vtv_render_upload_bytes(const struct vtv_render *r);
 /* Uploads the entries in the cache's dirty rectangles. */
 void vtv_render_upload_page_table(struct vtv_render *r, const struct vtv_cache *c);
 
+/* Binds the main pass's framebuffer and clears it (colour, fallback counts, depth), with sRGB
+ * encoding as the frame's; the passes that draw into it start with this. */
+void vtv_render_begin_main(const struct vtv_render *r);
+
 /* Main pass into the framebuffer; returns the number of fallback pixels. */
 uint64_t vtv_render_vt(struct vtv_render *r, const struct vtv_view *v);
 
