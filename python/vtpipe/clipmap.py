@@ -17,6 +17,7 @@ numbers (floats). A level outside the clipmap raises VtsRangeError in every per-
 import collections
 import ctypes
 import math
+import numbers
 import operator
 
 from . import _lib
@@ -44,10 +45,10 @@ def _int(value, what):
 
 
 def _real(value, what):
-    try:
-        return float(value)
-    except (TypeError, ValueError):
-        raise TypeError(f"{what} must be a number, not {type(value).__name__}") from None
+    """value as a double argument: any real number (int, float, numpy), never a string."""
+    if not isinstance(value, numbers.Real):
+        raise TypeError(f"{what} must be a number, not {type(value).__name__}")
+    return float(value)
 
 
 def _rect(r, what="rect"):
