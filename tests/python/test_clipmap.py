@@ -443,6 +443,9 @@ def test_a_store_built_by_vt_tiles(tmp_path):
         textures = [np.zeros((n * c, n * c, 3), np.uint8) for _ in range(cm.levels)]
         for cx, cy in [(100.0, 70.0), (104.5, 71.0), (180.0, 20.0), (30.0, 140.0)]:
             targets = cm.move_all(cx, cy)
+            assert targets == [model_window(g, n, level, Fraction(cx) / 2**level,
+                                            Fraction(cy) / 2**level)
+                               for level in range(cm.levels)]
             frames = 0
             while cm.pending():
                 for t in cm.plan(4):  # the frame's budget: 4 tiles
