@@ -16,6 +16,10 @@ class VtsRangeError(VtsError, IndexError):
     """A layer, level, tile or rectangle the store does not hold (VTS_ERR_RANGE)."""
 
 
+# named as the package exports them (tracebacks say vtpipe.VtsError, as before this module)
+VtsError.__module__ = VtsRangeError.__module__ = "vtpipe"
+
+
 def raise_error(err):
     """Raises the exception of a filled struct vts_error."""
     cls = VtsRangeError if err.status == _lib.STATUS_RANGE else VtsError
