@@ -26,7 +26,8 @@ from ._errors import VtsError, VtsRangeError, raise_error
 __all__ = ["Clipmap", "TileRect", "ClipmapTile"]
 
 TileRect = collections.namedtuple("TileRect", "x0 y0 x1 y1")
-TileRect.__doc__ = "Tiles x0 <= x < x1, y0 <= y < y1 of one level (empty when x0 >= x1 or y0 >= y1)."
+TileRect.__doc__ = ("Tiles x0 <= x < x1, y0 <= y < y1 of one level (empty when x0 >= x1 or "
+                    "y0 >= y1).")
 ClipmapTile = collections.namedtuple("ClipmapTile", "level x y slot_x slot_y")
 ClipmapTile.__doc__ = "A tile to load: level, position in the level's tile grid, toroidal slot."
 
@@ -196,9 +197,9 @@ class Clipmap:
         return targets
 
     def plan(self, max_tiles):
-        """The next tiles to load, at most max_tiles, as ClipmapTiles: coarsest level first, within a
-        level its strips in loading order, each row by row, skipping tiles already in their slots
-        (vts_clipmap_plan). Changes nothing: call loaded() for each tile uploaded."""
+        """The next tiles to load, at most max_tiles, as ClipmapTiles: coarsest level first,
+        within a level its strips in loading order, each row by row, skipping tiles already in
+        their slots (vts_clipmap_plan). Changes nothing: call loaded() for each tile uploaded."""
         c = self._struct()
         max_tiles = min(_int(max_tiles, "max_tiles"), _lib.vts.vts_clipmap_pending(
             ctypes.byref(c)))

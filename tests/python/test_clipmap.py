@@ -284,7 +284,8 @@ def walk(g, n, budget, rng, moves=16):
             if rng.random() < 0.2:  # one level with a centre of its own
                 level = rng.randrange(g.level_count)
                 tx, ty = model_tiles(g, level)
-                ox, oy = Fraction(rng.randint(0, tx * c * 8), 8), Fraction(rng.randint(0, ty * c * 8), 8)
+                ox = Fraction(rng.randint(0, tx * c * 8), 8)
+                oy = Fraction(rng.randint(0, ty * c * 8), 8)
                 targets[level] = model_window(g, n, level, ox, oy)
                 got[level] = cm.window(level, float(ox), float(oy))
                 cm.move(level, got[level])
