@@ -222,7 +222,8 @@ class Clipmap:
         except (TypeError, ValueError):
             raise TypeError(f"tile must be a ClipmapTile or (level, x, y), not {tile!r}") from None
         c, level = self._level(level)
-        t = _lib.ClipmapTile(level, _int(x, "x"), _int(y, "y"), x % c.n, y % c.n)
+        x, y = _int(x, "x"), _int(y, "y")
+        t = _lib.ClipmapTile(level, x, y, x % c.n, y % c.n)
         if slot and tuple(slot) != (t.slot_x, t.slot_y):
             raise VtsError(_lib.STATUS_ARG, f"clipmap: tile {x},{y} of level {level} has slot "
                            f"{t.slot_x},{t.slot_y}, not {','.join(map(str, slot))}")

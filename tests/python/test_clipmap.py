@@ -407,6 +407,10 @@ def test_errors_raise_with_the_message():
     with pytest.raises(vtpipe.VtsRangeError, match=r"clipmap: tile 8,4 is outside level 0's "
                        r"target TileRect\(x0=4, y0=4, x1=8, y1=8\)"):
         cm.loaded((0, 8, 4))
+    with pytest.raises(TypeError, match="x must be an int, not str"):
+        cm.loaded((0, "4", 4))
+    with pytest.raises(TypeError, match="tile must be a ClipmapTile or"):
+        cm.loaded(4)
     with pytest.raises(vtpipe.VtsError, match="has slot 0,0, not 1,0") as e:
         cm.loaded(ClipmapTile(0, 4, 4, 1, 0))
     assert e.value.status_name == "arg"
