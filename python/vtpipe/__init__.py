@@ -12,6 +12,7 @@ Arrays are uint8 (u8 layers), uint16 (u16) or float32 (f32 layers, and f16 layer
 their half floats), always of shape (height, width, channels). Failures raise VtsError with the
 library's message; an out-of-range layer, level, tile or rectangle raises VtsRangeError (also an
 IndexError). A Store may be read from several threads (the library calls release the GIL).
+Clipmap (vtpipe.clipmap) is libvts's clipmap arithmetic (vts_clipmap.h) over a store's pyramid.
 """
 import collections
 import ctypes
@@ -20,9 +21,11 @@ import os
 import numpy as np
 
 from . import _lib
+from ._errors import VtsError, VtsRangeError, raise_error as _raise
+from .clipmap import Clipmap, ClipmapTile, TileRect
 
 __all__ = ["open", "Store", "VtsError", "VtsRangeError", "Geometry", "Layer", "Level",
-           "library_version"]
+           "library_version", "full_level_count", "Clipmap", "ClipmapTile", "TileRect"]
 
 Geometry = collections.namedtuple(
     "Geometry", "width height tile_content_px border_px tile_payload_px level_count layer_count "
@@ -31,25 +34,6 @@ Layer = collections.namedtuple("Layer", "name channels sample colour codec codec
 Level = collections.namedtuple("Level", "width height tiles_x tiles_y")
 
 _DTYPES = {"u8": np.uint8, "u16": np.uint16, "f16": np.float16, "f32": np.float32}
-
-
-class VtsError(Exception):
-    """A libvts or libvts-decode failure: str() is the library's message; status is the negative
-    enum vts_status value and status_name its stable name ("io", "corrupt", "range"...)."""
-
-    def __init__(self, status, message):
-        super().__init__(message)
-        self.status = status
-        self.status_name = _lib.vts.vts_status_name(status).decode()
-
-
-class VtsRangeError(VtsError, IndexError):
-    """A layer, level, tile or rectangle the store does not hold (VTS_ERR_RANGE)."""
-
-
-def _raise(err):
-    cls = VtsRangeError if err.status == _lib.STATUS_RANGE else VtsError
-    raise cls(err.status, err.message.decode("utf-8", "replace"))
 
 
 def _u32(value, what):
@@ -63,6 +47,13 @@ def _u32(value, what):
 def library_version():
     """Version of the libvts loaded, "MAJOR.MINOR.PATCH"."""
     return _lib.vts.vts_version_string().decode()
+
+
+def full_level_count(width, height, tile_content_px):
+    """Levels from level 0 down to the first that fits in one tile (vts_full_level_count): the
+    level_count of a whole pyramid, e.g. for a Geometry given to Clipmap without a store."""
+    return _lib.vts.vts_full_level_count(_u32(width, "width"), _u32(height, "height"),
+                                         _u32(tile_content_px, "tile_content_px"))
 
 
 def open(path):
