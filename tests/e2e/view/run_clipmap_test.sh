@@ -229,7 +229,8 @@ bc)
   # table's (compressed physical texture) >= 40 dB, magnified and minified; one tile's upload is
   # C * C / 2 bytes (bc1) or C * C (bc3, bc5), every frame's bytes are its tiles times that, and
   # a budget of 3 compressed tiles uploads 3 tiles a frame. A border of 6 (content 52, aligned;
-  # border not) and --bc-upload off decode on the CPU (C * C * 4 bytes) and still match.
+  # border not), one of 5 (content 54) and --bc-upload off decode on the CPU (C * C * 4 bytes)
+  # and still match.
   "$synth_image" img.png --format png --size 1000x700 --channels 3 --photo
   "$vt_tiles" img.png -o bc1.vts --tile-size 64 --keep payload --border 4 --codec bc1 -q
   "$synth_image" a.png --format png --size 1000x700 --channels 4 --alpha smooth
@@ -237,6 +238,7 @@ bc)
   "$vt_tiles" img.png -o bc5.vts --tile-size 64 --keep payload --border 4 --codec bc5 \
     --colour normal -q
   "$vt_tiles" img.png -o b6.vts --tile-size 64 --keep payload --border 6 --codec bc1 -q
+  "$vt_tiles" img.png -o b5.vts --tile-size 64 --keep payload --border 5 --codec bc1 -q
   echo "480.3 330.7 2.37" >mag.cam
   echo "520.2 310.9 0.41" >min.cam
   # every frame's bytes_uploaded = tiles_uploaded * B, and B in the header
@@ -249,7 +251,7 @@ assert all(f["bytes_uploaded"] == f["tiles_uploaded"] * b for f in d["frames"])
 assert sum(f["tiles_uploaded"] for f in d["frames"]) > 0
 PY
   }
-  for run in "bc1 1568 blocks" "bc3 3136 blocks" "bc5 3136 blocks" "b6 10816 CPU" \
+  for run in "bc1 1568 blocks" "bc3 3136 blocks" "bc5 3136 blocks" "b6 10816 CPU" "b5 11664 CPU" \
     "bc1 12544 CPU --bc-upload off"; do
     set -- $run
     s=$1 bytes=$2 path=$3
