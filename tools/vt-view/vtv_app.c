@@ -87,6 +87,7 @@ struct app {
     struct vtv_render render;
     struct vtv_stream stream;
     struct vtv_clipmap clip; /* --clipmap: instead of the stream */
+    bool clip_bc;            /* --clipmap uploads the layer's BC blocks as stored */
     struct vtv_mesh mesh;
     struct vtv_reference_scene ref_scene;
     struct vtv_wang_scene wang; /* packs named by vt_wang materials */
@@ -266,6 +267,24 @@ static int setup_clipmap(struct app *a, uint32_t shown, bool srgb, struct vts_er
                                      .centre = {o->clipmap_centre[0], o->clipmap_centre[1]},
                                      .frames_cap = o->frames};
     a->render.srgb = srgb;
+    const struct vts_layer *info = vts_store_layer(a->store, shown);
+    const struct vts_geometry *g = vts_store_geometry(a->store);
+    bool aligned = g->tile_content_px % 4 == 0 && g->border_px % 4 == 0;
+    GLenum bc = o->no_bc_upload || !aligned
+                    ? 0
+                    : vtv_render_bc_format(&a->render, info->codec, srgb, g->tile_payload_px);
+    co.bc_format = bc;
+    co.rebuild_z = bc && info->codec == VTS_CODEC_BC5 && info->channels == 3;
+    a->clip_bc = bc != 0;
+    bool is_bc = info->codec == VTS_CODEC_BC1 || info->codec == VTS_CODEC_BC3 ||
+                 info->codec == VTS_CODEC_BC4 || info->codec == VTS_CODEC_BC5;
+    if (is_bc)
+        vt_log(VT_LOG_INFO, "clipmap: layer '%s': %s%s", info->name,
+               bc                ? "blocks uploaded compressed"
+               : o->no_bc_upload ? "decoded on the CPU (--bc-upload off)"
+               : !aligned        ? "decoded on the CPU (tile content or border not a multiple of 4)"
+                                 : "decoded on the CPU (this GL cannot take the blocks)",
+               co.rebuild_z ? " (normal xy, z rebuilt in the shader)" : "");
     /* the terrain's material is lit: the clipmap's program shades it as the page table's does */
     unsigned features = a->render.display.features | (o->terrain ? VTV_F_LIT : 0u);
     return vtv_clipmap_init(&a->clip, a->store, shown, &co, features, err);
@@ -535,8 +554,8 @@ static int loop(struct app *a, struct vts_error *err)
             .sync = o->sync,
             .variants = a->render.variants,
             .variant_count = a->render.variant_count,
-            .physical_format = o->reference               ? "none"
-                               : a->render.bc_format != 0 ? "bc"
+            .physical_format = o->reference                             ? "none"
+                               : a->render.bc_format != 0 || a->clip_bc ? "bc"
                                : a->render.phys_upload[VTV_MAP_DIFFUSE][1] == GL_UNSIGNED_SHORT
                                    ? "u16"
                                : a->render.phys_upload[VTV_MAP_DIFFUSE][1] == GL_HALF_FLOAT ? "f16"

@@ -20,25 +20,28 @@ int vtv_clipmap_init(struct vtv_clipmap *c, const struct vts_store *store, uint3
     const struct vts_geometry *g = vts_store_geometry(store);
     const struct vts_layer *info = vts_store_layer(store, layer);
     struct vtv_texel_format texels;
-    vtv_wide_format(info, &texels); /* what vtv_loader hands over (BC decoded on the CPU) */
+    vtv_wide_format(info, &texels); /* what vtv_loader hands over (BC decoded on the CPU unless
+                                       opt->bc_format) */
     int st = vts_clipmap_init(&c->cm, g, opt->n, err);
-    if (st == 0)
+    if (st == 0 && opt->bc_format) /* the blocks as stored */
+        st = vtv_clipmap_gl_init_bc(&c->gl, opt->n, g->tile_content_px, c->cm.level_count,
+                                    (GLenum)opt->bc_format, opt->rebuild_z, display_features, err);
+    else if (st == 0)
         st = vtv_clipmap_gl_init(&c->gl, opt->n, g->tile_content_px, c->cm.level_count, &texels,
                                  info->colour == VTS_COLOUR_SRGB, display_features, err);
     if (st != 0)
         return st;
     uint64_t tile_bytes = c->gl.tile_bytes;
     if (opt->budget < tile_bytes)
-        return vt_error_set(
-            err, VTS_ERR_ARG,
-            "--budget %llu: below one tile's upload (%llu bytes: %u x %u texels of "
-            "%llu bytes)",
-            (unsigned long long)opt->budget, (unsigned long long)tile_bytes, g->tile_content_px,
-            g->tile_content_px,
-            (unsigned long long)(tile_bytes / g->tile_content_px / g->tile_content_px));
+        return vt_error_set(err, VTS_ERR_ARG,
+                            "--budget %llu: below one tile's upload (%llu bytes: %u x %u texels%s)",
+                            (unsigned long long)opt->budget, (unsigned long long)tile_bytes,
+                            g->tile_content_px, g->tile_content_px,
+                            opt->bc_format ? ", BC blocks" : "");
     uint64_t max = opt->budget / tile_bytes;
     c->max_tiles = max > (1u << 20) ? 1u << 20 : (uint32_t)max;
-    c->loader = vtv_loader_create(store, layer, opt->sync ? 0 : opt->threads, 0, err);
+    c->loader = vtv_loader_create(store, layer, opt->sync ? 0 : opt->threads,
+                                  opt->bc_format ? VTV_LOADER_COMPRESSED : 0u, err);
     if (!c->loader)
         return err->status;
     uint32_t qcap = vtv_loader_queue_capacity(c->loader);

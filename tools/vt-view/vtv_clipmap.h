@@ -36,6 +36,10 @@ struct vtv_clipmap_options {
     bool centre_fixed;   /* --clipmap-centre X,Y */
     double centre[2];    /* its X, Y (level-0 texels) */
     uint32_t frames_cap; /* frames whose statistics are kept */
+    unsigned bc_format;  /* GLenum: the layer's BC blocks uploaded as stored in this compressed
+                            format (vtv_render_bc_format; the tile content and border multiples
+                            of 4), or 0: texels decoded on the CPU */
+    bool rebuild_z;      /* with bc_format, BC5 normal xy: z rebuilt in the shader */
 };
 
 struct vtv_clipmap {

@@ -1,6 +1,7 @@
 /* vt-view --clipmap: texture array, tile uploads and the draw (docs/viewer.md, "Clipmap mode"). */
 #include "vtv_clipmap_gl.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -53,11 +54,12 @@ static void swizzle(const struct vtv_clipmap_gl *g)
     }
 }
 
-int vtv_clipmap_gl_init(struct vtv_clipmap_gl *g, uint32_t n, uint32_t content_px, uint32_t levels,
-                        const struct vtv_texel_format *texels, bool srgb, unsigned display_features,
-                        struct vts_error *err)
+/* The texture of n x n tiles of content_px per level, levels layers, of g's internal format:
+ * bytes_per_16 bytes per 4 x 4 texels (what the limits count); texel_bytes for the message. */
+static int create_texture(struct vtv_clipmap_gl *g, uint32_t n, uint32_t content_px,
+                          uint32_t levels, uint64_t bytes_per_16, double texel_bytes,
+                          unsigned display_features, struct vts_error *err)
 {
-    memset(g, 0, sizeof(*g));
     g->debug_offset = -1;
     const char *dbg = getenv("VTV_CLIPMAP_DEBUG_OFFSET");
     if (dbg && *dbg)
@@ -65,10 +67,9 @@ int vtv_clipmap_gl_init(struct vtv_clipmap_gl *g, uint32_t n, uint32_t content_p
     GLint max_size = 0, max_layers = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
-    size_t texel_bytes = texel_formats(g, texels, srgb);
     uint64_t size = (uint64_t)n * content_px, bytes = 0;
-    bool over = !vt_u64_mul(size, size, &bytes) || !vt_u64_mul(bytes, texel_bytes, &bytes) ||
-                !vt_u64_mul(bytes, levels, &bytes);
+    bool over = !vt_u64_mul(size, size, &bytes) || !vt_u64_mul(bytes, bytes_per_16, &bytes) ||
+                !vt_u64_mul(bytes / 16, levels, &bytes);
     if (size > (uint64_t)max_size)
         return vt_error_set(err, VTS_ERR_LIMIT,
                             "--clipmap %u: a level's texture of %u tiles of %u px is %llu texels "
@@ -80,14 +81,14 @@ int vtv_clipmap_gl_init(struct vtv_clipmap_gl *g, uint32_t n, uint32_t content_p
                             levels, max_layers);
     if (over || bytes > VTV_CLIPMAP_MAX_TEXTURE_BYTES)
         return vt_error_set(err, VTS_ERR_LIMIT,
-                            "--clipmap %u: %u levels of %llu^2 texels of %zu bytes exceed the %llu "
+                            "--clipmap %u: %u levels of %llu^2 texels of %g bytes exceed the %llu "
                             "MiB limit: use a smaller --clipmap",
                             n, levels, (unsigned long long)size, texel_bytes,
                             (unsigned long long)(VTV_CLIPMAP_MAX_TEXTURE_BYTES >> 20));
     g->size_px = (uint32_t)size;
     g->content_px = content_px;
     g->levels = levels;
-    g->tile_bytes = (uint64_t)content_px * content_px * texel_bytes;
+    g->tile_bytes = (uint64_t)content_px * content_px * bytes_per_16 / 16;
     g->prog = build_program(display_features, err);
     if (!g->prog)
         return err->status;
@@ -108,13 +109,76 @@ int vtv_clipmap_gl_init(struct vtv_clipmap_gl *g, uint32_t n, uint32_t content_p
     return 0;
 }
 
+int vtv_clipmap_gl_init(struct vtv_clipmap_gl *g, uint32_t n, uint32_t content_px, uint32_t levels,
+                        const struct vtv_texel_format *texels, bool srgb, unsigned display_features,
+                        struct vts_error *err)
+{
+    memset(g, 0, sizeof(*g));
+    size_t texel_bytes = texel_formats(g, texels, srgb);
+    return create_texture(g, n, content_px, levels, 16 * (uint64_t)texel_bytes, (double)texel_bytes,
+                          display_features, err);
+}
+
+int vtv_clipmap_gl_init_bc(struct vtv_clipmap_gl *g, uint32_t n, uint32_t content_px,
+                           uint32_t levels, GLenum bc_format, bool rebuild_z,
+                           unsigned display_features, struct vts_error *err)
+{
+    memset(g, 0, sizeof(*g));
+    assert(content_px % 4 == 0);
+    bool eight = bc_format == GL_COMPRESSED_RGBA_S3TC_DXT1_EXT ||
+                 bc_format == GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT1_EXT ||
+                 bc_format == GL_COMPRESSED_RED_RGTC1;
+    g->internal = bc_format;
+    g->bc_format = bc_format;
+    g->bc_block = eight ? 8 : 16;
+    g->rebuild_z = rebuild_z;
+    /* RGTC reads as grey (and alpha), as the page table's physical textures show it */
+    g->format = bc_format == GL_COMPRESSED_RED_RGTC1                ? GL_RED
+                : bc_format == GL_COMPRESSED_RG_RGTC2 && !rebuild_z ? GL_RG
+                                                                    : GL_RGBA;
+    int st = create_texture(g, n, content_px, levels, g->bc_block, g->bc_block / 16.0,
+                            display_features, err);
+    if (st != 0)
+        return st;
+    g->bc_buf = malloc((size_t)g->tile_bytes);
+    if (!g->bc_buf)
+        return vt_error_set(err, VTS_ERR_NOMEM, "out of memory");
+    return 0;
+}
+
 void vtv_clipmap_gl_free(struct vtv_clipmap_gl *g)
 {
     if (g->tex)
         glDeleteTextures(1, &g->tex);
     if (g->prog)
         glDeleteProgram(g->prog);
+    free(g->bc_buf);
     memset(g, 0, sizeof(*g));
+}
+
+/* BC: the content's block rows copied out of the payload's (payload_px / 4 blocks a row, the
+ * content from block (border_px / 4, border_px / 4)) into one contiguous buffer. */
+static void upload_blocks(struct vtv_clipmap_gl *g, uint32_t level, uint32_t slot_x,
+                          uint32_t slot_y, const uint8_t *payload, uint32_t payload_px,
+                          uint32_t border_px, const uint8_t *zero)
+{
+    assert(border_px % 4 == 0 && payload_px % 4 == 0);
+    size_t row = (size_t)(g->content_px / 4) * g->bc_block;
+    size_t src_row = (size_t)(payload_px / 4) * g->bc_block;
+    const uint8_t *src = zero;
+    if (payload) {
+        const uint8_t *p =
+            payload + (size_t)(border_px / 4) * src_row + (size_t)(border_px / 4) * g->bc_block;
+        for (uint32_t by = 0; by < g->content_px / 4; by++)
+            memcpy(g->bc_buf + by * row, p + by * src_row, row);
+        src = g->bc_buf;
+    }
+    GLsizei c = (GLsizei)g->content_px;
+    glBindTexture(GL_TEXTURE_2D_ARRAY, g->tex);
+    glCompressedTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, (GLint)(slot_x * g->content_px),
+                              (GLint)(slot_y * g->content_px), (GLint)level, c, c, 1, g->bc_format,
+                              (GLsizei)g->tile_bytes, src);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
 }
 
 void vtv_clipmap_gl_upload(struct vtv_clipmap_gl *g, uint32_t level, uint32_t slot_x,
@@ -122,6 +186,10 @@ void vtv_clipmap_gl_upload(struct vtv_clipmap_gl *g, uint32_t level, uint32_t sl
                            uint32_t border_px, const uint8_t *zero)
 {
     GLsizei c = (GLsizei)g->content_px;
+    if (g->bc_format) {
+        upload_blocks(g, level, slot_x, slot_y, payload, payload_px, border_px, zero);
+        return;
+    }
     glBindTexture(GL_TEXTURE_2D_ARRAY, g->tex);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     if (payload) { /* the content cut out of the payload: rows of payload_px, from (b, b) */
@@ -189,6 +257,7 @@ uint64_t vtv_clipmap_gl_draw(const struct vtv_clipmap_gl *g, const struct vts_cl
     glUniform1i(glGetUniformLocation(p, "u_nearest"), v->nearest ? 1 : 0);
     glUniform1f(glGetUniformLocation(p, "u_lod_bias"), lod_bias);
     glUniform1i(glGetUniformLocation(p, "u_debug"), v->debug == 1 ? 1 : 0);
+    glUniform1i(glGetUniformLocation(p, "u_rebuild_z"), g->rebuild_z ? 1 : 0);
     if (r->group_count) /* the display's range, ramp and index scale (a plain material's) */
         vtv_render_material_uniforms(r, p, &r->groups[0].mat, v);
     double bx = v->rel ? (double)v->origin[0] * g->content_px : 0.0;

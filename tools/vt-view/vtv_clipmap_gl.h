@@ -26,7 +26,11 @@ struct vtv_clipmap_gl {
     uint32_t size_px; /* S = n * C, the edge of every layer */
     uint32_t content_px, levels;
     GLenum internal, format, type; /* the texels: RGBA8 (sRGB: SRGB8_ALPHA8) or vtv_wide's */
-    uint64_t tile_bytes;           /* one tile's upload: C * C * texel bytes */
+    uint64_t tile_bytes;           /* one tile's upload: C * C * texel bytes (BC: its blocks) */
+    GLenum bc_format;              /* BC blocks uploaded as stored (vtv_render_bc_format), or 0 */
+    uint32_t bc_block;             /* bytes of one 4 x 4 block (8: BC1/BC4, 16: BC3/BC5) */
+    bool rebuild_z;                /* BC5 of a 3-channel normal layer: z rebuilt in the shader */
+    uint8_t *bc_buf;               /* one tile's content blocks, contiguous (tile_bytes) */
     int debug_offset; /* VTV_CLIPMAP_DEBUG_OFFSET=L: level L addressed one texel off (the
                          tests' wrong render), else -1 */
 };
@@ -40,10 +44,18 @@ struct vtv_clipmap_gl {
 int vtv_clipmap_gl_init(struct vtv_clipmap_gl *g, uint32_t n, uint32_t content_px, uint32_t levels,
                         const struct vtv_texel_format *texels, bool srgb, unsigned display_features,
                         struct vts_error *err);
+/* The same for a layer whose BC blocks are uploaded as stored: bc_format is the GL's compressed
+ * format (vtv_render_bc_format: sRGB S3TC for an sRGB layer, RGTC for BC4/BC5), content_px a
+ * multiple of 4; rebuild_z: BC5 normal xy, z rebuilt in the shader (as vt_rebuild_z does). */
+int vtv_clipmap_gl_init_bc(struct vtv_clipmap_gl *g, uint32_t n, uint32_t content_px,
+                           uint32_t levels, GLenum bc_format, bool rebuild_z,
+                           unsigned display_features, struct vts_error *err);
 void vtv_clipmap_gl_free(struct vtv_clipmap_gl *g);
 
 /* Writes the content of one tile's payload (payload_px^2 texels with border_px borders;
- * NULL: an empty tile, zeros) at slot (slot_x, slot_y) of level's layer. */
+ * NULL: an empty tile, zeros) at slot (slot_x, slot_y) of level's layer. With bc_format the
+ * payload is the tile's BC blocks as stored (border_px a multiple of 4): the content's blocks
+ * are copied out and written with glCompressedTexSubImage3D. */
 void vtv_clipmap_gl_upload(struct vtv_clipmap_gl *g, uint32_t level, uint32_t slot_x,
                            uint32_t slot_y, const uint8_t *payload, uint32_t payload_px,
                            uint32_t border_px, const uint8_t *zero);

@@ -19,6 +19,9 @@
  *       so, blended by the fraction of lambda. A pixel drawn from a coarser level than lambda's
  *       counts as a fallback pixel (as in the page-table path).
  *
+ * u_rebuild_z: the texture holds BC5 normal xy (RGTC2 uploaded as stored); z is rebuilt from the
+ * filtered xy as the page-table shader's vt_rebuild_z does.
+ *
  * With F_LIT (the terrain's lit material) the colour is shaded as the page-table pass's vt_shade
  * shades a lit material without maps: Kd * colour * (ambient + light * max(n . l, 0)). */
 #include "vtv_clipmap_glsl.h"
@@ -37,6 +40,7 @@ const char vtv_clipmap_fs_glsl[] =
     "uniform int u_nearest;\n"
     "uniform float u_lod_bias;\n"
     "uniform int u_debug;\n"
+    "uniform int u_rebuild_z;\n"
     "#ifdef F_LIT\n"
     "in vec3 v_normal;\n"
     "uniform vec3 u_kd, u_light_dir, u_light_colour, u_ambient;\n"
@@ -94,6 +98,11 @@ const char vtv_clipmap_fs_glsl[] =
     "        used0 = clip_from(want0, t0);\n"
     "        c = fetch(used0, t0);\n"
     "        fb = used0 > want0;\n"
+    "    }\n"
+    /* BC5 normal xy uploaded as stored: z from the filtered xy, as the page table's vt_rebuild_z */
+    "    if (u_rebuild_z != 0) {\n"
+    "        vec2 nx = c.xy * 2.0 - 1.0;\n"
+    "        c = vec4(c.xy, sqrt(max(1.0 - dot(nx, nx), 0.0)) * 0.5 + 0.5, c.a);\n"
     "    }\n"
     "    c = vt_display(c);\n"
     /* a lit material (the terrain): the page-table pass's vt_shade without maps */

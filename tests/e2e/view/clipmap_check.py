@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Checker of vt-view --clipmap's per-frame uploads (tests/e2e/view/run_clipmap_test.sh).
 
-  clipmap_check.py strips STATS.json INFO.json [--tamper drop|add]
+  clipmap_check.py strips STATS.json INFO.json [--tamper drop|add] [--tile-bytes N]
 
 A brute-force model of the clipmap, written from the rules of docs/clipmap.md and
 include/vts/vts_clipmap.h and independent of libvts: per frame it recomputes every level's window
@@ -9,7 +9,8 @@ from the paging centre in the statistics with the snapping formula, moves the ta
 load plan (coarsest level first; the strips of target minus front, column strips beside the front
 then row strips over the target's width, each row by row, skipping tiles already in their
 toroidal slot; a move first grows the front over the columns and rows already in their slots),
-cuts it to floor(budget / (C * C * 4)) tiles, loads them and grows the fronts.
+cuts it to floor(budget / B) tiles (B, one tile's upload: C * C * 4 bytes of RGBA8, or
+--tile-bytes N: C * C / 2 for BC1 blocks, C * C for BC3; the header's tile_bytes must equal it), loads them and grows the fronts.
 The tiles vt-view uploaded in each frame must equal the model's exactly (same tiles, same order),
 the fronts must agree, and every frame's bytes must stay within the budget. INFO.json is
 `vt-info --json` of the store (the levels' tile grids). --tamper alters the uploads read from
@@ -95,10 +96,10 @@ class Level:
             self.front = (x0, y0, x1, y1)
 
 
-def model(info, n, budget):
+def model(info, n, budget, tile_bytes):
     c = info["tile_content_px"]
     levels = [Level(l["tiles_x"], l["tiles_y"]) for l in info["layers"][0]["levels"]]
-    per_frame = budget // (c * c * 4)
+    per_frame = budget // tile_bytes
 
     def frame(centre):
         for l, lv in enumerate(levels):
@@ -129,10 +130,16 @@ def main(argv):
         return 2
     stats = json.load(open(argv[2]))
     info = json.load(open(argv[3]))
-    tamper = argv[5] if len(argv) >= 6 and argv[4] == "--tamper" else None
+    opts = dict(zip(argv[4::2], argv[5::2]))
+    tamper = opts.get("--tamper")
     cm = stats["clipmap"]
     n, budget = cm["n"], cm["budget"]
-    c, frame = model(info, n, budget)
+    c = info["tile_content_px"]
+    tile_bytes = int(opts.get("--tile-bytes", c * c * 4))
+    if cm["tile_bytes"] != tile_bytes:
+        print(f"tile_bytes {cm['tile_bytes']} in the statistics, {tile_bytes} expected")
+        return 1
+    c, frame = model(info, n, budget, tile_bytes)
     frames = stats["frames"]
     if tamper:  # the negative control: one tile dropped from, or added to, a frame with uploads
         i = next(i for i, f in enumerate(frames) if len(f["uploaded"]) > 1)
@@ -152,7 +159,7 @@ def main(argv):
             print(f"frame {i}: uploaded {len(got)} tiles, the model {len(want)}; missing "
                   f"{missing[:5]}, extra {extra[:5]}")
             bad += 1
-        if f["bytes_uploaded"] > budget or f["bytes_uploaded"] != len(got) * c * c * 4:
+        if f["bytes_uploaded"] > budget or f["bytes_uploaded"] != len(got) * tile_bytes:
             print(f"frame {i}: {f['bytes_uploaded']} bytes for {len(got)} tiles, budget {budget}")
             bad += 1
         norm = [(0, 0, 0, 0) if empty(r) else tuple(r) for r in f["fronts"]]

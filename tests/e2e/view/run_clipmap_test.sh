@@ -222,6 +222,111 @@ cli)
   "$python" -c 'import json,sys; f=json.load(open(sys.argv[1]))["last"]; assert f["uploads"] > 0 and f["bytes_uploaded"] == f["uploads"] * 64 * 64 * 4, f' pt.json ||
     fail "page-table bytes_uploaded"
   ;;
+bc)
+  # BC1..BC5 blocks uploaded as stored (docs/viewer.md "Clipmap mode", Texture): an sRGB photo in
+  # bc1, a photo with alpha in bc3, a normal map in bc5 (z rebuilt in the shader), 64 px payloads
+  # with border 4 (C = 56): converged clipmap frames (compressed texture array) against the page
+  # table's (compressed physical texture) >= 40 dB, magnified and minified; one tile's upload is
+  # C * C / 2 bytes (bc1) or C * C (bc3, bc5), every frame's bytes are its tiles times that, and
+  # a budget of 3 compressed tiles uploads 3 tiles a frame. A border of 6 (content 52, aligned;
+  # border not), one of 5 (content 54) and --bc-upload off decode on the CPU (C * C * 4 bytes)
+  # and still match.
+  "$synth_image" img.png --format png --size 1000x700 --channels 3 --photo
+  "$vt_tiles" img.png -o bc1.vts --tile-size 64 --keep payload --border 4 --codec bc1 -q
+  "$synth_image" a.png --format png --size 1000x700 --channels 4 --alpha smooth
+  "$vt_tiles" a.png -o bc3.vts --tile-size 64 --keep payload --border 4 --codec bc3 -q
+  "$vt_tiles" img.png -o bc5.vts --tile-size 64 --keep payload --border 4 --codec bc5 \
+    --colour normal -q
+  "$vt_tiles" img.png -o b6.vts --tile-size 64 --keep payload --border 6 --codec bc1 -q
+  "$vt_tiles" img.png -o b5.vts --tile-size 64 --keep payload --border 5 --codec bc1 -q
+  echo "480.3 330.7 2.37" >mag.cam
+  echo "520.2 310.9 0.41" >min.cam
+  # every frame's bytes_uploaded = tiles_uploaded * B, and B in the header
+  bytes_per_tile() {
+    "$python" - "$1" "$2" <<'PY' || fail "$1: bytes per tile"
+import json, sys
+d = json.load(open(sys.argv[1])); b = int(sys.argv[2])
+assert d["clipmap"]["tile_bytes"] == b, (d["clipmap"]["tile_bytes"], b)
+assert all(f["bytes_uploaded"] == f["tiles_uploaded"] * b for f in d["frames"])
+assert sum(f["tiles_uploaded"] for f in d["frames"]) > 0
+PY
+  }
+  for run in "bc1 1568 blocks" "bc3 3136 blocks" "bc5 3136 blocks" "b6 10816 CPU" "b5 11664 CPU" \
+    "bc1 12544 CPU --bc-upload off"; do
+    set -- $run
+    s=$1 bytes=$2 path=$3
+    shift 3
+    for cam in mag min; do
+      tag=${s}_${bytes}_$cam
+      "$view" $s.vts "$@" --headless --size 256x256 -v --clipmap 8 --sync --frames 3 \
+        --camera $cam.cam --screenshot c_$tag.png --stats c_$tag.json 2>log_$tag.txt
+      vt $s.vts --sync --frames 16 --camera $cam.cam --screenshot p_$tag.png
+      "$check" psnr c_$tag.png p_$tag.png --min 40 || fail "$tag: PSNR"
+      "$check" stat c_$tag.json fallback_pixels == 0 || fail "$tag: fallback"
+      bytes_per_tile c_$tag.json $bytes
+      if [ $path = blocks ]; then
+        grep -q "clipmap: layer 'diffuse': blocks uploaded compressed" log_$tag.txt ||
+          fail "$tag: not uploaded as blocks"
+      else
+        grep -q "clipmap: layer 'diffuse': decoded on the CPU" log_$tag.txt ||
+          fail "$tag: not decoded on the CPU"
+      fi
+    done
+  done
+  grep -q "z rebuilt in the shader" log_bc5_3136_mag.txt || fail "bc5 normal: z not rebuilt"
+  # a budget of 3 compressed tiles (4704 bytes; less than one RGBA8 tile's 12544) uploads 3 tiles
+  # a frame until the levels are complete
+  vt bc1.vts --clipmap 4 --budget 4704 --sync --frames 12 --camera min.cam --stats budget.json
+  "$python" - budget.json <<'PY' || fail "budget of 3 compressed tiles"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["clipmap"]["tiles_per_frame"] == 3, d["clipmap"]
+up = [f["tiles_uploaded"] for f in d["frames"]]
+last = max(i for i, u in enumerate(up) if u)
+assert all(u == 3 for u in up[:last]) and 1 <= up[last] <= 3, up
+assert all(f["bytes_uploaded"] <= 4704 for f in d["frames"]), up
+PY
+  # negative controls: level 0 (magnified) or level 1 (minified) addressed one texel off in the
+  # compressed array falls below 40 dB
+  VTV_CLIPMAP_DEBUG_OFFSET=0 vt bc1.vts --clipmap 8 --sync --frames 3 --camera mag.cam \
+    --screenshot off0.png
+  "$check" psnr off0.png p_bc1_1568_mag.png --max 40 || fail "bc1: a level 0 off by a texel passed"
+  VTV_CLIPMAP_DEBUG_OFFSET=1 vt bc5.vts --clipmap 8 --sync --frames 3 --camera min.cam \
+    --screenshot off1.png
+  "$check" psnr off1.png p_bc5_3136_min.png --max 40 || fail "bc5: a level 1 off by a texel passed"
+  ;;
+bc_strips)
+  # The strips test's moving centre over a bc1 store uploaded as blocks: the uploads equal the
+  # model's (clipmap_check.py) with one tile's upload C * C / 2 = 1568 bytes, under a budget of
+  # 10 and of 3 compressed tiles; one tile dropped or added fails.
+  "$synth_image" img.png --format png --size 1000x700 --channels 3 --photo
+  "$vt_tiles" img.png -o s.vts --tile-size 64 --keep payload --border 4 --codec bc1 -q
+  "$vt_info" s.vts --json >info.json
+  {
+    echo "300 250 1"; echo "300 250 1"
+    for i in 1 2 3 4 5 6; do echo "$((300 + i * 13)).3 250.6 1"; done
+    for i in 1 2 3 4; do echo "$((378 + i * 56)).3 250.6 1"; done
+    for i in 1 2 3 4; do echo "$((602 - i * 56)).3 $((250 + i * 56)).6 1"; done
+    echo "900.5 650.2 1"; echo "40.2 30.7 1"; echo "41 31 1"
+  } >path.cam
+  for run in "4 15680" "5 4704"; do
+    set -- $run
+    tag=n$1_b$2
+    vt s.vts --clipmap "$1" --budget "$2" --sync --frames 30 --camera path.cam --stats "$tag.json"
+    "$python" "$here/clipmap_check.py" strips "$tag.json" info.json --tile-bytes 1568 ||
+      fail "$tag: uploads"
+    for t in drop add; do
+      if "$python" "$here/clipmap_check.py" strips "$tag.json" info.json --tamper $t \
+        --tile-bytes 1568 >/dev/null; then
+        fail "$tag: the check passed a list with one tile $t"
+      fi
+    done
+    # and the RGBA8 size is not what was uploaded
+    if "$python" "$here/clipmap_check.py" strips "$tag.json" info.json >/dev/null; then
+      fail "$tag: the check passed 4 bytes a texel"
+    fi
+  done
+  ;;
 *)
   fail "unknown case $case_name"
   ;;
