@@ -18,7 +18,7 @@ struct vtv_load {
     int status;      /* 0 or a negative vt_status (message in error) */
     char error[512]; /* when status != 0 */
     uint8_t *rgba;   /* per layer of the loader, in its order, vtv_loader_slice_bytes() each:
-                        RGBA8 texels (a compressed BC1/BC3 layer: its blocks as stored, first; a
+                        RGBA8 texels (a compressed BC1..BC5 layer: its blocks as stored, first; a
                         16-bit or float layer: its vtv_wide_format, first); NULL when empty
                         (every layer stored empty) or failed */
     size_t bytes;    /* bytes in rgba: layers * vtv_loader_slice_bytes() */
@@ -32,17 +32,17 @@ struct vtv_loader;
 #define VTV_LOADER_MAX_LAYERS 4
 
 enum vtv_loader_flags {
-    VTV_LOADER_COMPRESSED = 1u << 0, /* BC1/BC3 layers: hand over the blocks, do not decode */
+    VTV_LOADER_COMPRESSED = 1u << 0, /* BC1..BC5 layers: hand over the blocks, do not decode */
 };
 
 /* Decodes tiles of `layer` of store; threads = 0 gives a loader without threads (only
- * vtv_loader_load_now); flags: enum vtv_loader_flags (ignored unless the layer is BC1/BC3).
+ * vtv_loader_load_now); flags: enum vtv_loader_flags (ignored unless the layer is BC1..BC5).
  * Returns NULL and fills err on failure (bad layer, codec not built in). */
 struct vtv_loader *vtv_loader_create(const struct vts_store *store, uint32_t layer,
                                      uint32_t threads, unsigned flags, struct vts_error *err);
 /* Reads the same tile position of each of layer_count layers (1..VTV_LOADER_MAX_LAYERS) into one
  * result, so that a tile's layers arrive together; bit k of compressed_mask: layer k hands over
- * its BC1/BC3 blocks. A tile is empty when every layer is stored empty; a layer stored empty
+ * its BC1..BC5 blocks. A tile is empty when every layer is stored empty; a layer stored empty
  * while others are not shows a flat normal (normal layers) or zeros. A failure of any layer fails
  * the tile. */
 struct vtv_loader *vtv_loader_create_layers(const struct vts_store *store, const uint32_t *layers,

@@ -67,7 +67,7 @@ struct vtv_stream {
 /* Opens the cache (slots tiles), the loader (threads; 0 with sync) and uploads every tile of the
  * coarsest level, which stays resident. layers: per map kind (enum vtv_map) the store layer drawn
  * for it, or UINT32_MAX; each one used gets a physical texture with the same slots, and the loader
- * reads all of them per tile position (one residency decision per position). bc_upload: BC1/BC3
+ * reads all of them per tile position (one residency decision per position). bc_upload: BC1..BC5
  * blocks go to a compressed physical texture as stored when the GL can take them (else they are
  * decoded on the CPU). */
 int vtv_stream_init(struct vtv_stream *s, const struct vts_store *store, const uint32_t *layers,
