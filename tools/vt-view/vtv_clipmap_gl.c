@@ -19,8 +19,9 @@ static GLuint build_program(unsigned display_features, struct vts_error *err)
     const char *vsrc = vtv_vs_source;
     char defines[512];
     vtv_feature_defines(display_features, defines, sizeof(defines));
-    const char *fsrc[4] = {"#version 330 core\n", defines, vtv_display_glsl, vtv_clipmap_fs_glsl};
-    return vtv_program_build(&vsrc, 1, fsrc, 4, "clipmap", err);
+    const char *fsrc[5] = {"#version 330 core\n", defines, vtv_display_glsl, vtv_level_colour_glsl,
+                           vtv_clipmap_fs_glsl};
+    return vtv_program_build(&vsrc, 1, fsrc, 5, "clipmap", err);
 }
 
 double vtv_clipmap_gl_inset(bool nearest)
@@ -274,12 +275,5 @@ uint64_t vtv_clipmap_gl_draw(const struct vtv_clipmap_gl *g, const struct vts_cl
     glBindVertexArray(0);
     glUseProgram(0);
     glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-    glDisable(GL_FRAMEBUFFER_SRGB);
-    glReadBuffer(GL_COLOR_ATTACHMENT1);
-    glReadPixels(0, 0, (GLsizei)r->width, (GLsizei)r->height, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
-                 r->fallback_pixels);
-    uint64_t n = 0;
-    for (size_t i = 0; i < (size_t)r->width * r->height; i++)
-        n += r->fallback_pixels[i] != 0;
-    return n;
+    return vtv_render_end_main(r);
 }

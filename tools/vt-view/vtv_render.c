@@ -584,12 +584,8 @@ static void setup_vt(struct vtv_render *r, GLuint p, const struct vtv_view *v, v
     glUniform1i(glGetUniformLocation(p, "u_debug"), v->debug);
 }
 
-uint64_t vtv_render_vt(struct vtv_render *r, const struct vtv_view *v)
+uint64_t vtv_render_end_main(struct vtv_render *r)
 {
-    vtv_render_begin_main(r);
-    phys_filter(r, v->nearest);
-    bind_textures(r);
-    draw_groups(r, VTV_PROG_VT, v, setup_vt, NULL);
     glDisable(GL_FRAMEBUFFER_SRGB);
     glReadBuffer(GL_COLOR_ATTACHMENT1);
     glReadPixels(0, 0, (GLsizei)r->width, (GLsizei)r->height, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
@@ -598,6 +594,15 @@ uint64_t vtv_render_vt(struct vtv_render *r, const struct vtv_view *v)
     for (size_t i = 0; i < (size_t)r->width * r->height; i++)
         n += r->fallback_pixels[i] != 0;
     return n;
+}
+
+uint64_t vtv_render_vt(struct vtv_render *r, const struct vtv_view *v)
+{
+    vtv_render_begin_main(r);
+    phys_filter(r, v->nearest);
+    bind_textures(r);
+    draw_groups(r, VTV_PROG_VT, v, setup_vt, NULL);
+    return vtv_render_end_main(r);
 }
 
 static void setup_feedback(struct vtv_render *r, GLuint p, const struct vtv_view *v, void *user)

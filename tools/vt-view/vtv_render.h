@@ -152,6 +152,9 @@ void vtv_render_upload_page_table(struct vtv_render *r, const struct vtv_cache *
 /* Binds the main pass's framebuffer and clears it (colour, fallback counts, depth), with sRGB
  * encoding as the frame's; the passes that draw into it start with this. */
 void vtv_render_begin_main(const struct vtv_render *r);
+/* Ends a main pass: reads back the fallback counts; returns the pixels drawn from a coarser level
+ * than wanted. */
+uint64_t vtv_render_end_main(struct vtv_render *r);
 
 /* Main pass into the framebuffer; returns the number of fallback pixels. */
 uint64_t vtv_render_vt(struct vtv_render *r, const struct vtv_view *v);

@@ -221,6 +221,14 @@ const char vtv_display_glsl[] =
     "    return c;\n"
     "}\n";
 
+/* --debug levels: the tint of the level a pixel uses (the page-table and clipmap passes). */
+const char vtv_level_colour_glsl[] =
+    "vec3 level_colour(int l) {\n"
+    "    vec3 c[8] = vec3[8](vec3(1,0,0), vec3(1,0.5,0), vec3(1,1,0), vec3(0,1,0),\n"
+    "                        vec3(0,1,1), vec3(0,0,1), vec3(0.6,0,1), vec3(1,0,1));\n"
+    "    return c[clamp(l, 0, 7)];\n"
+    "}\n";
+
 static const char vt_body[] =
     "uniform int u_debug;\n"
     "layout(location = 0) out vec4 o_color;\n"
@@ -245,11 +253,6 @@ static const char vt_body[] =
     "    if (k == 1) return vt_rebuild_z(vt_layer(u_phys_norm), 1);\n"
     "    if (k == 2) return vt_rebuild_z(vt_layer(u_phys_ks), 2);\n"
     "    return vt_rebuild_z(vt_layer(u_phys_d), 3);\n"
-    "}\n"
-    "vec3 level_colour(int l) {\n"
-    "    vec3 c[8] = vec3[8](vec3(1,0,0), vec3(1,0.5,0), vec3(1,1,0), vec3(0,1,0),\n"
-    "                        vec3(0,1,1), vec3(0,0,1), vec3(0.6,0,1), vec3(1,0,1));\n"
-    "    return c[clamp(l, 0, 7)];\n"
     "}\n"
     "void main() {\n"
     "    vec2 t0 = vt_texel();\n"
@@ -360,6 +363,7 @@ int vtv_shader_fragment(enum vtv_program_kind kind, unsigned features, char *def
         }
         pieces[n++] = shading;
         pieces[n++] = vtv_display_glsl;
+        pieces[n++] = vtv_level_colour_glsl;
         pieces[n++] = vt_body;
         break;
     case VTV_PROG_FEEDBACK:

@@ -13,12 +13,14 @@ enum vtv_program_kind {
     VTV_PROG_KINDS
 };
 
-#define VTV_SHADER_PIECES 8
+#define VTV_SHADER_PIECES 9
 
 extern const char vtv_vs_source[]; /* shared vertex shader: position, uv, normal, tangent */
 /* The shown colour's display, vec4 vt_display(vec4) (range, ramp, index colours: F_RANGE, F_RAMP,
  * F_INDEX; uniforms set by vtv_render_material_uniforms). */
 extern const char vtv_display_glsl[];
+/* vec3 level_colour(int level): the --debug levels tint (after vtv_display_glsl). */
+extern const char vtv_level_colour_glsl[];
 
 /* The pieces of the fragment shader of kind for features (enum vtv_feature bits); defines is the
  * caller's buffer for the #define lines (cap bytes, 512 is enough). Returns the piece count. */
