@@ -1,9 +1,9 @@
 /* Atlas layout model: validation (sizes, cells inside the atlas, no overlaps), lookup by name,
  * UV mapping. The JSON side is vt_layout_json.c. */
 #include "vt_layout.h"
+#include "internal/vt_rect_overlap.h"
 
 #include <math.h>
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -154,168 +154,26 @@ static int check_entry(const struct vt_layout *l, uint32_t i, const char *name,
     return 0;
 }
 
-/* ---- cell overlap: a sweep over x with the active cells in a treap keyed by y ---- */
-
-struct treap {
-    uint32_t *left, *right, *prio; /* node i = entry i; 0 = none, nodes are 1-based */
-    const struct vt_layout_entry *e;
-    uint32_t root;
-};
-
-static uint32_t key(const struct treap *t, uint32_t n)
-{
-    return vt_layout_cell_y(&t->e[n - 1]);
-}
-
-static uint32_t rot_right(struct treap *t, uint32_t n)
-{
-    uint32_t l = t->left[n];
-    t->left[n] = t->right[l];
-    t->right[l] = n;
-    return l;
-}
-
-static uint32_t rot_left(struct treap *t, uint32_t n)
-{
-    uint32_t r = t->right[n];
-    t->right[n] = t->left[r];
-    t->left[r] = n;
-    return r;
-}
-
-static uint32_t treap_insert(struct treap *t, uint32_t root, uint32_t n)
-{
-    if (!root)
-        return n;
-    if (key(t, n) < key(t, root)) {
-        t->left[root] = treap_insert(t, t->left[root], n);
-        if (t->prio[t->left[root]] > t->prio[root])
-            root = rot_right(t, root);
-    } else {
-        t->right[root] = treap_insert(t, t->right[root], n);
-        if (t->prio[t->right[root]] > t->prio[root])
-            root = rot_left(t, root);
-    }
-    return root;
-}
-
-/* Removes the node with n's key (keys of active cells are unique: the cells are disjoint). */
-static uint32_t treap_remove(struct treap *t, uint32_t root, uint32_t n)
-{
-    if (!root)
-        return 0;
-    if (key(t, n) < key(t, root)) {
-        t->left[root] = treap_remove(t, t->left[root], n);
-        return root;
-    }
-    if (key(t, n) > key(t, root)) {
-        t->right[root] = treap_remove(t, t->right[root], n);
-        return root;
-    }
-    if (!t->left[root] || !t->right[root])
-        return t->left[root] ? t->left[root] : t->right[root];
-    if (t->prio[t->left[root]] > t->prio[t->right[root]]) {
-        uint32_t r = rot_right(t, root);
-        t->right[r] = treap_remove(t, t->right[r], n);
-        return r;
-    }
-    uint32_t r = rot_left(t, root);
-    t->left[r] = treap_remove(t, t->left[r], n);
-    return r;
-}
-
-/* The active node with the largest y below limit, or 0. */
-static uint32_t treap_below(const struct treap *t, uint32_t limit)
-{
-    uint32_t n = t->root, best = 0;
-    while (n) {
-        if (key(t, n) < limit) {
-            best = n;
-            n = t->right[n];
-        } else {
-            n = t->left[n];
-        }
-    }
-    return best;
-}
-
-static const struct vt_layout_entry *cmp_entries;
-
-static int cmp_start(const void *a, const void *b)
-{
-    uint32_t xa = vt_layout_cell_x(&cmp_entries[*(const uint32_t *)a]),
-             xb = vt_layout_cell_x(&cmp_entries[*(const uint32_t *)b]);
-    return (xa > xb) - (xa < xb);
-}
-
-static int cmp_end(const void *a, const void *b)
-{
-    const struct vt_layout_entry *ea = &cmp_entries[*(const uint32_t *)a],
-                                 *eb = &cmp_entries[*(const uint32_t *)b];
-    uint64_t xa = (uint64_t)vt_layout_cell_x(ea) + ea->cell_width,
-             xb = (uint64_t)vt_layout_cell_x(eb) + eb->cell_width;
-    return (xa > xb) - (xa < xb);
-}
-
-/* Sorts idx[0..n) by cmp with e as the context (qsort has no user pointer). */
-static void sort_entries(uint32_t *idx, uint32_t n, const struct vt_layout_entry *e,
-                         int (*cmp)(const void *, const void *))
-{
-    static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
-    pthread_mutex_lock(&lock);
-    cmp_entries = e;
-    qsort(idx, n, sizeof *idx, cmp);
-    cmp_entries = NULL;
-    pthread_mutex_unlock(&lock);
-}
-
+/* No two cells overlap (vt_rect_overlap_find: a sweep in O(n log n)). */
 static int check_overlaps(const struct vt_layout *l, const char *name, struct vts_error *err)
 {
-    uint32_t n = l->entry_count;
-    if (n < 2)
-        return 0;
-    int rc = VTS_ERR_NOMEM;
-    struct treap t = {.e = l->entries};
-    uint32_t *start = malloc((size_t)n * sizeof *start), *end = malloc((size_t)n * sizeof *end);
-    t.left = calloc((size_t)n + 1, sizeof *t.left);
-    t.right = calloc((size_t)n + 1, sizeof *t.right);
-    t.prio = malloc(((size_t)n + 1) * sizeof *t.prio);
-    if (!start || !end || !t.left || !t.right || !t.prio) {
-        vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory checking %u cells", name, n);
-        goto out;
-    }
-    uint32_t seed = 2463534242u;
+    uint32_t n = l->entry_count, a, b;
+    struct vt_rect *r = malloc(((size_t)n + 1) * sizeof *r);
+    if (!r)
+        return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory checking %u cells", name, n);
     for (uint32_t i = 0; i < n; i++) {
-        start[i] = end[i] = i;
-        seed ^= seed << 13, seed ^= seed >> 17, seed ^= seed << 5;
-        t.prio[i + 1] = seed;
+        const struct vt_layout_entry *e = &l->entries[i];
+        r[i] = (struct vt_rect){vt_layout_cell_x(e), vt_layout_cell_y(e), e->cell_width,
+                                e->cell_height};
     }
-    sort_entries(start, n, l->entries, cmp_start);
-    sort_entries(end, n, l->entries, cmp_end);
-    rc = 0;
-    for (uint32_t s = 0, k = 0; s < n; s++) {
-        const struct vt_layout_entry *e = &l->entries[start[s]];
-        uint32_t ex = vt_layout_cell_x(e), ey = vt_layout_cell_y(e);
-        for (;
-             k < n &&
-             (uint64_t)vt_layout_cell_x(&l->entries[end[k]]) + l->entries[end[k]].cell_width <= ex;
-             k++)
-            t.root = treap_remove(&t, t.root, end[k] + 1);
-        uint32_t below = treap_below(&t, ey + e->cell_height);
-        if (below && (uint64_t)key(&t, below) + l->entries[below - 1].cell_height > ey) {
-            rc = vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': the cells of '%s' and '%s' overlap",
-                              name, l->entries[below - 1].name, e->name);
-            goto out;
-        }
-        t.root = treap_insert(&t, t.root, start[s] + 1);
-    }
-out:
-    free(start);
-    free(end);
-    free(t.left);
-    free(t.right);
-    free(t.prio);
-    return rc;
+    int found = vt_rect_overlap_find(r, n, &a, &b);
+    free(r);
+    if (found < 0)
+        return vt_error_set(err, VTS_ERR_NOMEM, "'%s': out of memory checking %u cells", name, n);
+    if (found > 0)
+        return vt_error_set(err, VTS_ERR_BAD_INPUT, "'%s': the cells of '%s' and '%s' overlap",
+                            name, l->entries[a].name, l->entries[b].name);
+    return 0;
 }
 
 /* Builds l->by_name from every entry name and alias and checks that they are unique. */
